@@ -1,0 +1,37 @@
+#pragma once
+// glint/core/file.h — file helpers: atomic writes, whole-file reads.
+//
+// Outputs are written atomically: to a temporary file in the destination's
+// directory, then renamed over the destination. A crash, an exception or
+// Ctrl-C never leaves a partial file under the final name, and an existing
+// file is replaced only by a complete one.
+//
+//   glint::writeAtomically("out.png", [&](const std::filesystem::path& tmp) {
+//     saveImage(image, tmp);    // tmp keeps the extension, so format detection works
+//   });
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+
+namespace glint {
+
+/// Calls write(tmp) with a temporary path next to `destination` (same extension),
+/// then renames it to `destination`. Throws Error(Output) with a one-line reason
+/// when the directory does not exist or is not writable; removes the temporary
+/// file if `write` throws, and rethrows.
+void writeAtomically(const std::filesystem::path& destination,
+                     const std::function<void(const std::filesystem::path& tmp)>& write);
+
+/// Writes `contents` to `destination` atomically.
+void writeTextAtomically(const std::filesystem::path& destination, std::string_view contents);
+
+/// Reads a whole file; Error(Input) naming the file when it cannot be read.
+std::string readTextFile(const std::filesystem::path& path);
+
+/// Throws Error(Output) when `destination` could not be created: its directory is
+/// missing or not writable. Lets a long command fail before it starts working.
+void checkWritable(const std::filesystem::path& destination);
+
+}  // namespace glint

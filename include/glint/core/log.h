@@ -1,0 +1,45 @@
+#pragma once
+// glint/core/log.h — leveled logging to stderr.
+//
+// Messages go to stderr so that stdout stays clean for machine-readable output
+// (`glint list`, `--json` reports). The level is global; `--quiet` sets Warn,
+// `--verbose` sets Debug.
+//
+//   glint::log::info("rendered {} variants in {:.1f} s", n, seconds);
+
+#include <fmt/format.h>
+
+#include <string_view>
+
+namespace glint::log {
+
+enum class Level {
+  Debug,  ///< details for developers (`--verbose`)
+  Info,   ///< what a command is doing (default)
+  Warn,   ///< something the user should know, work goes on
+  Error,  ///< the command failed
+  Off     ///< nothing at all
+};
+
+void setLevel(Level level);
+Level level();
+void write(Level level, std::string_view message);
+
+template <typename... Args>
+void debug(fmt::format_string<Args...> f, Args&&... a) {
+  if (level() <= Level::Debug) write(Level::Debug, fmt::format(f, std::forward<Args>(a)...));
+}
+template <typename... Args>
+void info(fmt::format_string<Args...> f, Args&&... a) {
+  if (level() <= Level::Info) write(Level::Info, fmt::format(f, std::forward<Args>(a)...));
+}
+template <typename... Args>
+void warn(fmt::format_string<Args...> f, Args&&... a) {
+  if (level() <= Level::Warn) write(Level::Warn, fmt::format(f, std::forward<Args>(a)...));
+}
+template <typename... Args>
+void error(fmt::format_string<Args...> f, Args&&... a) {
+  if (level() <= Level::Error) write(Level::Error, fmt::format(f, std::forward<Args>(a)...));
+}
+
+}  // namespace glint::log

@@ -1,0 +1,51 @@
+#pragma once
+// glint/core/progress.h — a terminal progress bar for long work.
+//
+// Draws `label [#####.....] 42/100  3.1 s` on stderr, redrawn in place, only
+// when stderr is a terminal and logging is at Info or below; otherwise silent,
+// so logs and CI output stay clean. advance() is thread-safe and cheap (an
+// atomic add; redraws are rate-limited), so it may be called from TBB workers.
+//
+//   glint::Progress progress("gallery", variants.size());
+//   for (...) { work(); progress.advance(); }
+//   progress.finish();   // also called by the destructor
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+namespace glint {
+
+class Progress {
+public:
+  Progress(std::string label, std::uint64_t total);
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  void advance(std::uint64_t steps = 1);
+  /// Sets the text shown after the counter (e.g. the item being worked on).
+  void setDetail(std::string detail);
+  /// Draws the final state and ends the line. Idempotent.
+  void finish();
+
+  std::uint64_t done() const { return m_done.load(); }
+  bool enabled() const { return m_enabled; }
+
+private:
+  void draw(bool force);
+
+  std::string m_label;
+  std::string m_detail;
+  std::uint64_t m_total;
+  std::atomic<std::uint64_t> m_done{0};
+  std::atomic<std::int64_t> m_lastDrawMs{-1000};
+  std::chrono::steady_clock::time_point m_start;
+  std::mutex m_drawMutex;
+  bool m_enabled;
+  bool m_finished = false;
+};
+
+}  // namespace glint

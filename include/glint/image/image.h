@@ -1,0 +1,99 @@
+#pragma once
+// glint/image/image.h — a CPU image: 8-bit, 16-bit or float, 1 to 4 channels.
+//
+// Contents
+//   Image            pixel storage, typed access, conversions
+//   loadImage        read any format OpenImageIO reads (PNG, TGA, JPEG, EXR, HDR, TIFF)
+//   saveImage        write atomically; format from the extension
+//   compareImages    max / mean difference and a visual diff image
+//
+// Row 0 is the TOP row, as in image files. OpenGL's window origin is the lower
+// left, so GL readback (gl/readback.h) flips rows; do not flip twice.
+// Channels are interleaved (RGBARGBA...). Integer pixels are normalized: at()
+// returns 0..1 for U8 and U16, the stored value for F32.
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+enum class PixelType {
+  U8,   ///< 8-bit unsigned normalized
+  U16,  ///< 16-bit unsigned normalized
+  F32   ///< 32-bit float, linear, unclamped
+};
+
+/// Bytes of one channel value of this type.
+std::size_t pixelTypeSize(PixelType type);
+const char* pixelTypeName(PixelType type);
+
+class Image {
+public:
+  Image() = default;
+  /// A zero-filled image. Throws Error(Usage) for a non-positive size or channels outside 1..4.
+  Image(int width, int height, int channels, PixelType type = PixelType::U8);
+
+  int width() const { return m_width; }
+  int height() const { return m_height; }
+  int channels() const { return m_channels; }
+  PixelType type() const { return m_type; }
+  bool empty() const { return m_data.empty(); }
+  std::size_t pixelCount() const { return std::size_t(m_width) * std::size_t(m_height); }
+  std::size_t bytesPerPixel() const { return pixelTypeSize(m_type) * std::size_t(m_channels); }
+  std::size_t rowBytes() const { return bytesPerPixel() * std::size_t(m_width); }
+
+  std::span<std::byte> bytes() { return m_data; }
+  std::span<const std::byte> bytes() const { return m_data; }
+
+  /// Typed views; T must match type() (uint8_t, uint16_t, float), else Error(Internal).
+  template <typename T> std::span<T> pixels();
+  template <typename T> std::span<const T> pixels() const;
+
+  /// Normalized channel value (0..1 for integer types). No bounds check in release builds.
+  float at(int x, int y, int c) const;
+  /// Stores a normalized value, rounding and clamping to the integer range when needed.
+  void set(int x, int y, int c, float value);
+
+  /// Same pixels in another type (values clamped to 0..1 when converting to integers).
+  Image converted(PixelType type) const;
+  /// Same pixels with another channel count: 1 → n replicates gray (alpha = 1),
+  /// 3/4 → 1 takes Rec.709 luminance, 4 → 3 drops alpha, 3 → 4 adds opaque alpha.
+  Image withChannels(int channels) const;
+  /// Swaps rows top ↔ bottom in place.
+  void flipVertical();
+
+  bool operator==(const Image& other) const = default;
+
+private:
+  int m_width = 0;
+  int m_height = 0;
+  int m_channels = 0;
+  PixelType m_type = PixelType::U8;
+  std::vector<std::byte> m_data;
+};
+
+/// Reads an image file. Error(Input) with the reason when it is missing, unreadable or corrupt.
+/// 8-bit files load as U8, 16-bit as U16, everything else (half, float) as F32.
+Image loadImage(const std::filesystem::path& path);
+
+/// Writes an image atomically; the format follows the extension. Error(Output) when the
+/// format cannot hold the image (e.g. float into PNG is converted to 16-bit first) or the
+/// file cannot be written.
+void saveImage(const Image& image, const std::filesystem::path& path);
+
+struct ImageDifference {
+  double maxAbs = 0;   ///< largest absolute channel difference, normalized 0..1
+  double meanAbs = 0;  ///< mean absolute channel difference over all channels
+  std::size_t differingPixels = 0;  ///< pixels with any channel differing by more than 1/255
+  Image visual;        ///< RGB U8: |a - b| per pixel scaled ×8 and clamped, for eyes
+};
+
+/// Compares two images of equal size (any types/channels; compared on min(channels)).
+/// Error(Usage) when the sizes differ.
+ImageDifference compareImages(const Image& a, const Image& b);
+
+}  // namespace glint

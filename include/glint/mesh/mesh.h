@@ -1,0 +1,76 @@
+#pragma once
+// glint/mesh/mesh.h — an indexed triangle mesh, its generators and its importer.
+//
+// Contents
+//   Mesh             positions, normals, UVs, tangents, triangle indices (no GL inside)
+//   make*            procedural generators (plane, grid, cube, UV sphere, icosphere, torus)
+//   loadMesh         any format Assimp reads (OBJ, PLY, glTF/GLB, FBX, STL, ...)
+//   computeNormals   area-weighted smooth vertex normals
+//
+// Conventions: right-handed, counter-clockwise front faces (OpenGL's default),
+// UV origin at the lower left (OpenGL texture convention, v up). Optional
+// attributes are either empty or exactly one per vertex.
+
+#include "glint/core/math.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+struct Bounds {
+  vec3 min{0.0f};
+  vec3 max{0.0f};
+  vec3 center() const { return 0.5f * (min + max); }
+  vec3 extent() const { return max - min; }
+  /// Length of the diagonal; 0 for an empty mesh.
+  float diagonal() const { return glm::length(max - min); }
+};
+
+struct Mesh {
+  std::vector<vec3> positions;
+  std::vector<vec3> normals;        ///< empty, or one unit normal per vertex
+  std::vector<vec2> uvs;            ///< empty, or one per vertex
+  std::vector<vec4> tangents;       ///< empty, or xyz tangent + w = ±1 bitangent sign
+  std::vector<std::uint32_t> indices;  ///< 3 per triangle, counter-clockwise front faces
+
+  std::size_t vertexCount() const { return positions.size(); }
+  std::size_t triangleCount() const { return indices.size() / 3; }
+  bool hasNormals() const { return !normals.empty(); }
+  bool hasUvs() const { return !uvs.empty(); }
+  bool hasTangents() const { return !tangents.empty(); }
+
+  Bounds bounds() const;
+  /// Throws Error(Input) naming the problem: no triangles, index count not a multiple of 3,
+  /// index out of range, attribute arrays of the wrong length, NaN/inf positions.
+  void validate(const std::string& what = "mesh") const;
+  /// Appends another mesh (indices rebased). Attributes are kept only if both have them.
+  void append(const Mesh& other);
+  /// Applies a transform to positions (and the inverse transpose to normals/tangents).
+  void transform(const mat4& m);
+};
+
+/// Recomputes smooth normals: area-weighted average of incident face normals.
+void computeNormals(Mesh& mesh);
+
+/// Square in the XZ plane centred at the origin, normal +Y, UVs 0..uvScale.
+Mesh makePlane(float size = 2.0f, float uvScale = 1.0f);
+/// Like makePlane with (cellsX × cellsZ) quads; useful for displacement and tessellated grounds.
+Mesh makeGrid(int cellsX, int cellsZ, float size = 2.0f, float uvScale = 1.0f);
+/// Axis-aligned cube centred at the origin, 24 vertices (flat normals), each face UV 0..1.
+Mesh makeCube(float size = 2.0f);
+/// Latitude/longitude sphere; UV u along longitude, v from south (0) to north (1) pole.
+Mesh makeUvSphere(float radius = 1.0f, int segments = 48, int rings = 24);
+/// Subdivided icosahedron, vertices exactly on the sphere; no UVs.
+Mesh makeIcosphere(float radius = 1.0f, int subdivisions = 3);
+/// Torus around +Y: major radius R (centre to tube centre), minor radius r; UVs wrap once.
+Mesh makeTorus(float majorRadius = 1.0f, float minorRadius = 0.35f, int segments = 64, int sides = 32);
+
+/// Loads every mesh in a file into one Mesh (node transforms applied, triangulated,
+/// identical vertices joined). Error(Input) when the file is missing, corrupt or has no
+/// triangles. Missing normals are generated (a warning is logged).
+Mesh loadMesh(const std::filesystem::path& path);
+
+}  // namespace glint

@@ -1,0 +1,97 @@
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using namespace glint;
+
+namespace {
+fs::path freshDir(const char* name) {
+  fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "core" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+}  // namespace
+
+TEST(Error, ExitCodesAreDistinctPerKind) {
+  EXPECT_EQ(exitCode(ErrorKind::Usage), 2);
+  EXPECT_EQ(exitCode(ErrorKind::Input), 3);
+  EXPECT_EQ(exitCode(ErrorKind::Output), 4);
+  EXPECT_EQ(exitCode(ErrorKind::NoGpu), 5);
+  try {
+    fail(ErrorKind::Input, "cannot read '{}'", "x.png");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    EXPECT_STREQ(e.what(), "cannot read 'x.png'");
+  }
+}
+
+TEST(AtomicWrite, WritesAndReplacesWholeFiles) {
+  const auto dir = freshDir("replace");
+  const auto file = dir / "a.txt";
+  writeTextAtomically(file, "first");
+  EXPECT_EQ(readTextFile(file), "first");
+  writeTextAtomically(file, "second");
+  EXPECT_EQ(readTextFile(file), "second");
+  // Only the destination remains: no temporaries left behind.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicWrite, FailingWriterLeavesNothingAndKeepsTheOldFile) {
+  const auto dir = freshDir("failing");
+  const auto file = dir / "keep.txt";
+  writeTextAtomically(file, "precious");
+  EXPECT_THROW(writeAtomically(file,
+                               [](const fs::path& tmp) {
+                                 std::ofstream(tmp) << "half";
+                                 throw Error(ErrorKind::Internal, "boom");
+                               }),
+               Error);
+  EXPECT_EQ(readTextFile(file), "precious");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicWrite, TemporaryKeepsTheExtensionForFormatDetection) {
+  const auto dir = freshDir("ext");
+  fs::path seen;
+  writeAtomically(dir / "x.png", [&](const fs::path& tmp) {
+    seen = tmp;
+    std::ofstream(tmp) << "data";
+  });
+  EXPECT_EQ(seen.extension(), ".png");
+  EXPECT_EQ(seen.parent_path(), dir);
+}
+
+TEST(AtomicWrite, MissingDirectoryIsAnOutputError) {
+  try {
+    writeTextAtomically("/nonexistent-glint-dir/x.txt", "x");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Output);
+    EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos);
+  }
+}
+
+TEST(AtomicWrite, UnwritableDirectoryIsAnOutputError) {
+  if (geteuid() == 0) GTEST_SKIP() << "root can write into read-only directories";
+  const auto dir = freshDir("readonly");
+  fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+  EXPECT_THROW(writeTextAtomically(dir / "x.txt", "x"), Error);
+  fs::permissions(dir, fs::perms::owner_all);
+}
+
+TEST(ReadTextFile, MissingFileIsAnInputError) {
+  try {
+    readTextFile("/nonexistent-glint-file");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+  }
+}

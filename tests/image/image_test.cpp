@@ -1,0 +1,141 @@
+#include "glint/core/error.h"
+#include "glint/image/image.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using namespace glint;
+
+namespace {
+fs::path outDir() {
+  fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "image";
+  fs::create_directories(dir);
+  return dir;
+}
+
+Image gradient(PixelType type, int channels) {
+  Image img(37, 19, channels, type);  // odd sizes catch row-stride bugs
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x)
+      for (int c = 0; c < channels; ++c) img.set(x, y, c, float(x + 3 * y + 11 * c) / 200.0f);
+  return img;
+}
+}  // namespace
+
+TEST(Image, NormalizedAccessRoundsToTheNearestCode) {
+  Image img(2, 1, 1, PixelType::U8);
+  img.set(0, 0, 0, 0.5f);
+  EXPECT_EQ(img.pixels<std::uint8_t>()[0], 128);  // 127.5 rounds up
+  img.set(1, 0, 0, 2.0f);
+  EXPECT_EQ(img.pixels<std::uint8_t>()[1], 255);  // clamped
+  img.set(1, 0, 0, NAN);
+  EXPECT_EQ(img.pixels<std::uint8_t>()[1], 0);  // NaN is not garbage
+}
+
+TEST(Image, RejectsBadShapesAndWrongTypedViews) {
+  EXPECT_THROW(Image(0, 4, 3), Error);
+  EXPECT_THROW(Image(4, 4, 5), Error);
+  Image img(2, 2, 1, PixelType::F32);
+  EXPECT_THROW(img.pixels<std::uint8_t>(), Error);
+}
+
+TEST(Image, FlipVerticalSwapsRows) {
+  Image img(1, 3, 1, PixelType::U8);
+  img.set(0, 0, 0, 0.0f);
+  img.set(0, 2, 0, 1.0f);
+  img.flipVertical();
+  EXPECT_FLOAT_EQ(img.at(0, 0, 0), 1.0f);
+  EXPECT_FLOAT_EQ(img.at(0, 2, 0), 0.0f);
+}
+
+TEST(Image, LuminanceUsesRec709Weights) {
+  Image rgb(1, 1, 3, PixelType::F32);
+  rgb.set(0, 0, 1, 1.0f);  // pure green
+  EXPECT_NEAR(rgb.withChannels(1).at(0, 0, 0), 0.7152f, 1e-6);
+  EXPECT_FLOAT_EQ(rgb.withChannels(4).at(0, 0, 3), 1.0f);
+}
+
+// Round trips through real files: PNG 8/16-bit, TGA 8-bit, EXR float must return
+// exactly what was written (lossless formats).
+struct RoundTrip {
+  const char* ext;
+  PixelType type;
+  int channels;
+};
+class ImageRoundTrip : public ::testing::TestWithParam<RoundTrip> {};
+
+TEST_P(ImageRoundTrip, IsLossless) {
+  const auto p = GetParam();
+  const Image img = gradient(p.type, p.channels);
+  const auto path = outDir() / (std::string("roundtrip_") + pixelTypeName(p.type) + std::to_string(p.channels) + p.ext);
+  saveImage(img, path);
+  const Image back = loadImage(path);
+  EXPECT_EQ(back.type(), p.type);
+  EXPECT_EQ(back.channels(), p.channels);
+  const auto diff = compareImages(img, back);
+  EXPECT_EQ(diff.maxAbs, 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, ImageRoundTrip,
+                         ::testing::Values(RoundTrip{".png", PixelType::U8, 3}, RoundTrip{".png", PixelType::U8, 4},
+                                           RoundTrip{".png", PixelType::U16, 1}, RoundTrip{".tga", PixelType::U8, 4},
+                                           RoundTrip{".exr", PixelType::F32, 3}));
+
+TEST(ImageIo, FloatIntoPngIsStoredAs16Bit) {
+  const Image img = gradient(PixelType::F32, 3);
+  const auto path = outDir() / "float_as.png";
+  saveImage(img, path);
+  const Image back = loadImage(path);
+  EXPECT_EQ(back.type(), PixelType::U16);
+  EXPECT_LT(compareImages(img, back).maxAbs, 1.0 / 65535.0);
+}
+
+TEST(ImageIo, MissingAndCorruptFilesAreInputErrors) {
+  try {
+    loadImage(outDir() / "does-not-exist.png");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos);
+  }
+  const auto corrupt = outDir() / "corrupt.png";
+  std::ofstream(corrupt) << "\x89PNG\r\n\x1a\n this is not a png";
+  try {
+    loadImage(corrupt);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "message must be one line";
+  }
+}
+
+TEST(ImageIo, UnwritableOutputIsAnOutputErrorAndLeavesNothing) {
+  const Image img = gradient(PixelType::U8, 3);
+  try {
+    saveImage(img, "/nonexistent-glint-dir/x.png");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Output);
+  }
+  try {
+    saveImage(img, outDir() / "x.unknownformat");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Output);
+  }
+  EXPECT_FALSE(fs::exists(outDir() / "x.unknownformat"));
+}
+
+TEST(CompareImages, ReportsMaxMeanAndCount) {
+  Image a(4, 1, 1, PixelType::U8), b(4, 1, 1, PixelType::U8);
+  b.set(1, 0, 0, 1.0f);
+  const auto d = compareImages(a, b);
+  EXPECT_DOUBLE_EQ(d.maxAbs, 1.0);
+  EXPECT_DOUBLE_EQ(d.meanAbs, 0.25);
+  EXPECT_EQ(d.differingPixels, 1u);
+  EXPECT_THROW(compareImages(a, Image(3, 1, 1)), Error);
+}
