@@ -48,7 +48,8 @@ struct Mesh {
   void validate(const std::string& what = "mesh") const;
   /// Appends another mesh (indices rebased). Attributes are kept only if both have them.
   void append(const Mesh& other);
-  /// Applies a transform to positions (and the inverse transpose to normals/tangents).
+  /// Applies a transform: positions by `m`, normals by its inverse transpose, tangents by `m`
+  /// itself (tangents lie in the surface); a mirroring `m` also flips winding and tangent w.
   void transform(const mat4& m);
 };
 

@@ -1,0 +1,180 @@
+// glint gallery — every variant rendered, timed, and laid out in index.html.
+#include "common.h"
+
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+#include "glint/core/log.h"
+#include "glint/core/progress.h"
+#include "glint/gl/context.h"
+#include "glint/scenes/runner.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+
+namespace glint::app {
+namespace fs = std::filesystem;
+
+namespace {
+struct GalleryArgs {
+  std::string output = "out/gallery";
+  std::string filter;
+  std::string size;
+  int repeats = 5;
+};
+
+struct Entry {
+  scenes::VariantRef ref;
+  std::string image;  // relative to the gallery directory; empty when skipped
+  std::string skipped;
+  scenes::RenderResult result;
+};
+
+std::string escapeHtml(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string escapeJson(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out;
+}
+
+std::string timing(double ms) { return ms < 0 ? "–" : fmt::format("{:.2f} ms", ms); }
+
+std::string html(const std::vector<Entry>& entries, const gl::ContextInfo& info) {
+  std::string body;
+  const scenes::SceneDesc* current = nullptr;
+  for (const auto& e : entries) {
+    if (e.ref.scene != current) {
+      if (current) body += "</div></section>\n";
+      current = e.ref.scene;
+      body += fmt::format("<section><h2 id=\"{0}\">{0}</h2><p class=summary>{1}</p><div class=grid>\n",
+                          escapeHtml(current->name), escapeHtml(current->summary));
+    }
+    body += "<figure>";
+    if (e.skipped.empty()) {
+      body += fmt::format("<a href=\"{0}\"><img src=\"{0}\" alt=\"{1}\" loading=lazy></a>", escapeHtml(e.image),
+                          escapeHtml(e.ref.fullName()));
+    } else {
+      body += fmt::format("<div class=skipped>skipped: {}</div>", escapeHtml(e.skipped));
+    }
+    body += fmt::format("<figcaption><b>{}</b> <span class=t>GPU {} · CPU {}</span><br>{}", escapeHtml(e.ref.desc().name),
+                        timing(e.result.gpuMs), timing(e.result.cpuMs), escapeHtml(e.ref.desc().description));
+    if (!e.result.notes.empty()) body += fmt::format("<br><span class=notes>{}</span>", escapeHtml(e.result.notes));
+    body += fmt::format("<br><code>glint render {}</code></figcaption></figure>\n", escapeHtml(e.ref.fullName()));
+  }
+  if (current) body += "</div></section>\n";
+  return fmt::format(R"(<!doctype html>
+<html lang=en><head><meta charset=utf-8><title>glint gallery</title>
+<meta name=viewport content="width=device-width, initial-scale=1">
+<style>
+body {{ font: 15px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 1400px; padding: 0 1em; background: #15171c; color: #dde; }}
+h1 {{ margin-bottom: .2em; }} h2 {{ margin: 1.6em 0 .2em; border-bottom: 1px solid #333; }}
+.summary {{ color: #aab; margin-top: .2em; }}
+.grid {{ display: grid; grid-template-columns: repeat(auto-fill, minmax(300px, 1fr)); gap: 1.2em; }}
+figure {{ margin: 0; background: #1d2027; border-radius: 6px; overflow: hidden; }}
+img {{ width: 100%; display: block; background: #000; }}
+figcaption {{ padding: .6em .8em; font-size: 13.5px; }}
+.t {{ color: #8c8; float: right; }} .notes {{ color: #cb8; }} code {{ color: #99a; font-size: 12px; }}
+.skipped {{ padding: 3em 1em; color: #c88; text-align: center; }}
+.meta {{ color: #889; }}
+</style></head><body>
+<h1>glint gallery</h1>
+<p class=meta>{} variants · rendered on {} ({}) · frame times are the median of several frames at each picture's size,
+GPU time from GL_TIME_ELAPSED queries, CPU time including glFinish.</p>
+{}
+</body></html>
+)",
+                     entries.size(), escapeHtml(info.renderer), escapeHtml(info.version), body);
+}
+
+std::string json(const std::vector<Entry>& entries, const gl::ContextInfo& info) {
+  std::string out = fmt::format("{{\n  \"renderer\": \"{}\",\n  \"version\": \"{}\",\n  \"variants\": [\n",
+                                escapeJson(info.renderer), escapeJson(info.version));
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const auto& e = entries[i];
+    out += fmt::format(
+        "    {{\"name\": \"{}\", \"image\": \"{}\", \"skipped\": \"{}\", \"gpu_ms\": {:.4f}, \"cpu_ms\": {:.4f}, "
+        "\"notes\": \"{}\"}}{}\n",
+        escapeJson(e.ref.fullName()), escapeJson(e.image), escapeJson(e.skipped), e.result.gpuMs, e.result.cpuMs,
+        escapeJson(e.result.notes), i + 1 < entries.size() ? "," : "");
+  }
+  return out + "  ]\n}\n";
+}
+}  // namespace
+
+Runner addGalleryCommand(CLI::App& app, const GlobalOptions& global) {
+  auto args = std::make_shared<GalleryArgs>();
+  auto* cmd = app.add_subcommand("gallery", "Render every variant and write an HTML page of pictures and frame times");
+  cmd->footer("Writes DIR/index.html, DIR/gallery.json and DIR/<scene>/<variant>.png.\n"
+              "Variants that need a compatibility-profile context are skipped (and marked) where none exists.");
+  cmd->add_option("-o,--output", args->output, "Gallery directory (created if missing)")->capture_default_str();
+  cmd->add_option("--filter", args->filter, "Only variants whose name contains this text");
+  cmd->add_option("--size", args->size, "Render every variant at WIDTHxHEIGHT instead of its own size");
+  cmd->add_option("--repeats", args->repeats, "Frames timed per variant (0: no timing)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  return [args, &global] {
+    const auto variants = scenes::Registry::builtin().match(args->filter);
+    if (variants.empty()) fail(ErrorKind::Usage, "no variant matches '{}' (`glint list` shows them)", args->filter);
+    const fs::path dir = args->output;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) fail(ErrorKind::Output, "cannot create '{}': {}", dir.string(), ec.message());
+    checkWritable(dir / "index.html");
+
+    scenes::RenderRequest request;
+    if (!args->size.empty()) request.size = parseSize(args->size);
+    request.timingRepeats = args->repeats;
+    scenes::ContextPool contexts(global.glDebug);
+    contexts.use(gl::Profile::Core);
+    const auto info = gl::queryContextInfo();
+
+    std::vector<Entry> entries;
+    Progress progress("gallery", variants.size());
+    const auto start = std::chrono::steady_clock::now();
+    for (const auto& ref : variants) {
+      progress.setDetail(ref.fullName());
+      Entry e{.ref = ref};
+      if (!contexts.available(ref.scene->profile)) {
+        e.skipped = contexts.unavailableReason(ref.scene->profile);
+        log::warn("{}: skipped ({})", ref.fullName(), e.skipped);
+      } else {
+        contexts.use(ref.scene->profile);
+        e.result = scenes::renderVariant(ref, request);
+        e.image = ref.fullName() + ".png";
+        fs::create_directories(dir / fs::path(e.image).parent_path());
+        saveImage(e.result.image, dir / e.image);
+      }
+      entries.push_back(std::move(e));
+      progress.advance();
+    }
+    progress.finish();
+    writeTextAtomically(dir / "index.html", html(entries, info));
+    writeTextAtomically(dir / "gallery.json", json(entries, info));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    log::info("gallery: {} variants in {:.1f} s → {}", entries.size(), seconds, (dir / "index.html").string());
+    return 0;
+  };
+}
+
+}  // namespace glint::app

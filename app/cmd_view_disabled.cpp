@@ -1,0 +1,14 @@
+// glint view, when built without GLINT_BUILD_VIEWER.
+#include "common.h"
+
+#include "glint/core/error.h"
+
+namespace glint::app {
+
+Runner addViewCommand(CLI::App& app, const GlobalOptions&) {
+  app.add_subcommand("view", "Interactive viewer (not built: configure with -DGLINT_BUILD_VIEWER=ON)")
+      ->allow_extras();
+  return [] () -> int { fail(ErrorKind::Usage, "this glint was built without the viewer (GLINT_BUILD_VIEWER=OFF)"); };
+}
+
+}  // namespace glint::app

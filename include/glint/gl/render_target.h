@@ -1,0 +1,55 @@
+#pragma once
+// glint/gl/render_target.h — where a frame is drawn, and reading it back.
+//
+// Contents
+//   Target           what a scene draws into: a framebuffer (maybe the window's) and its size
+//   RenderTarget     an owned offscreen framebuffer: RGBA8 colour texture + depth24/stencil8
+//   readColor        colour attachment → Image (RGBA8, top row first)
+//   readDepth        depth → float Image (window z, 0 near .. 1 far)
+//   readStencil      stencil → U8 Image
+//   readTexture      one level (and layer) of a texture → Image
+//
+// Readback flips rows: GL's origin is the lower left, glint::Image's the upper left.
+
+#include "glint/gl/objects.h"
+#include "glint/image/image.h"
+
+namespace glint::gl {
+
+/// A framebuffer to draw into and its size. Scenes receive one per frame; they must
+/// bind `framebuffer` themselves when they return to it after rendering elsewhere.
+struct Target {
+  const Framebuffer* framebuffer = nullptr;  ///< never null in a frame
+  ivec2 size{0};
+  void bind() const;  ///< binds the framebuffer and sets the viewport to the full size
+};
+
+class RenderTarget {
+public:
+  RenderTarget() = default;
+  /// Colour texture `colorFormat` (GL_RGBA8 by default, GL_RGBA16F for HDR) and a
+  /// GL_DEPTH24_STENCIL8 texture, so the stencil buffer is always there.
+  RenderTarget(ivec2 size, GLenum colorFormat = GL_RGBA8, std::string_view name = "render-target");
+
+  Target target() const { return {&m_framebuffer, m_size}; }
+  const Framebuffer& framebuffer() const { return m_framebuffer; }
+  const Texture& color() const { return m_color; }
+  const Texture& depthStencil() const { return m_depthStencil; }
+  ivec2 size() const { return m_size; }
+
+private:
+  ivec2 m_size{0};
+  Texture m_color;
+  Texture m_depthStencil;
+  Framebuffer m_framebuffer;
+};
+
+Image readColor(const Framebuffer& framebuffer, ivec2 size, GLenum attachment = GL_COLOR_ATTACHMENT0);
+Image readDepth(const Framebuffer& framebuffer, ivec2 size);
+Image readStencil(const Framebuffer& framebuffer, ivec2 size);
+/// Reads level `level` of a 2D texture, or one face/layer of a cube/array texture, as
+/// `channels` channels of `type` (U8 or F32).
+Image readTexture(const Texture& texture, int level = 0, int layer = 0, int channels = 4,
+                  PixelType type = PixelType::U8);
+
+}  // namespace glint::gl

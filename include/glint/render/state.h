@@ -1,0 +1,66 @@
+#pragma once
+// glint/render/state.h — fixed-function state a pass needs, set all at once.
+//
+// Techniques never rely on what a previous pass left behind: each pass describes
+// the state it draws with in a PipelineState and calls apply(). A zero/default
+// PipelineState is OpenGL's initial state except that the depth test is on
+// (every 3D pass wants it); designated initialisers read like documentation:
+//
+//   render::PipelineState{.depthFunc = GL_LEQUAL, .cull = true}.apply();
+//   render::PipelineState{.depthWrite = false, .colorMask = {false, false, false, false},
+//                         .stencil = {.enabled = true, .front = {.dppass = GL_INVERT}}}.apply();
+
+#include <epoxy/gl.h>
+
+#include <array>
+
+namespace glint::render {
+
+struct StencilFace {
+  GLenum func = GL_ALWAYS;
+  GLint ref = 0;
+  GLuint valueMask = 0xFF;
+  GLuint writeMask = 0xFF;
+  GLenum sfail = GL_KEEP;   ///< stencil test fails
+  GLenum dpfail = GL_KEEP;  ///< stencil passes, depth fails
+  GLenum dppass = GL_KEEP;  ///< both pass
+};
+
+struct StencilState {
+  bool enabled = false;
+  StencilFace front;
+  StencilFace back;
+  bool separate = false;  ///< false: `front` is used for both faces
+};
+
+struct BlendState {
+  bool enabled = false;
+  GLenum src = GL_ONE;
+  GLenum dst = GL_ZERO;
+  GLenum srcAlpha = GL_ONE;  ///< used when separateAlpha
+  GLenum dstAlpha = GL_ZERO;
+  bool separateAlpha = false;
+  GLenum equation = GL_FUNC_ADD;
+};
+
+struct PipelineState {
+  bool depthTest = true;
+  GLenum depthFunc = GL_LESS;
+  bool depthWrite = true;
+  bool depthClamp = false;
+  std::array<bool, 4> colorMask{true, true, true, true};
+  bool cull = false;
+  GLenum cullFace = GL_BACK;
+  GLenum frontFace = GL_CCW;
+  bool polygonOffset = false;
+  float offsetFactor = 0.0f;
+  float offsetUnits = 0.0f;
+  GLenum polygonMode = GL_FILL;
+  StencilState stencil;
+  BlendState blend;
+
+  /// Sets every piece of state above on the current context.
+  void apply() const;
+};
+
+}  // namespace glint::render

@@ -1,0 +1,58 @@
+#pragma once
+// glint/scenes/runner.h — rendering registry variants headless: the one code path
+// behind `glint render`, `glint gallery`, the reference-image tests and benchmarks.
+//
+//   scenes::ContextPool contexts({.debug = true});
+//   auto ref = scenes::Registry::builtin().resolve("basics/triangle/depth");
+//   contexts.use(ref.scene->profile);
+//   auto result = scenes::renderVariant(ref, {.size = {500, 500}});
+//   saveImage(result.image, "depth.png");
+
+#include "glint/gl/context.h"
+#include "glint/image/image.h"
+#include "glint/scenes/scene.h"
+
+#include <map>
+#include <memory>
+#include <optional>
+
+namespace glint::scenes {
+
+/// Headless contexts by profile, created on first use. A profile the driver lacks
+/// is remembered as unavailable (available() → false) rather than retried.
+class ContextPool {
+public:
+  explicit ContextPool(bool debug = false) : m_debug(debug) {}
+  /// Makes a context of `profile` current, creating it first. Error(NoGpu) when impossible.
+  void use(gl::Profile profile);
+  /// Whether a context of `profile` exists or can be created (creates it).
+  bool available(gl::Profile profile);
+  /// Why `profile` is unavailable (empty when it is available or untried).
+  std::string unavailableReason(gl::Profile profile) const;
+
+private:
+  bool m_debug;
+  std::map<gl::Profile, std::unique_ptr<gl::HeadlessContext>> m_contexts;
+  std::map<gl::Profile, std::string> m_failures;
+};
+
+struct RenderRequest {
+  ivec2 size{0};                       ///< 0 = the scene's default size
+  std::optional<double> time;          ///< unset = the scene's default time
+  std::vector<std::string> options;    ///< "name=value" assignments (--set)
+  int timingRepeats = 0;               ///< > 0: also measure GPU and CPU time per frame
+};
+
+struct RenderResult {
+  Image image;        ///< RGBA8, top row first
+  double gpuMs = -1;  ///< median GPU time of one frame (GL_TIME_ELAPSED), when measured
+  double cpuMs = -1;  ///< median wall time of one frame including glFinish, when measured
+  std::string notes;  ///< Scene::notes() after rendering
+};
+
+/// Creates the variant's scene, applies options, renders one frame at the requested
+/// time into an offscreen target and reads it back. Needs a current context of the
+/// scene's profile (ContextPool::use).
+RenderResult renderVariant(const VariantRef& variant, const RenderRequest& request = {});
+
+}  // namespace glint::scenes

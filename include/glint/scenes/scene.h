@@ -1,0 +1,108 @@
+#pragma once
+// glint/scenes/scene.h — the spine of glint: scenes, variants, options, the registry.
+//
+// Every technique is shown through a scene with named variants ("shadows/zfail").
+// One registry feeds every front end: `glint render`, `glint gallery`, `glint view`,
+// the reference-image tests and the benchmarks. Writing a scene once gives it all
+// of those.
+//
+// Adding a scene
+//   1. Write a class deriving from Scene in src/scenes/<group>/<name>.cpp; its
+//      constructor creates its GL objects for one variant; render() draws a frame.
+//   2. Describe it with a SceneDesc (name, one-line summary, variants each with a
+//      line on what it shows) and add it in that file's register function, listed in
+//      src/scenes/registry.cpp.
+//   3. Render it, look at it, and accept its reference images (README, "Tests").
+//
+// Rules for scenes
+//   - Deterministic: everything animated is a function of FrameInput::time, never
+//     the wall clock, so `--time 1.5` always gives the same picture.
+//   - Draw into FrameInput::target, at its size; set all state you rely on.
+//   - Options are data (Option), so the viewer shows them as widgets and the CLI
+//     sets them with `--set name=value`.
+
+#include "glint/core/math.h"
+#include "glint/gl/context.h"
+#include "glint/gl/render_target.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace glint::scenes {
+
+struct FrameInput {
+  gl::Target target;     ///< where to draw, and its size
+  double time = 0.0;     ///< seconds since the scene started; drives all animation
+  double deltaTime = 0;  ///< seconds since the previous frame (0 for a single headless frame)
+};
+
+/// A tweakable parameter a scene exposes. `value` points into the scene.
+struct Option {
+  std::string name;         ///< identifier for --set, e.g. "light-height"
+  std::string description;  ///< one line for tooltips and --help
+  std::variant<float*, int*, bool*> value;
+  float min = 0.0f;  ///< slider range for float and int options
+  float max = 1.0f;
+};
+
+class Scene {
+public:
+  virtual ~Scene() = default;
+  /// Draws one frame.
+  virtual void render(const FrameInput& frame) = 0;
+  /// Parameters shown in the viewer and settable with --set.
+  virtual std::vector<Option> options() { return {}; }
+  /// Extra text the gallery and viewer show under the picture (measurements, notes).
+  virtual std::string notes() const { return {}; }
+};
+
+struct VariantDesc {
+  std::string name;         ///< e.g. "depth"
+  std::string description;  ///< one line: what this variant shows
+};
+
+struct SceneDesc {
+  std::string name;      ///< e.g. "basics/triangle" (group/name)
+  std::string summary;   ///< one line: the technique and where the seeds describe it
+  std::vector<VariantDesc> variants;
+  gl::Profile profile = gl::Profile::Core;  ///< Compatibility: needs a compatibility context
+  ivec2 defaultSize{640, 360};
+  double defaultTime = 0.0;                 ///< time rendered when --time is not given
+  /// Builds the scene for variants[variant]. Called with a current context of `profile`.
+  std::function<std::unique_ptr<Scene>(int variant)> create;
+};
+
+/// A resolved "scene/variant" name.
+struct VariantRef {
+  const SceneDesc* scene = nullptr;
+  int variant = 0;
+  std::string fullName() const { return scene->name + "/" + scene->variants[std::size_t(variant)].name; }
+  const VariantDesc& desc() const { return scene->variants[std::size_t(variant)]; }
+};
+
+class Registry {
+public:
+  /// The registry with every built-in scene.
+  static const Registry& builtin();
+
+  void add(SceneDesc desc);
+  const std::vector<SceneDesc>& scenes() const { return m_scenes; }
+  /// Every scene/variant in registration order.
+  std::vector<VariantRef> allVariants() const;
+  /// Resolves "group/name/variant" or "group/name" (first variant). Error(Usage) listing
+  /// close names when unknown.
+  VariantRef resolve(const std::string& name) const;
+  /// Variants whose full name contains `filter` (all when empty).
+  std::vector<VariantRef> match(const std::string& filter) const;
+
+private:
+  std::vector<SceneDesc> m_scenes;
+};
+
+/// Applies "name=value" to a scene's options. Error(Usage) for unknown names or bad values.
+void setOption(Scene& scene, const std::string& assignment);
+
+}  // namespace glint::scenes

@@ -1,0 +1,5 @@
+#version 450 core
+in vec4 vColor;
+layout(location = 0) out vec4 fragColor;
+
+void main() { fragColor = vColor; }

@@ -1,0 +1,100 @@
+#include "glint/core/error.h"
+#include "glint/scenes/scene.h"
+
+#include <algorithm>
+#include <charconv>
+
+namespace glint::scenes {
+
+// One register function per scene file; listed here so static libraries never
+// drop a scene (no static-initialiser tricks).
+void registerBasicsTriangle(Registry& registry);
+void registerBasicsDepth(Registry& registry);
+
+const Registry& Registry::builtin() {
+  static const Registry registry = [] {
+    Registry r;
+    registerBasicsTriangle(r);
+    registerBasicsDepth(r);
+    return r;
+  }();
+  return registry;
+}
+
+void Registry::add(SceneDesc desc) {
+  if (desc.variants.empty()) fail(ErrorKind::Internal, "scene '{}' has no variants", desc.name);
+  m_scenes.push_back(std::move(desc));
+}
+
+std::vector<VariantRef> Registry::allVariants() const {
+  std::vector<VariantRef> out;
+  for (const auto& s : m_scenes)
+    for (int v = 0; v < int(s.variants.size()); ++v) out.push_back({&s, v});
+  return out;
+}
+
+std::vector<VariantRef> Registry::match(const std::string& filter) const {
+  std::vector<VariantRef> out;
+  for (const auto& ref : allVariants())
+    if (filter.empty() || ref.fullName().find(filter) != std::string::npos) out.push_back(ref);
+  return out;
+}
+
+VariantRef Registry::resolve(const std::string& name) const {
+  for (const auto& s : m_scenes) {
+    if (name == s.name) return {&s, 0};
+    if (name.size() > s.name.size() && name.compare(0, s.name.size(), s.name) == 0 && name[s.name.size()] == '/') {
+      const std::string variant = name.substr(s.name.size() + 1);
+      for (int v = 0; v < int(s.variants.size()); ++v)
+        if (s.variants[std::size_t(v)].name == variant) return {&s, v};
+      std::string names;
+      for (const auto& v : s.variants) names += (names.empty() ? "" : ", ") + v.name;
+      fail(ErrorKind::Usage, "scene '{}' has no variant '{}' (variants: {})", s.name, variant, names);
+    }
+  }
+  // Suggest scenes sharing the group or a substring, so typos are quick to fix.
+  std::string group = name.substr(0, name.find('/'));
+  std::string suggestions;
+  for (const auto& s : m_scenes) {
+    if (s.name.rfind(group + "/", 0) == 0 || s.name.find(name) != std::string::npos)
+      suggestions += (suggestions.empty() ? "" : ", ") + s.name;
+  }
+  if (suggestions.empty()) fail(ErrorKind::Usage, "unknown scene '{}' (`glint list` shows them all)", name);
+  fail(ErrorKind::Usage, "unknown scene '{}' (did you mean: {}?)", name, suggestions);
+}
+
+void setOption(Scene& scene, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos) fail(ErrorKind::Usage, "--set expects name=value, got '{}'", assignment);
+  const std::string name = assignment.substr(0, eq);
+  const std::string value = assignment.substr(eq + 1);
+  auto options = scene.options();
+  auto it = std::find_if(options.begin(), options.end(), [&](const Option& o) { return o.name == name; });
+  if (it == options.end()) {
+    std::string names;
+    for (const auto& o : options) names += (names.empty() ? "" : ", ") + o.name;
+    fail(ErrorKind::Usage, "this scene has no option '{}' (options: {})", name, names.empty() ? "none" : names);
+  }
+  const auto bad = [&] { fail(ErrorKind::Usage, "option '{}': cannot use '{}'", name, value); };
+  if (auto* f = std::get_if<float*>(&it->value)) {
+    try {
+      std::size_t used = 0;
+      const float v = std::stof(value, &used);
+      if (used != value.size() || !std::isfinite(v)) bad();
+      **f = v;
+    } catch (const std::logic_error&) {
+      bad();
+    }
+  } else if (auto* i = std::get_if<int*>(&it->value)) {
+    int v = 0;
+    const auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+    if (ec != std::errc() || p != value.data() + value.size()) bad();
+    **i = v;
+  } else if (auto* b = std::get_if<bool*>(&it->value)) {
+    if (value == "1" || value == "true" || value == "on") **b = true;
+    else if (value == "0" || value == "false" || value == "off") **b = false;
+    else bad();
+  }
+}
+
+}  // namespace glint::scenes

@@ -1,0 +1,73 @@
+#include "glint/scenes/runner.h"
+
+#include "glint/core/error.h"
+#include "glint/gl/debug.h"
+#include "glint/gl/render_target.h"
+#include "glint/gl/timer.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace glint::scenes {
+
+void ContextPool::use(gl::Profile profile) {
+  if (!available(profile)) throw Error(ErrorKind::NoGpu, m_failures[profile]);
+  m_contexts[profile]->makeCurrent();
+}
+
+bool ContextPool::available(gl::Profile profile) {
+  if (m_contexts.count(profile)) return true;
+  if (m_failures.count(profile)) return false;
+  try {
+    m_contexts[profile] = gl::HeadlessContext::create({.profile = profile, .debug = m_debug});
+    return true;
+  } catch (const Error& e) {
+    m_contexts.erase(profile);
+    m_failures[profile] = e.what();
+    return false;
+  }
+}
+
+std::string ContextPool::unavailableReason(gl::Profile profile) const {
+  auto it = m_failures.find(profile);
+  return it == m_failures.end() ? std::string() : it->second;
+}
+
+RenderResult renderVariant(const VariantRef& ref, const RenderRequest& request) {
+  const SceneDesc& desc = *ref.scene;
+  const ivec2 size = request.size.x > 0 ? request.size : desc.defaultSize;
+  const double time = request.time.value_or(desc.defaultTime);
+  if (!std::isfinite(time)) fail(ErrorKind::Usage, "time must be a finite number of seconds");
+
+  std::unique_ptr<Scene> scene = desc.create(ref.variant);
+  for (const auto& assignment : request.options) setOption(*scene, assignment);
+  gl::RenderTarget target(size, GL_RGBA8, "frame");
+  const FrameInput frame{.target = target.target(), .time = time, .deltaTime = 0.0};
+
+  RenderResult result;
+  scene->render(frame);
+  if (request.timingRepeats > 0) {
+    result.gpuMs = gl::GpuTimer::measureMs([&] { scene->render(frame); }, request.timingRepeats, 0);
+    std::vector<double> cpu;
+    for (int i = 0; i < request.timingRepeats; ++i) {
+      const auto start = std::chrono::steady_clock::now();
+      scene->render(frame);
+      glFinish();
+      cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    std::nth_element(cpu.begin(), cpu.begin() + long(cpu.size() / 2), cpu.end());
+    result.cpuMs = cpu[cpu.size() / 2];
+    // Timed repeats must leave the same picture as a single frame (deterministic scenes).
+    scene->render(frame);
+  }
+  result.image = gl::readColor(target.framebuffer(), size);
+  // A window shows colour only; destination alpha is a working value of some
+  // techniques, not transparency, so the picture is made opaque.
+  auto px = result.image.pixels<std::uint8_t>();
+  for (std::size_t i = 3; i < px.size(); i += 4) px[i] = 255;
+  result.notes = scene->notes();
+  gl::checkGlError(ref.fullName().c_str());
+  return result;
+}
+
+}  // namespace glint::scenes
