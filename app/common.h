@@ -24,5 +24,6 @@ Runner addRenderCommand(CLI::App& app, const GlobalOptions& global);
 Runner addGalleryCommand(CLI::App& app, const GlobalOptions& global);
 Runner addInfoCommand(CLI::App& app, const GlobalOptions& global);
 Runner addViewCommand(CLI::App& app, const GlobalOptions& global);
+Runner addBenchCommand(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace glint::app

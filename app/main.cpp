@@ -49,11 +49,18 @@ int main(int argc, char** argv) {
   add(app::addGalleryCommand);
   add(app::addViewCommand);
   add(app::addInfoCommand);
+  add(app::addBenchCommand);
 
   try {
     cli.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return cli.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line and the usage exit code, like every other glint error.
+    std::fprintf(stderr, "glint: %s (see --help)\n", e.what());
+    return exitCode(ErrorKind::Usage);
   }
   log::setLevel(global.verbose ? log::Level::Debug : global.quiet ? log::Level::Warn : log::Level::Info);
   try {

@@ -35,6 +35,13 @@ std::string firstErrorLine(const std::string& log) {
   return line;
 }
 
+// Files are told apart by line number, not by #line's source-string number: some
+// drivers (Mesa, for some diagnostics) report source string 0 whatever #line said.
+// File k's line n is numbered k * kLineStride + n, which survives every driver.
+constexpr int kLineStride = 100000;
+
+std::string lineDirective(int fileIndex, int line) { return fmt::format("#line {}\n", fileIndex * kLineStride + line); }
+
 void expand(std::string_view path, std::vector<std::string>& files, std::set<std::string>& included,
             std::string& out, const std::vector<std::string>* defines) {
   const int fileIndex = int(files.size());
@@ -53,14 +60,14 @@ void expand(std::string_view path, std::vector<std::string>& files, std::set<std
       }
       out += line + "\n";
       for (const auto& d : *defines) out += "#define " + d + "\n";
-      out += fmt::format("#line {} {}\n", lineNumber + 1, fileIndex);
+      out += lineDirective(fileIndex, lineNumber + 1);
     } else if (std::regex_match(line, m, includeRe)) {
       const std::string target = m[1].str();
       if (!included.count(target)) {
-        out += fmt::format("#line 1 {}\n", files.size());
+        out += lineDirective(int(files.size()), 1);
         expand(target, files, included, out, nullptr);
       }
-      out += fmt::format("#line {} {}\n", lineNumber + 1, fileIndex);
+      out += lineDirective(fileIndex, lineNumber + 1);
     } else {
       out += line + "\n";
     }
@@ -107,10 +114,10 @@ std::string mapShaderLog(std::string_view log, const std::vector<std::string>& f
   while (std::getline(in, line)) {
     std::smatch m;
     if (std::regex_match(line, m, lineRe)) {
-      const auto index = std::size_t(std::stoul(m[1].str()));
-      const std::string number = m[2].matched ? m[2].str() : m[3].str();
+      const long number = std::stol(m[2].matched ? m[2].str() : m[3].str());
+      const auto index = std::size_t(number / kLineStride);
       const std::string file = index < files.size() ? files[index] : "?";
-      out += fmt::format("shaders/{}:{}: {}\n", file, number, m[4].str());
+      out += fmt::format("shaders/{}:{}: {}\n", file, number % kLineStride, m[4].str());
     } else if (!line.empty()) {
       out += line + "\n";
     }

@@ -66,6 +66,7 @@ struct RoundTrip {
   PixelType type;
   int channels;
 };
+void PrintTo(const RoundTrip& p, std::ostream* os) { *os << pixelTypeName(p.type) << p.channels << p.ext; }
 class ImageRoundTrip : public ::testing::TestWithParam<RoundTrip> {};
 
 TEST_P(ImageRoundTrip, IsLossless) {
@@ -83,7 +84,12 @@ TEST_P(ImageRoundTrip, IsLossless) {
 INSTANTIATE_TEST_SUITE_P(Formats, ImageRoundTrip,
                          ::testing::Values(RoundTrip{".png", PixelType::U8, 3}, RoundTrip{".png", PixelType::U8, 4},
                                            RoundTrip{".png", PixelType::U16, 1}, RoundTrip{".tga", PixelType::U8, 4},
-                                           RoundTrip{".exr", PixelType::F32, 3}));
+                                           RoundTrip{".exr", PixelType::F32, 3}),
+                         [](const auto& info) {
+                           return std::string(info.param.ext + 1) + "_" +
+                                  (info.param.type == PixelType::U8 ? "u8" : info.param.type == PixelType::U16 ? "u16" : "f32") +
+                                  "_" + std::to_string(info.param.channels);
+                         });
 
 TEST(ImageIo, FloatIntoPngIsStoredAs16Bit) {
   const Image img = gradient(PixelType::F32, 3);

@@ -47,13 +47,14 @@ public:
 
 struct PreprocessedShader {
   std::string source;               ///< ready for glShaderSource
-  std::vector<std::string> files;   ///< #line source-string number → file path
+  std::vector<std::string> files;   ///< file k's line n is numbered k·100000 + n (see shader.cpp)
 };
 
 /// Expands includes and inserts `#define`s (each "NAME" or "NAME VALUE") after #version.
 PreprocessedShader preprocessShader(std::string_view path, const std::vector<std::string>& defines = {});
 
-/// Rewrites a driver's info log (Mesa "0:12(5): error", NVIDIA "0(12) : error") into
+/// Rewrites a driver's info log (Mesa "0:12(5): error", NVIDIA "0(12) : error"; line numbers
+/// as preprocessShader numbered them) into
 /// "shaders/<file>:<line>: error ..." lines using the file table.
 std::string mapShaderLog(std::string_view log, const std::vector<std::string>& files);
 

@@ -1,0 +1,69 @@
+#include "glint/bench/bench.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+namespace glint::bench {
+
+// One register function per suite file; listed here (no static-initialiser tricks).
+// (Suites add themselves below as they are written.)
+Suites& Suites::builtin() {
+  static Suites suites = [] {
+    Suites s;
+    return s;
+  }();
+  return suites;
+}
+
+void Recorder::record(Measurement m) { m_rows.push_back(std::move(m)); }
+
+double Recorder::find(const std::string& group, const std::string& name) const {
+  for (const auto& r : m_rows)
+    if (r.group == group && r.name == name) return r.value;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+namespace {
+double ratioOf(const Recorder& rec, const Measurement& m) {
+  if (m.ratioTo.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const double peer = rec.find(m.group, m.ratioTo);
+  return peer > 0 ? m.value / peer : std::numeric_limits<double>::quiet_NaN();
+}
+}  // namespace
+
+std::string formatTable(const std::string& suite, const Recorder& rec) {
+  std::string out = fmt::format("{}\n{:<18} {:<28} {:>12} {:<8} {:>12}  {}\n", suite, "group", "measurement", "value",
+                                "unit", "ratio", "note");
+  for (const auto& m : rec.measurements()) {
+    const double ratio = ratioOf(rec, m);
+    out += fmt::format("{:<18} {:<28} {:>12.4g} {:<8} {:>12}  {}\n", m.group, m.name, m.value, m.unit,
+                       std::isnan(ratio) ? std::string() : fmt::format("{:.3f}× {}", ratio, m.ratioTo), m.note);
+  }
+  return out;
+}
+
+std::string formatJson(const std::string& suite, const Recorder& rec) {
+  auto esc = [](const std::string& s) {
+    std::string o;
+    for (char c : s) {
+      if (c == '"' || c == '\\') o += '\\';
+      o += c;
+    }
+    return o;
+  };
+  std::string out = fmt::format("{{\"suite\": \"{}\", \"rows\": [", esc(suite));
+  bool first = true;
+  for (const auto& m : rec.measurements()) {
+    const double ratio = ratioOf(rec, m);
+    out += fmt::format("{}\n  {{\"group\": \"{}\", \"name\": \"{}\", \"value\": {}, \"unit\": \"{}\", \"ratio_to\": \"{}\", "
+                       "\"ratio\": {}, \"note\": \"{}\"}}",
+                       first ? "" : ",", esc(m.group), esc(m.name), std::isfinite(m.value) ? fmt::format("{}", m.value) : "null",
+                       esc(m.unit), esc(m.ratioTo), std::isnan(ratio) ? "null" : fmt::format("{}", ratio), esc(m.note));
+    first = false;
+  }
+  return out + "\n]}";
+}
+
+}  // namespace glint::bench

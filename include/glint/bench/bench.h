@@ -1,0 +1,68 @@
+#pragma once
+// glint/bench/bench.h — benchmark suites behind `glint bench`.
+//
+// Speed targets are met here, not in timed tests: each suite measures its
+// subject and a peer in the same run (the unshadowed scene, plain Embree, the
+// copy-to-texture path, ...) and reports ratios, so numbers stay comparable
+// across machines. Results go to a table on stdout and to JSON.
+//
+// Adding a suite: write bench/<name>.cpp with a register function that calls
+// suites.add({...}), and list it in bench/suites.cpp.
+//
+//   suites.add({.name = "rtt", .description = "render-to-texture: copy vs FBO",
+//               .run = [](bench::Recorder& r) {
+//                 double copyMs = ..., fboMs = ...;
+//                 r.record({.group = "512x512", .name = "copy", .value = copyMs, .unit = "ms"});
+//                 r.record({.group = "512x512", .name = "fbo", .value = fboMs, .unit = "ms",
+//                           .ratioTo = "copy"});
+//               }});
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace glint::bench {
+
+struct Measurement {
+  std::string group;    ///< rows are grouped, e.g. by size "1024x1024" or triangle count
+  std::string name;     ///< what was measured, e.g. "fbo"
+  double value = 0;
+  std::string unit;     ///< "ms", "Mrays/s", "MiB", ...
+  std::string ratioTo;  ///< name of a row in the same group to report value / that value
+  std::string note;
+};
+
+class Recorder {
+public:
+  void record(Measurement m);
+  const std::vector<Measurement>& measurements() const { return m_rows; }
+  /// value of (group, name), or NaN.
+  double find(const std::string& group, const std::string& name) const;
+
+private:
+  std::vector<Measurement> m_rows;
+};
+
+struct Suite {
+  std::string name;
+  std::string description;
+  /// Runs with a current 4.5 core context (headless). Throws glint::Error on failure.
+  std::function<void(Recorder&)> run;
+};
+
+class Suites {
+public:
+  static Suites& builtin();
+  void add(Suite suite) { m_suites.push_back(std::move(suite)); }
+  const std::vector<Suite>& all() const { return m_suites; }
+
+private:
+  std::vector<Suite> m_suites;
+};
+
+/// Formats a recorder's rows as an aligned text table (ratios computed).
+std::string formatTable(const std::string& suite, const Recorder& recorder);
+/// JSON object {"suite": ..., "rows": [...]} with ratios computed.
+std::string formatJson(const std::string& suite, const Recorder& recorder);
+
+}  // namespace glint::bench

@@ -1,0 +1,126 @@
+// The glint command as a user runs it: exit codes, one-line errors, atomic outputs,
+// and the viewer in a real X window (Xvfb).
+#include "glint/image/image.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+using namespace glint;
+
+namespace {
+struct Run {
+  int status = -1;
+  std::string output;  // stdout + stderr
+};
+
+Run runGlint(const std::string& args, const std::string& env = "") {
+  Run r;
+  const std::string command = env + " " GLINT_EXE " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[1024];
+  while (pipe && fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int raw = pipe ? pclose(pipe) : -1;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+fs::path dir(const char* name) {
+  const fs::path d = fs::path(GLINT_TEST_OUTPUT_DIR) / "cli" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::size_t fileCount(const fs::path& d) {
+  return std::size_t(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
+}
+
+bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
+}  // namespace
+
+TEST(Cli, ListNamesEveryVariant) {
+  const auto r = runGlint("list --names");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("basics/triangle/color\n"), std::string::npos);
+  EXPECT_NE(r.output.find("basics/depth/mask-off\n"), std::string::npos);
+}
+
+TEST(Cli, RenderWritesTheImageAndNothingElse) {
+  const auto d = dir("render");
+  const auto r = runGlint("render basics/triangle/depth --size 64x48 -o " + (d / "t.png").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Image img = loadImage(d / "t.png");
+  EXPECT_EQ(img.width(), 64);
+  EXPECT_EQ(img.height(), 48);
+  EXPECT_EQ(fileCount(d), 1u);  // no temporaries left behind
+}
+
+TEST(Cli, UnknownSceneOrVariantIsAUsageError) {
+  auto r = runGlint("render basics/nope -o /tmp/x.png");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(oneLine(r.output)) << r.output;
+  EXPECT_NE(r.output.find("unknown scene 'basics/nope'"), std::string::npos) << r.output;
+  r = runGlint("render basics/triangle/nope -o /tmp/x.png");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("variants: color, depth"), std::string::npos) << r.output;
+}
+
+TEST(Cli, BadSizeAndBadNumbersAreUsageErrors) {
+  for (const char* size : {"12x", "0x10", "axb", "100000x10", "10x10x"}) {
+    const auto r = runGlint(std::string("render basics/triangle/color --size ") + size + " -o /tmp/x.png");
+    EXPECT_EQ(r.status, 2) << size << ": " << r.output;
+    EXPECT_TRUE(oneLine(r.output)) << r.output;
+  }
+  const auto r = runGlint("render basics/triangle/color --time soon -o /tmp/x.png");
+  EXPECT_EQ(r.status, 2) << r.output;
+}
+
+TEST(Cli, UnwritableOutputFailsBeforeRenderingAndLeavesNothing) {
+  const auto r = runGlint("render basics/triangle/color -o /nonexistent-dir/x.png");
+  EXPECT_EQ(r.status, 4);
+  EXPECT_TRUE(oneLine(r.output)) << r.output;
+  const auto d = dir("unknown-format");
+  const auto r2 = runGlint("render basics/triangle/color -o " + (d / "x.notaformat").string());
+  EXPECT_EQ(r2.status, 4) << r2.output;
+  EXPECT_EQ(fileCount(d), 0u);
+}
+
+TEST(Cli, NoOpenGLSaysWhatToInstall) {
+  // Point glvnd at no EGL vendor: exactly what a machine without Mesa's EGL looks like.
+  const auto r = runGlint("render basics/triangle/color -o /tmp/x.png", "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
+  EXPECT_EQ(r.status, 5) << r.output;
+  EXPECT_TRUE(oneLine(r.output)) << r.output;
+  EXPECT_NE(r.output.find("apt-get install"), std::string::npos) << r.output;
+}
+
+TEST(Cli, ViewerOpensAWindowWithTheSceneAndThePanel) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed (scripts/setup --test)";
+  const auto d = dir("viewer");
+  const auto shot = d / "viewer.png";
+  const auto r = runGlint("view basics/triangle/color --size 800x600 --frames 3 --screenshot " + shot.string(),
+                       "xvfb-run -a -s '-screen 0 1024x768x24'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Image img = loadImage(shot);
+  ASSERT_EQ(img.width(), 800);
+  ASSERT_EQ(img.height(), 600);
+  // The scene: a point inside the triangle right of the panel, at NDC (0.3, 0.2), is a
+  // blend of all three vertex colours (not the clear colour, not black).
+  const int x = int((0.3f + 1) * 400), y = 600 - 1 - int((0.2f + 1) * 300);
+  EXPECT_GT(img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2), 0.6f);
+  EXPECT_GT(img.at(x, y, 1), 0.2f);  // green weight is large there
+  // The panel: ImGui's near-black window background with light text in the top left.
+  int text = 0, dark = 0;
+  for (int py = 12; py < 120; ++py)
+    for (int px = 12; px < 300; ++px) {
+      const float sum = img.at(px, py, 0) + img.at(px, py, 1) + img.at(px, py, 2);
+      text += sum > 2.4f;
+      dark += sum < 0.35f;
+    }
+  EXPECT_GT(text, 50) << "no panel text found";
+  EXPECT_GT(dark, 5000) << "no panel background found";
+}
