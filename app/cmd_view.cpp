@@ -236,7 +236,9 @@ private:
     ImGui::Text("frame %.2f ms   GPU %.3f ms", m_frameMs, m_timer.latestMs());
     ImGui::Text("time %.2f s %s", m_time, m_paused ? "(paused: space)" : "");
     if (!m_error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", m_error.c_str());
-    ImGui::TextDisabled("arrows: variant/scene  space: pause  R: reload  tab: panel");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("arrows: variant/scene   space: pause   R: reload   Tab: panel   Esc: quit");
+    ImGui::PopStyleColor();
     ImGui::End();
   }
 
