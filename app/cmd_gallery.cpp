@@ -100,11 +100,15 @@ figcaption {{ padding: .6em .8em; font-size: 13.5px; }}
 </style></head><body>
 <h1>glint gallery</h1>
 <p class=meta>{} variants · rendered on {} ({}) · frame times are the median of several frames at each picture's size,
-GPU time from GL_TIME_ELAPSED queries, CPU time including glFinish.</p>
+GPU time from GL_TIME_ELAPSED queries, CPU time including glFinish.{}</p>
 {}
 </body></html>
 )",
-                     entries.size(), escapeHtml(info.renderer), escapeHtml(info.version), body);
+                     entries.size(), escapeHtml(info.renderer), escapeHtml(info.version),
+                     info.software ? " This is a software rasterizer: it defers rasterization to the next flush, so its "
+                                     "GPU timer queries miss most of the work; the CPU time is the meaningful figure here."
+                                   : "",
+                     body);
 }
 
 std::string json(const std::vector<Entry>& entries, const gl::ContextInfo& info) {
