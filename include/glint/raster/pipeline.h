@@ -5,7 +5,8 @@
 // Given clip-space vertices (what a vertex shader writes to gl_Position) it does
 //
 //   primitive assembly   indices, 3 per triangle (or 0, 1, 2, ... when indices is empty)
-//   clipping             near/far/w planes always, x/y only beyond a guard band (geometry.h)
+//   clipping             all six view-volume planes in homogeneous clip space, as llvmpipe
+//                        (geometry.h: clipTriangle, kGuardBand)
 //   divide + viewport    clip → NDC → window, glViewport + glDepthRange semantics
 //   facing + culling     sign of the window-space area; CCW is front unless frontFace = Cw
 //   rasterization        oriented edge equations on 1/256-pixel fixed point, sample at
