@@ -5,6 +5,7 @@
 #include "glint/core/file.h"
 #include "glint/core/log.h"
 #include "glint/core/progress.h"
+#include "glint/core/text.h"
 #include "glint/gl/context.h"
 #include "glint/scenes/runner.h"
 
@@ -30,33 +31,6 @@ struct Entry {
   std::string skipped;
   scenes::RenderResult result;
 };
-
-std::string escapeHtml(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
-std::string escapeJson(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out;
-}
 
 std::string timing(double ms) { return ms < 0 ? "–" : fmt::format("{:.2f} ms", ms); }
 

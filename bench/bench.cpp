@@ -1,5 +1,7 @@
 #include "glint/bench/bench.h"
 
+#include "glint/core/text.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -45,14 +47,7 @@ std::string formatTable(const std::string& suite, const Recorder& rec) {
 }
 
 std::string formatJson(const std::string& suite, const Recorder& rec) {
-  auto esc = [](const std::string& s) {
-    std::string o;
-    for (char c : s) {
-      if (c == '"' || c == '\\') o += '\\';
-      o += c;
-    }
-    return o;
-  };
+  auto esc = [](const std::string& s) { return escapeJson(s); };
   std::string out = fmt::format("{{\"suite\": \"{}\", \"rows\": [", esc(suite));
   bool first = true;
   for (const auto& m : rec.measurements()) {

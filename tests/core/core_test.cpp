@@ -95,3 +95,10 @@ TEST(ReadTextFile, MissingFileIsAnInputError) {
     EXPECT_EQ(e.kind(), ErrorKind::Input);
   }
 }
+
+#include "glint/core/text.h"
+
+TEST(Text, EscapesJsonAndHtml) {
+  EXPECT_EQ(escapeJson("a\"b\\c\nd\x01"), "a\\\"b\\\\c\\nd\\u0001");
+  EXPECT_EQ(escapeHtml("<a href=\"x\">&</a>"), "&lt;a href=&quot;x&quot;&gt;&amp;&lt;/a&gt;");
+}
