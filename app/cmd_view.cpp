@@ -11,6 +11,7 @@
 #include "glint/gl/shader.h"
 #include "glint/gl/timer.h"
 #include "glint/gl/window.h"
+#include "glint/render/state.h"
 #include "glint/scenes/scene.h"
 
 #include <epoxy/gl.h>
@@ -177,6 +178,7 @@ private:
     if (size.x > 0 && size.y > 0) {
       if (m_scene) {
         m_timer.begin();
+        render::resetState();  // ImGui and the previous scene leave state behind
         m_scene->render({.target = target, .time = m_time, .deltaTime = m_paused ? 0.0 : dt});
         m_timer.end();
       } else {

@@ -25,5 +25,9 @@ Runner addGalleryCommand(CLI::App& app, const GlobalOptions& global);
 Runner addInfoCommand(CLI::App& app, const GlobalOptions& global);
 Runner addViewCommand(CLI::App& app, const GlobalOptions& global);
 Runner addBenchCommand(CLI::App& app, const GlobalOptions& global);
+Runner addMeshInfoCommand(CLI::App& app, const GlobalOptions& global);
+Runner addRasterCommand(CLI::App& app, const GlobalOptions& global);
+Runner addBakeCommand(CLI::App& app, const GlobalOptions& global);
+Runner addNormalMapCommand(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace glint::app

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
                "Every technique is a scene with variants (`glint list`); render them headless, "
                "build a gallery, or explore them in a window."};
   cli.require_subcommand(1);
+  cli.fallthrough();  // global flags work after the subcommand too (glint render X -q)
   cli.set_help_all_flag("--help-all", "Show help for every subcommand");
   app::GlobalOptions global;
   cli.add_flag("--gl-debug", global.glDebug, "OpenGL debug context; GL errors are logged and counted");
@@ -50,6 +51,10 @@ int main(int argc, char** argv) {
   add(app::addViewCommand);
   add(app::addInfoCommand);
   add(app::addBenchCommand);
+  add(app::addMeshInfoCommand);
+  add(app::addRasterCommand);
+  add(app::addBakeCommand);
+  add(app::addNormalMapCommand);
 
   try {
     cli.parse(argc, argv);

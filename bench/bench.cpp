@@ -11,9 +11,18 @@ namespace glint::bench {
 
 // One register function per suite file; listed here (no static-initialiser tricks).
 // (Suites add themselves below as they are written.)
+void registerBakeSuite(Suites& suites);
+void registerRttSuite(Suites& suites);
+void registerShadowsSuite(Suites& suites);
+void registerWaterSuite(Suites& suites);
+
 Suites& Suites::builtin() {
   static Suites suites = [] {
     Suites s;
+    registerBakeSuite(s);
+    registerRttSuite(s);
+    registerShadowsSuite(s);
+    registerWaterSuite(s);
     return s;
   }();
   return suites;

@@ -45,7 +45,6 @@ struct DrawContext {
   const State& state;
   const FragmentShader& shader;
   PixelRect rect;
-  double depthMin = 0.0, depthMax = 1.0;
   std::size_t varyingCount = 0;
   DrawStats& stats;
 };
@@ -102,8 +101,11 @@ void rasterizeTriangle(DrawContext& ctx, const TriangleSetup& tri, const std::ar
       // Unsnapped weights extrapolate slightly at snapped edges; next to a vertex with
       // w ≈ 0 that could make 1/w non-positive. The exact weights are never negative.
       if (!(at.invW > 0.0) || !std::isfinite(at.invW)) at = interpolate(wv, sampleBarycentric(tri, px, py));
-      // Clipping keeps z within the depth range; clamping only removes rounding excursions.
-      const double z = std::clamp(at.z, ctx.depthMin, ctx.depthMax);
+      // Clipping keeps the exact polygon within the depth range, but a pixel centre that
+      // snapping lets in (at most 1/512 px outside) extrapolates the z plane slightly past
+      // it. GL clamps only to [0, 1] there (to the depth range only with GL_DEPTH_CLAMP),
+      // and so does llvmpipe: measured 0.900036 with glDepthRange(0.1, 0.9).
+      const double z = std::clamp(at.z, 0.0, 1.0);
       const double invW = at.invW;
       const dvec3 weights = at.weights;
 
@@ -186,8 +188,6 @@ DrawStats drawTriangles(Framebuffer& fb, const State& state, std::span<const Ver
       .shader = shader,
       .rect = PixelRect{std::max(viewport.x, 0), std::max(viewport.y, 0), std::min(viewport.x + viewport.width, fb.width()),
                         std::min(viewport.y + viewport.height, fb.height())},
-      .depthMin = std::min(range.nearVal, range.farVal),
-      .depthMax = std::max(range.nearVal, range.farVal),
       .varyingCount = varyingCount,
       .stats = stats,
   };

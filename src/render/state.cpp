@@ -39,4 +39,27 @@ void PipelineState::apply() const {
   }
 }
 
+void resetState() {
+  PipelineState{}.apply();
+  glDisable(GL_SCISSOR_TEST);
+  glUseProgram(0);
+  glBindVertexArray(0);
+}
+
+void clear(GLbitfield buffers, const float color[4], double depth, int stencil) {
+  if (buffers & GL_COLOR_BUFFER_BIT) {
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    if (color) glClearColor(color[0], color[1], color[2], color[3]);
+  }
+  if (buffers & GL_DEPTH_BUFFER_BIT) {
+    glDepthMask(GL_TRUE);
+    glClearDepth(depth);
+  }
+  if (buffers & GL_STENCIL_BUFFER_BIT) {
+    glStencilMask(0xFF);
+    glClearStencil(stencil);
+  }
+  glClear(buffers);
+}
+
 }  // namespace glint::render

@@ -10,12 +10,38 @@ namespace glint::scenes {
 // drop a scene (no static-initialiser tricks).
 void registerBasicsTriangle(Registry& registry);
 void registerBasicsDepth(Registry& registry);
+void registerBasicsReference(Registry& registry);
+void registerEnvScenes(Registry& registry);
+void registerEnvBubble(Registry& registry);
+void registerEnvClassic(Registry& registry);
+void registerFilteringScenes(Registry& registry);
+void registerRttScenes(Registry& registry);
+void registerShadowVolumes(Registry& registry);
+void registerShadowMaps(Registry& registry);
+void registerShadowBunny(Registry& registry);
+void registerBumpDot3(Registry& registry);
+void registerBumpNormalMap(Registry& registry);
+void registerBakeResult(Registry& registry);
+void registerWaterScenes(Registry& registry);
 
 const Registry& Registry::builtin() {
   static const Registry registry = [] {
     Registry r;
     registerBasicsTriangle(r);
     registerBasicsDepth(r);
+    registerBasicsReference(r);
+    registerEnvScenes(r);
+    registerEnvBubble(r);
+    registerEnvClassic(r);
+    registerFilteringScenes(r);
+    registerRttScenes(r);
+    registerShadowVolumes(r);
+    registerShadowMaps(r);
+    registerShadowBunny(r);
+    registerBumpDot3(r);
+    registerBumpNormalMap(r);
+    registerBakeResult(r);
+    registerWaterScenes(r);
     return r;
   }();
   return registry;

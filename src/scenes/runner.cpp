@@ -4,6 +4,7 @@
 #include "glint/gl/debug.h"
 #include "glint/gl/render_target.h"
 #include "glint/gl/timer.h"
+#include "glint/render/state.h"
 
 #include <algorithm>
 #include <chrono>
@@ -44,21 +45,26 @@ RenderResult renderVariant(const VariantRef& ref, const RenderRequest& request) 
   gl::RenderTarget target(size, GL_RGBA8, "frame");
   const FrameInput frame{.target = target.target(), .time = time, .deltaTime = 0.0};
 
+  // Every frame starts from default state, whatever the previous scene left.
+  auto renderFrame = [&] {
+    render::resetState();
+    scene->render(frame);
+  };
   RenderResult result;
-  scene->render(frame);
+  renderFrame();
   if (request.timingRepeats > 0) {
-    result.gpuMs = gl::GpuTimer::measureMs([&] { scene->render(frame); }, request.timingRepeats, 0);
+    result.gpuMs = gl::GpuTimer::measureMs(renderFrame, request.timingRepeats, 0);
     std::vector<double> cpu;
     for (int i = 0; i < request.timingRepeats; ++i) {
       const auto start = std::chrono::steady_clock::now();
-      scene->render(frame);
+      renderFrame();
       glFinish();
       cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
     std::nth_element(cpu.begin(), cpu.begin() + long(cpu.size() / 2), cpu.end());
     result.cpuMs = cpu[cpu.size() / 2];
     // Timed repeats must leave the same picture as a single frame (deterministic scenes).
-    scene->render(frame);
+    renderFrame();
   }
   result.image = gl::readColor(target.framebuffer(), size);
   // A window shows colour only; destination alpha is a working value of some

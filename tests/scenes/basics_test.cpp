@@ -82,3 +82,12 @@ TEST_F(GlTest, DepthFunctionsDecideWhoWins) {
   const Image always = render("basics/depth/always");
   EXPECT_TRUE(isBlue(at(always, 0.15f, 0.0f)));  // painter's order
 }
+
+TEST_F(GlTest, ScenesDoNotInheritStateFromThePreviousScene) {
+  // triangle/depth ends with a full-screen pass that turns depth writes off; glClear
+  // honours the depth mask, so a scene drawn next must still get a cleared depth buffer.
+  const Image fresh = render("basics/depth/less");
+  render("basics/triangle/depth");
+  const Image after = render("basics/depth/less");
+  EXPECT_EQ(compareImages(fresh, after).maxAbs, 0.0);
+}

@@ -47,7 +47,7 @@ enum class FragmentFate {
 /// Runs the per-fragment operations for one fragment at pixel (x, y) with window depth z
 /// and shaded colour, and counts it in the overdraw buffer. The pixel must be inside the
 /// framebuffer (Error(Usage) otherwise); z is used as given (the pipeline has already
-/// clamped it to the depth range).
+/// clamped it to [0, 1]).
 FragmentFate processFragment(Framebuffer& fb, const State& state, int x, int y, float z, const vec4& color,
                              bool frontFacing);
 

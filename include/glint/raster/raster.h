@@ -9,6 +9,7 @@
 //                   plane equations, barycentrics, 1/256 fixed point and the tie rule
 //   fragment_ops.h  stencil test and ops, depth test, blending, processFragment
 //   pipeline.h      drawTriangles: assembly → clip → window → raster → shade → fragment ops
+//   visualize.h     pictures of the edge equations (diverging colour map, zero line)
 //
 // No OpenGL inside: it is the oracle that GL tests compare against (stencil counts
 // for shadow volumes, depth for depth-test scenes) and a teaching tool, so every
@@ -19,3 +20,4 @@
 #include "glint/raster/geometry.h"
 #include "glint/raster/pipeline.h"
 #include "glint/raster/state.h"
+#include "glint/raster/visualize.h"

@@ -63,4 +63,14 @@ struct PipelineState {
   void apply() const;
 };
 
+/// Restores the defaults of everything PipelineState covers, turns the scissor test off
+/// and unbinds program and vertex array. Front ends call it before every frame so no
+/// scene inherits state from the one drawn before it.
+void resetState();
+
+/// glClear with every write mask enabled first. glClear honours glColorMask, glDepthMask
+/// and glStencilMask — a classic trap when the previous pass turned depth writes off —
+/// so clear through this. The masks stay enabled afterwards.
+void clear(GLbitfield buffers, const float color[4] = nullptr, double depth = 1.0, int stencil = 0);
+
 }  // namespace glint::render

@@ -57,15 +57,12 @@ public:
 
   void render(const FrameInput& frame) override {
     frame.target.bind();
-    glClearColor(kClearColor.r, kClearColor.g, kClearColor.b, kClearColor.a);
-    glClearDepth(kClearDepth);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, &kClearColor.r, kClearDepth);
     m_program.use();
     render::PipelineState{.depthFunc = m_variant.func, .depthWrite = m_variant.maskFirst}.apply();
     m_first.draw();
     render::PipelineState{.depthFunc = m_variant.func}.apply();
     m_second.draw();
-    glClearDepth(1.0);  // leave GL's initial clear value for whoever clears next
   }
 
 private:

@@ -51,9 +51,7 @@ public:
 
 private:
   void drawTriangle() const {
-    glClearColor(kClearColor.r, kClearColor.g, kClearColor.b, kClearColor.a);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, &kClearColor.r, 1.0);
     render::PipelineState{.depthTest = true, .depthFunc = GL_LESS}.apply();
     m_program.use();
     m_mesh.draw();

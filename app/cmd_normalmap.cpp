@@ -1,0 +1,115 @@
+// glint normalmap — a height map → a tangent-space normal map (seed 002's "Normal Map
+// Generation"), on the CPU by default or with the GPU pass (--gpu).
+#include "common.h"
+
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+#include "glint/core/log.h"
+#include "glint/image/normalmap.h"
+#include "glint/render/bump/height_to_normal.h"
+#include "glint/scenes/runner.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace glint::app {
+
+namespace {
+struct NormalMapArgs {
+  std::string input;
+  std::string output;
+  float scale = NormalMapOptions{}.scale;
+  bool wrap = false;
+  std::string formula = "gradient";
+  bool gpu = false;
+  bool check = false;
+  bool objectSpace = false;
+};
+
+// A colour input that already decodes to unit vectors pointing out of the surface is almost
+// certainly a normal map: running it through again gives nonsense, so say so.
+bool looksLikeNormalMap(const Image& image) {
+  if (image.channels() < 3) return false;
+  bool colourful = false;
+  for (int y = 0; y < image.height() && !colourful; y += std::max(1, image.height() / 64))
+    for (int x = 0; x < image.width() && !colourful; x += std::max(1, image.width() / 64))
+      colourful = std::abs(image.at(x, y, 0) - image.at(x, y, 2)) > 0.1f;
+  if (!colourful) return false;
+  try {
+    prepareNormalMap(image, "input");
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+}  // namespace
+
+Runner addNormalMapCommand(CLI::App& app, const GlobalOptions& global) {
+  auto args = std::make_shared<NormalMapArgs>();
+  auto* cmd = app.add_subcommand("normalmap", "Make a tangent-space normal map from a height map (seed 002)");
+  cmd->footer(
+      "Each texel's normal comes from its four neighbours n, s, e, w: n = normalize(S·(w−e)/2, S·(s−n)/2, 1), with "
+      "north up in the picture (OpenGL-style maps: green = up). The output is RGB(A) 8-bit, (n + 1)/2.\n"
+      "Examples:\n  glint normalmap height.png -o normal.png\n"
+      "  glint normalmap bricks.png -o bricks_n.png --scale 12 --wrap\n"
+      "  glint normalmap --check baked.png      (is this a usable normal map?)\n"
+      "Any size works (powers of two or not). A colour image is converted to its luminance (a warning says so).");
+  cmd->add_option("height", args->input, "Height map (any image format; 8-bit, 16-bit or float)")->required();
+  cmd->add_option("-o,--output", args->output, "Output normal map; the format follows the extension (required)");
+  cmd->add_option("--scale", args->scale,
+                  "Height of the full 0..1 range in texel widths: larger = bumpier (default 8; negative inverts)");
+  cmd->add_flag("--wrap", args->wrap, "Neighbours wrap around the edges (tileable textures); default clamps");
+  cmd->add_option("--formula", args->formula,
+                  "gradient (the surface's true normal) or slide (seed 002's formula as written: x mirrored, "
+                  "z = 1 − |d|; --scale 2 reproduces it exactly)")
+      ->check(CLI::IsMember({"gradient", "slide"}));
+  cmd->add_flag("--gpu", args->gpu, "Use the GPU pass (full-screen quad into a framebuffer) instead of the CPU");
+  cmd->add_flag("--check", args->check,
+                "Instead: check that the input is a usable normal map (encoding, unit length, orientation) and "
+                "report; exit 3 with the reason when it is not");
+  cmd->add_flag("--object-space", args->objectSpace, "With --check: the map is object-space (any direction is fine)");
+  return [args, &global] {
+    if (args->check) {
+      const Image map = loadImage(args->input);
+      NormalMapReport report;
+      prepareNormalMap(map, args->input, args->objectSpace ? NormalSpace::Object : NormalSpace::Tangent, &report);
+      fmt::print("{}: {}x{} {} {}-channel {} normal map; mean vector length {:.3f}, {:.1f}% pointing out{}\n",
+                 args->input, map.width(), map.height(), pixelTypeName(map.type()), map.channels(),
+                 args->objectSpace ? "object-space" : "tangent-space", report.meanLength, 100.0 * report.outwardFraction,
+                 report.conversion.empty() ? "" : "; " + report.conversion);
+      return 0;
+    }
+    if (args->output.empty()) fail(ErrorKind::Usage, "normalmap needs -o OUTPUT (or --check)");
+    if (!std::isfinite(args->scale)) fail(ErrorKind::Usage, "--scale must be a finite number");
+    checkWritable(args->output);  // fail before working, not after
+    const Image input = loadImage(args->input);
+    if (input.channels() >= 3) {
+      log::warn("{} has {} channels; using its luminance (0.2126 R + 0.7152 G + 0.0722 B) as the height", args->input,
+                input.channels());
+      if (looksLikeNormalMap(input))
+        log::warn("{} already looks like a normal map (its colours decode to unit vectors pointing out); the result "
+                  "will not mean much", args->input);
+    } else if (input.channels() == 2) {
+      log::info("{} has gray + alpha; using the gray channel as the height", args->input);
+    }
+    const NormalMapOptions options{.scale = args->scale,
+                                   .wrap = args->wrap,
+                                   .formula = args->formula == "slide" ? NormalFormula::Slide : NormalFormula::Gradient};
+    Image normals;
+    if (args->gpu) {
+      scenes::ContextPool contexts(global.glDebug);
+      contexts.use(gl::Profile::Core);
+      normals = render::bump::heightToNormalMapGpu(input, options);
+    } else {
+      normals = heightToNormalMap(input, options);
+    }
+    saveImage(normals, args->output);
+    log::info("{} ({}x{}, {}) → {} ({} normals, scale {}{})", args->input, input.width(), input.height(),
+              pixelTypeName(input.type()), args->output, args->gpu ? "GPU" : "CPU", args->scale,
+              args->wrap ? ", wrapped" : "");
+    return 0;
+  };
+}
+
+}  // namespace glint::app

@@ -1,0 +1,63 @@
+// bench rtt — render to texture: copy from the window vs a framebuffer object (seed 002:
+// copy-to-texture is the "easiest and least efficient form"). Both render the same
+// content and build mipmaps; the copy method pays for the extra copy and clears.
+#include "glint/bench/bench.h"
+#include "glint/gl/render_target.h"
+#include "glint/gl/timer.h"
+#include "glint/render/rtt.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace glint::bench {
+namespace {
+
+constexpr int kRepeats = 10;
+
+// Median wall time of one run including glFinish: what the application waits for.
+double wallMs(const std::function<void()>& work) {
+  std::vector<double> times;
+  work();
+  glFinish();
+  for (int i = 0; i < kRepeats; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    glFinish();
+    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
+  return times[times.size() / 2];
+}
+
+void runRtt(Recorder& recorder) {
+  render::rtt::RttContent content;
+  const auto draw = [&](ivec2 size) { content.draw(size, 0.5f); };
+  for (int size : {256, 512, 1024, 2048}) {
+    const std::string group = fmt::format("{0}x{0}", size);
+    // A headless context has no window: an offscreen framebuffer of the texture's size stands in.
+    gl::RenderTarget window({size, size}, GL_RGBA8, "bench-window");
+    render::rtt::CopyToTexture copy(size);
+    render::rtt::FramebufferTexture fbo(size);
+    const auto copyWork = [&] { copy.render(window.target(), draw); };
+    const auto fboWork = [&] { fbo.render(draw); };
+    recorder.record({.group = group, .name = "copy gpu", .value = gl::GpuTimer::measureMs(copyWork, kRepeats, 2),
+                     .unit = "ms", .note = "draw in window + glCopyTextureSubImage2D + mipmaps"});
+    recorder.record({.group = group, .name = "fbo gpu", .value = gl::GpuTimer::measureMs(fboWork, kRepeats, 2),
+                     .unit = "ms", .ratioTo = "copy gpu", .note = "draw into the texture + mipmaps"});
+    recorder.record({.group = group, .name = "copy wall", .value = wallMs(copyWork), .unit = "ms"});
+    recorder.record({.group = group, .name = "fbo wall", .value = wallMs(fboWork), .unit = "ms", .ratioTo = "copy wall"});
+  }
+}
+
+}  // namespace
+
+void registerRttSuite(Suites& suites) {
+  suites.add({.name = "rtt",
+              .description = "render to texture: copy from the window vs framebuffer object, 256² to 2048²",
+              .run = runRtt});
+}
+
+}  // namespace glint::bench

@@ -1,0 +1,85 @@
+// bench water — seed 002's wave simulation step and height → normal pass on the GPU at
+// 256², 1024² and 4096², each against its CPU reference (sim::WaveField::step and
+// heightToNormalMap) measured in the same run: the peer the ratios are taken to.
+#include "glint/bench/bench.h"
+#include "glint/gl/timer.h"
+#include "glint/image/normalmap.h"
+#include "glint/render/bump/height_to_normal.h"
+#include "glint/render/water/wave_simulation.h"
+#include "glint/sim/wave.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace glint::bench {
+namespace {
+
+// Median wall time of `work` (including glFinish: what a frame waits for), after one warm-up.
+double wallMs(const std::function<void()>& work, int repeats) {
+  work();
+  glFinish();
+  std::vector<double> times;
+  for (int i = 0; i < repeats; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    glFinish();
+    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
+  return times[times.size() / 2];
+}
+
+void runWater(Recorder& recorder) {
+  for (int size : {256, 1024, 4096}) {
+    const std::string group = fmt::format("{0}x{0}", size);
+    const double texels = double(size) * double(size);
+    const int repeats = size >= 4096 ? 3 : size >= 1024 ? 5 : 15;
+    const sim::WaveParams params{};
+
+    // The GPU: a field with waves in it (what a frame steps), and its normal map.
+    render::water::WaveSimulation waves({size, size}, params, {.interval = 0.0f});
+    for (int i = 0; i < 8; ++i) waves.addDrop({.centre = vec2(float(size) * (0.1f + 0.1f * float(i))), .radius = 5.0f});
+    render::bump::HeightToNormalPass normals;
+    gl::Texture normalMap(GL_TEXTURE_2D, "bench-normal-map");
+    normalMap.storage(GL_RGBA8, size, size);
+    const auto stepWork = [&] { waves.step(); };
+    const auto normalWork = [&] { normals.run(waves.state(), normalMap, {.scale = 8.0f}); };
+    const double stepGpu = gl::GpuTimer::measureMs(stepWork, repeats, 1);
+    const double stepWall = wallMs(stepWork, repeats);
+    const double normalGpu = gl::GpuTimer::measureMs(normalWork, repeats, 1);
+    const double normalWall = wallMs(normalWork, repeats);
+
+    // The CPU references, on the same data.
+    sim::WaveField field = waves.download();
+    const double stepCpu = wallMs([&] { field.step(params); }, std::max(1, repeats / 2));
+    Image heights(size, size, 1, PixelType::F32);
+    auto h = heights.pixels<float>();
+    for (std::size_t i = 0; i < h.size(); ++i) h[i] = field.data()[i].x;
+    const double normalCpu = wallMs([&] { (void)heightToNormalMap(heights, {.scale = 8.0f}); }, std::max(1, repeats / 2));
+
+    const auto mtex = [&](double ms) { return fmt::format("{:.0f} Mtexels/s", texels / (ms * 1e3)); };
+    recorder.record({.group = group, .name = "step cpu", .value = stepCpu, .unit = "ms", .note = "sim::WaveField::step, one core"});
+    recorder.record({.group = group, .name = "step wall", .value = stepWall, .unit = "ms", .ratioTo = "step cpu",
+                     .note = "one GPU step incl. glFinish, " + mtex(stepWall)});
+    recorder.record({.group = group, .name = "step gpu", .value = stepGpu, .unit = "ms", .ratioTo = "step cpu",
+                     .note = "GL_TIME_ELAPSED"});
+    recorder.record({.group = group, .name = "normals cpu", .value = normalCpu, .unit = "ms", .note = "heightToNormalMap, one core"});
+    recorder.record({.group = group, .name = "normals wall", .value = normalWall, .unit = "ms", .ratioTo = "normals cpu",
+                     .note = "full-screen pass incl. glFinish, " + mtex(normalWall)});
+    recorder.record({.group = group, .name = "normals gpu", .value = normalGpu, .unit = "ms", .ratioTo = "normals cpu",
+                     .note = "GL_TIME_ELAPSED"});
+  }
+}
+
+}  // namespace
+
+void registerWaterSuite(Suites& suites) {
+  suites.add({.name = "water",
+              .description = "wave simulation step and height → normal pass, GPU vs CPU reference, 256² to 4096²",
+              .run = runWater});
+}
+
+}  // namespace glint::bench

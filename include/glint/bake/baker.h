@@ -1,0 +1,166 @@
+#pragma once
+// glint/bake/baker.h — the normal mapper: high-poly detail baked into a texture for a
+// low-poly mesh (ATI's "normal mapper" tool, WWDC 2003, rebuilt on Embree).
+//
+// Contents
+//   NormalSpace, HitSelection, Distance    how rays are cast and what is stored
+//   HeightDetail                          painted micro detail combined with the bake
+//   BakeOptions                           everything bake() can be told (defaults are good)
+//   BakeStats, BakeResult                 the maps, and what it took to make them
+//   bake                                  the whole pipeline, GL-free, deterministic
+//   encodeNormalMap                       unit vectors → RGB texture values
+//
+// How it works
+//   For every texel of the output, N stratified sample points (a √N × √N grid) are
+//   located in the low poly's UV layout. At each sample the low poly's position, normal
+//   and MikkTSpace tangent frame are interpolated; a ray is cast from the position along
+//   the interpolated normal, forwards up to maxFront and backwards up to maxRear ("negative
+//   rays": the low poly may be inside, outside or through the high poly). The chosen hit's
+//   interpolated high-poly normal is expressed in the requested space, the samples of a
+//   texel are averaged and normalized. Texels that UV triangles touch but whose samples all
+//   miss them (thin slivers on island borders) get one sample at the closest point of the
+//   triangle, so island borders are never empty. Finally the map is dilated into unused
+//   texels so bilinear fetches and mipmaps do not pull in the background.
+//
+// Notes for artists (from the original tool's authors)
+//   - Shared normals. Rays follow the interpolated low-poly normals. Where the low poly has
+//     a hard edge (two normals at one position) the rays fan apart and a wedge of the high
+//     poly is never sampled. Use smooth (shared) normals on the low poly; bake() warns about
+//     hard edges.
+//   - UV spacing. A normal map is vectors, not colours: a texel bleeding in from a
+//     neighbouring island bends the lighting. Leave space between islands (at least twice
+//     the padding at the smallest mip level you care about) and keep the padding on.
+//   - Tangent space. Maps are baked in MikkTSpace (glint/mesh/tangents.h), the frame the
+//     renderer reconstructs; the low poly's own tangents, if any, are ignored.
+//
+// Determinism: the result depends only on the inputs and options, not on the thread
+// count or scheduling (tiles are independent; AO uses per-texel random sequences).
+
+#include "glint/core/math.h"
+#include "glint/image/image.h"
+#include "glint/mesh/mesh.h"
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint::raytrace {
+struct Ray;
+}
+
+namespace glint::bake {
+
+enum class NormalSpace {
+  Tangent,  ///< relative to the low poly's MikkTSpace frame (the default; survives animation)
+  Object,   ///< the meshes' own coordinates
+  World     ///< object space transformed by BakeOptions::objectToWorld
+};
+
+enum class HitSelection {
+  Closest,    ///< the hit with the smallest |t|, in front or behind (default)
+  FrontFirst  ///< any hit in front of the low poly wins over hits behind it
+};
+
+/// A distance along the ray: absolute (scene units) or a fraction of the diagonal of the
+/// low poly's bounding box (the default: it scales with the model).
+struct Distance {
+  float value = 0.05f;
+  bool relative = true;
+  float resolve(float diagonal) const { return relative ? value * diagonal : value; }
+};
+
+/// A painted height map combined with the baked normals ("scars and pores"): the bake gives
+/// the smooth shape, the height map the micro detail. Tiled over the low poly's UVs.
+struct HeightDetail {
+  Image height;        ///< channel 0 is the height, 0..1 (any pixel type); row 0 is v = 1
+  float scale = 1.0f;  ///< slope per height-map texel: a height step of 1/scale across one
+                       ///< texel tilts the normal by 45°; negative values engrave
+};
+
+struct BakeOptions {
+  int width = 1024;   ///< output size in texels (any W × H)
+  int height = 1024;
+  int samples = 1;    ///< samples per texel, a perfect square (1, 4, 9, 16, 36, 64, ...)
+  NormalSpace space = NormalSpace::Tangent;
+  bool directX = false;           ///< flip green (DirectX/Unreal convention; OpenGL is +Y up)
+  mat4 objectToWorld{1.0f};       ///< for NormalSpace::World (normals use its inverse transpose)
+  Distance maxFront{0.05f, true}; ///< how far in front of the low poly (along its normal) to look
+  Distance maxRear{0.05f, true};  ///< how far behind it
+  HitSelection selection = HitSelection::Closest;
+  /// Optional cage: the low poly with every vertex pushed outwards (same vertex count and
+  /// triangles). Rays then start on the cage and travel towards the low poly's surface,
+  /// accepting the first hit up to maxRear beyond it; maxFront is not used.
+  std::optional<Mesh> cage;
+  int padding = 16;               ///< texels of dilation around the islands (0: none)
+  bool fillAll = false;           ///< dilate until every texel is filled
+  std::optional<HeightDetail> detail;
+
+  bool ambientOcclusion = false;  ///< also bake AO: hemisphere rays against the high poly
+  int aoSamples = 16;             ///< AO rays per sample (cosine-weighted, stratified)
+  Distance aoDistance{0.1f, true};///< AO ray length
+  bool heightMap = false;         ///< also bake the signed ray distance (+ outside the low poly)
+  bool missMask = false;          ///< also output the fraction of samples whose rays missed
+
+  bool progress = true;           ///< draw a progress bar (only on a terminal, see core/progress.h)
+  /// Polled between tiles; when it becomes true bake() throws Error(Interrupted).
+  const std::atomic<bool>* cancel = nullptr;
+  /// Benchmarks only: receives every ray the normal pass casts, in a deterministic order
+  /// (32 bytes per ray; keep bakes small).
+  std::vector<raytrace::Ray>* rayLog = nullptr;
+};
+
+struct BakeStats {
+  std::uint64_t texels = 0;             ///< width × height
+  std::uint64_t coveredTexels = 0;      ///< texels with at least one sample on the low poly
+  std::uint64_t conservativeTexels = 0; ///< of those, filled by the closest-point rule
+  std::uint64_t paddedTexels = 0;       ///< filled by dilation
+  std::uint64_t samples = 0;            ///< sample points on the low poly
+  std::uint64_t hits = 0;               ///< samples whose rays found the high poly
+  std::uint64_t misses = 0;             ///< samples whose rays found nothing
+  std::uint64_t rays = 0;               ///< normal-pass rays (front + rear)
+  std::uint64_t aoRays = 0;
+  std::uint64_t overlappingSamples = 0; ///< samples inside more than one UV triangle
+  std::size_t mirroredTriangles = 0;    ///< low-poly triangles with mirrored UVs
+  std::size_t degenerateUvTriangles = 0;///< low-poly triangles with zero UV area (skipped)
+  std::size_t hardEdgeVertices = 0;     ///< low-poly positions with more than one normal
+  std::size_t addedVertices = 0;        ///< vertices split by tangent generation
+  float frontDistance = 0, rearDistance = 0, aoDistance = 0;  ///< resolved, scene units
+  std::size_t bvhBytes = 0;             ///< Embree memory for the high poly
+  double prepareSeconds = 0;            ///< tangents, BVH build
+  double traceSeconds = 0;              ///< rasterizing samples and casting rays (wall clock)
+  double traceCpuSeconds = 0;           ///< the same phase in process CPU time (all threads)
+  double dilateSeconds = 0;
+  double hitRatio() const { return samples ? double(hits) / double(samples) : 0.0; }
+};
+
+struct BakeResult {
+  Image normal;     ///< RGB F32, encoded 0..1 (encodeNormalMap), green flipped if directX
+  Image ao;         ///< R F32 0..1 (1 = unoccluded), when asked
+  Image height;     ///< R F32 signed distance in scene units, when asked
+  Image missMask;   ///< R F32 0..1 fraction of missed samples, when asked (not dilated)
+  Image coverage;   ///< R U8: 255 inside UV islands, 128 padding, 0 unused
+  Mesh low;         ///< the low poly as baked: MikkTSpace tangents, split vertices — render this
+  BakeStats stats;
+  std::vector<std::string> warnings;  ///< also logged as they happen
+};
+
+/// Bakes `high` onto `low`. Error(Input) with one line when the low poly has no UVs, a mesh
+/// is empty or has non-finite values, the cage does not match the low poly, or the detail
+/// map is empty; Error(Usage) for bad options (size, samples). Missing normals are generated
+/// (smooth) with a warning; mirrored or overlapping UVs and hard edges are warned about and
+/// baked anyway. Throws Error(Interrupted) when options.cancel becomes true.
+BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options = {});
+
+/// Error(Usage) naming the first bad option (size, samples, AO samples, distances). bake()
+/// calls it too; front ends call it before loading anything.
+void validateOptions(const BakeOptions& options);
+
+/// Unit vector → texture value: (v + 1) / 2 per channel, green negated first if directX.
+vec3 encodeNormalMap(const vec3& unit, bool directX);
+/// Texture value → unit vector (the inverse, normalized).
+vec3 decodeNormalMap(const vec3& rgb, bool directX);
+
+}  // namespace glint::bake

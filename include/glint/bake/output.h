@@ -1,0 +1,31 @@
+#pragma once
+// glint/bake/output.h — turning baked maps into files: pixel depth per format, and the
+// height map's scaling into integer formats.
+//
+//   PixelType type = bake::outputType("normal.png", 16);   // U16
+//   saveImage(bake::forOutput(result.normal, type), "normal.png");
+//
+// Formats and depths (the extension decides the format):
+//   .png   8 (default) or 16 bits          .tga   8 bits
+//   .tif   8 or 16 (default) bits          .exr   32-bit float (default) — 16 is not offered
+// Normal maps are stored encoded, (n + 1) / 2, in every format, float included, so one
+// decoder reads them all.
+
+#include "glint/image/image.h"
+
+#include <filesystem>
+
+namespace glint::bake {
+
+/// Pixel type for `path` given the requested bits (0: the format's default). Error(Usage)
+/// for an unknown extension or a depth the format cannot hold.
+PixelType outputType(const std::filesystem::path& path, int bits = 0);
+
+/// `image` (F32) converted to `type`, values clamped to 0..1 for integer types.
+Image forOutput(const Image& image, PixelType type);
+
+/// A signed-distance height map for an integer file: 0.5 is the low-poly surface, 0 and 1
+/// are `range` behind and in front of it. Float files keep the distances as they are.
+Image heightForOutput(const Image& height, PixelType type, float range);
+
+}  // namespace glint::bake

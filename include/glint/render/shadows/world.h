@@ -1,0 +1,72 @@
+#pragma once
+// glint/render/shadows/world.h — what every shadow technique draws: objects, a ground
+// and one point light, as plain data (no GL), plus the worlds the shadow scenes,
+// tests and benchmarks share.
+//
+// Contents
+//   WorldObject        a mesh in object space, its placement, colour, caster/ground flags
+//   World              objects + a positional light + ambient level
+//   makeDemoWorld      seeds/000's demo: a slab casting a volume, a sphere moving in and out
+//   makeBunnyWorld     the Stanford bunny (closed, or with its base cut open) on a ground
+//   makeBenchWorld     a field of spheres with about N triangles in total
+//   bunnyPath/loadBunny  where scripts/setup put the bunny, and loading it
+//
+// The same World feeds the GPU techniques (render/shadows/*) and the ray-traced
+// oracle in the tests (worldMesh() gives each object in world space), so both see
+// exactly the same triangles.
+
+#include "glint/core/math.h"
+#include "glint/mesh/mesh.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace glint::render::shadows {
+
+struct WorldObject {
+  std::string name;
+  Mesh mesh;                 ///< object space, with normals; counter-clockwise front faces
+  mat4 transform{1.0f};      ///< object → world (rigid or uniformly scaled)
+  vec3 color{0.8f};          ///< diffuse albedo
+  bool castsShadow = true;   ///< false: receives shadows only (its triangles build no volume)
+  bool ground = false;       ///< the receiving plane y = World::groundHeight (planar shadows);
+                             ///< drawn with a checker pattern
+};
+
+struct World {
+  std::vector<WorldObject> objects;
+  vec3 lightPosition{0.0f, 5.0f, 0.0f};  ///< positional light, world space
+  float ambient = 0.22f;                 ///< ambient fraction of the albedo (what shadows keep)
+  float groundHeight = 0.0f;
+
+  /// Object `i` transformed to world space (positions and normals).
+  Mesh worldMesh(std::size_t i) const;
+  /// Bounds of every object in world space.
+  Bounds bounds() const;
+  /// Triangles over all objects.
+  std::size_t triangleCount() const;
+};
+
+/// The seed demo (seeds/000): a square slab hovering under the light casts a shadow
+/// volume onto the ground; a sphere rolls along x through it, in and out of the volume,
+/// with `time` (period 8 s; at t = 0 it is half inside). `sphereCasts` = false keeps the
+/// sphere a receiver only, as in the seed, where only the slab's volume is drawn.
+World makeDemoWorld(double time = 0.0, bool sphereCasts = true);
+/// Moves the demo sphere to where it is at `time` (only World::objects[2] changes).
+void animateDemoWorld(World& world, double time);
+
+/// The Stanford bunny (1 unit tall) on a ground with a torus beside it. `openBase`
+/// deletes the triangles of its base, leaving holes like the original scan's.
+World makeBunnyWorld(const Mesh& bunny, bool openBase);
+
+/// About `triangles` triangles: a grid of UV spheres (casters) over a ground, for benchmarks.
+World makeBenchWorld(std::size_t triangles);
+
+/// $GLINT_DATA_DIR/bunny/bunny.ply, else <source>/data/bunny/bunny.ply (from scripts/setup).
+std::filesystem::path bunnyPath();
+/// Loads the bunny from bunnyPath() with winding checked (outward). Error(Input) naming the
+/// path and `scripts/setup` when it is missing.
+Mesh loadBunny();
+
+}  // namespace glint::render::shadows

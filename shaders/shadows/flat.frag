@@ -1,0 +1,9 @@
+#version 450 core
+// A full-screen quad of one colour: the seed's shadow-coloured overlay under the
+// stencil test, and the dim-factor pass of seeds/001 (its colour is unused there:
+// the blend multiplies the destination by its own alpha).
+uniform vec4 uColor;
+in vec2 vUv;
+layout(location = 0) out vec4 fragColor;
+
+void main() { fragColor = uColor; }

@@ -1,0 +1,42 @@
+// Shadow-map lookup (seeds/004: "shadow maps from the light's view depth").
+//
+// The light's depth texture is sampled through a sampler2DShadow: the hardware
+// compares the reference depth with the stored one (GL_TEXTURE_COMPARE_MODE) and,
+// with GL_LINEAR filtering, blends the results of the 2×2 nearest texels, so one tap
+// is already a small percentage-closer filter. PCF widens it to (2r+1)² taps.
+// Acne is fought where it starts, when the map is drawn: slope-scaled polygon offset
+// pushes each depth back in proportion to how steeply the surface is seen from the
+// light (render/shadows/shadow_map.h), so no bias is added here.
+layout(binding = 0) uniform sampler2DShadow uShadowMap;
+uniform mat4 uLightViewProj;  // world → the light's clip space
+uniform int uPcfRadius;       // 0: one (hardware 2×2) tap; r: (2r+1)² taps
+
+float shadowMapVisibility(vec3 p) {
+  vec4 clip = uLightViewProj * vec4(p, 1.0);
+  // Behind the light or outside its frustum: the map knows nothing there; call it lit.
+  if (clip.w <= 0.0) return 1.0;
+  vec3 coord = clip.xyz / clip.w * 0.5 + 0.5;
+  if (any(lessThan(coord, vec3(0.0))) || any(greaterThan(coord, vec3(1.0)))) return 1.0;
+  vec2 texel = 1.0 / vec2(textureSize(uShadowMap, 0));
+  float sum = 0.0;
+  for (int y = -uPcfRadius; y <= uPcfRadius; ++y)
+    for (int x = -uPcfRadius; x <= uPcfRadius; ++x) sum += texture(uShadowMap, vec3(coord.xy + vec2(x, y) * texel, coord.z));
+  float side = float(2 * uPcfRadius + 1);
+  return sum / (side * side);
+}
+
+// The lecture's "projected shadow map": the stored depth (linearised between the
+// light's near and far planes) cast onto the scene like a slide; blue outside the map.
+layout(binding = 2) uniform sampler2D uShadowDepth;  // the same texture, no comparison
+uniform vec2 uLightNearFar;
+
+vec3 projectedMapColor(vec3 p) {
+  vec4 clip = uLightViewProj * vec4(p, 1.0);
+  vec3 coord = clip.xyz / clip.w * 0.5 + 0.5;
+  if (clip.w <= 0.0 || any(lessThan(coord.xy, vec2(0.0))) || any(greaterThan(coord.xy, vec2(1.0))))
+    return vec3(0.1, 0.15, 0.35);
+  float ndc = 2.0 * texture(uShadowDepth, coord.xy).r - 1.0;
+  float n = uLightNearFar.x, f = uLightNearFar.y;
+  float eye = 2.0 * n * f / (f + n - ndc * (f - n));
+  return vec3((eye - n) / (f - n));
+}

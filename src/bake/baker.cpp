@@ -1,0 +1,389 @@
+// The bake loop: UV-space tiles in parallel; in each, the low poly's triangles are
+// rasterized at the sample positions, rays are cast for every covered sample and the
+// results averaged per texel. Tiles are independent, so the output does not depend on
+// the thread count.
+#include "glint/bake/baker.h"
+
+#include "glint/bake/dilate.h"
+#include "glint/core/error.h"
+#include "glint/core/log.h"
+#include "glint/core/progress.h"
+#include "glint/mesh/tangents.h"
+#include "glint/raytrace/raytracer.h"
+#include "internal.h"
+#include "trace.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+namespace glint::bake {
+namespace {
+
+using detail::Context;
+using detail::Counters;
+using detail::Slot;
+using detail::UvTriangle;
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+/// CPU time of the whole process (every thread): throughput per CPU second does not
+/// depend on what else the machine is running.
+double processCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+constexpr int kTile = 32;  // texels per tile side: a few hundred rays per task at 1 spp
+
+float edge(const vec2& p, const vec2& q, const vec2& s) { return (q.x - p.x) * (s.y - p.y) - (q.y - p.y) * (s.x - p.x); }
+
+/// Barycentric weights of corners (b, c) at point s.
+vec2 barycentric(const UvTriangle& t, const vec2& s) {
+  return {edge(t.c, t.a, s) * t.invArea, edge(t.a, t.b, s) * t.invArea};
+}
+
+/// Closest point of the triangle to s, as barycentric weights of (b, c).
+vec2 closestBarycentric(const UvTriangle& t, const vec2& s) {
+  const vec2 w = barycentric(t, s);
+  if (w.x >= 0.0f && w.y >= 0.0f && w.x + w.y <= 1.0f) return w;
+  // Outside: the closest point is on an edge; try all three and keep the nearest.
+  const auto onSegment = [&](const vec2& p, const vec2& q) {
+    const vec2 d = q - p;
+    const float len2 = glm::dot(d, d);
+    const float k = len2 > 0.0f ? std::clamp(glm::dot(s - p, d) / len2, 0.0f, 1.0f) : 0.0f;
+    return p + k * d;
+  };
+  const vec2 candidates[3] = {onSegment(t.a, t.b), onSegment(t.b, t.c), onSegment(t.c, t.a)};
+  vec2 best = candidates[0];
+  for (const vec2& p : candidates) {
+    if (glm::distance(p, s) < glm::distance(best, s)) best = p;
+  }
+  return glm::clamp(barycentric(t, best), vec2(0.0f), vec2(1.0f));
+}
+
+/// Does the triangle overlap the open unit square at `texel` (separating axes)?
+bool overlapsTexel(const UvTriangle& t, ivec2 texel) {
+  const vec2 lo(texel), hi = lo + vec2(1.0f);
+  const vec2 p[3] = {t.a, t.b, t.c};
+  for (int axis = 0; axis < 2; ++axis) {
+    const float mn = std::min({p[0][axis], p[1][axis], p[2][axis]});
+    const float mx = std::max({p[0][axis], p[1][axis], p[2][axis]});
+    if (mx <= lo[axis] || mn >= hi[axis]) return false;
+  }
+  const vec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+  for (int e = 0; e < 3; ++e) {
+    const vec2 &p0 = p[e], &p1 = p[(e + 1) % 3], &p2 = p[(e + 2) % 3];
+    const vec2 n(p0.y - p1.y, p1.x - p0.x);  // edge normal
+    const float side = glm::dot(n, p2 - p0);
+    float best = -1e30f;
+    for (const vec2& c : corners) best = std::max(best, side > 0.0f ? glm::dot(n, c - p0) : -glm::dot(n, c - p0));
+    if (best <= 0.0f) return false;
+  }
+  return true;
+}
+
+void bakeTile(Context& ctx, int tileIndex, Counters& counters, std::vector<raytrace::Ray>* rayLog) {
+  const int W = ctx.options.width, H = ctx.options.height, k = ctx.root, S = k * k;
+  const int x0 = (tileIndex % ctx.tilesX) * kTile, y0 = (tileIndex / ctx.tilesX) * kTile;
+  const int tw = std::min(kTile, W - x0), th = std::min(kTile, H - y0);
+  // Reused per thread: a fresh 32×32×36 buffer per tile would cost page faults and zeroing.
+  thread_local std::vector<Slot> slots;
+  slots.assign(std::size_t(tw * th * S), Slot{});
+  int prediction = 0;  // which side of the low poly the hits are on (see traceTexel)
+  const auto& bin = ctx.bins[std::size_t(tileIndex)];
+
+  // 1. Samples: the first triangle (lowest id) containing a sample owns it.
+  for (int id : bin) {
+    const UvTriangle& t = ctx.tris[std::size_t(id)];
+    const int bx0 = std::max(t.lo.x, x0), bx1 = std::min(t.hi.x, x0 + tw - 1);
+    const int by0 = std::max(t.lo.y, y0), by1 = std::min(t.hi.y, y0 + th - 1);
+    for (int y = by0; y <= by1; ++y) {
+      for (int x = bx0; x <= bx1; ++x) {
+        Slot* texelSlots = &slots[std::size_t(((y - y0) * tw + (x - x0)) * S)];
+        for (int s = 0; s < S; ++s) {
+          const vec2 p(float(x) + (float(s % k) + 0.5f) / float(k), float(y) + (float(s / k) + 0.5f) / float(k));
+          const vec2 w = barycentric(t, p);
+          const float w0 = 1.0f - w.x - w.y;
+          if (w.x < 0.0f || w.y < 0.0f || w0 < 0.0f) continue;
+          if (texelSlots[s].tri < 0) texelSlots[s] = {id, w};
+          else if (std::min({w.x, w.y, w0}) > 1e-4f) ++counters.overlaps;
+        }
+      }
+    }
+  }
+
+  // 2. Trace. Texels are gathered until they hold at least kGroup samples, which are then
+  // traced together (coherent groups for Embree's packets, whatever the sample count),
+  // and the results averaged back per texel.
+  struct Pending {
+    std::size_t texel;
+    std::size_t first, count;
+    bool conservative;
+  };
+  constexpr std::size_t kGroup = 64;
+  thread_local std::vector<Pending> pending;
+  thread_local std::vector<detail::SampleInput> inputs;
+  thread_local std::vector<detail::SampleResult> results;
+  pending.clear();
+  inputs.clear();
+  const auto flush = [&] {
+    results.resize(inputs.size());
+    detail::traceTexel(ctx, inputs, results, counters, rayLog, prediction);
+    for (const Pending& p : pending) {
+      vec3 sum(0.0f);
+      float ao = 0.0f, height = 0.0f;
+      std::size_t missed = 0;
+      for (std::size_t i = p.first; i < p.first + p.count; ++i) {
+        const detail::SampleResult& r = results[i];
+        sum += r.value;
+        ao += r.ao;
+        height += r.height;
+        missed += r.hit ? 0 : 1;
+      }
+      counters.samples += p.count;
+      counters.hits += p.count - missed;
+      counters.misses += missed;
+      ++counters.covered;
+      counters.conservative += p.conservative ? 1 : 0;
+      float* out = &ctx.texels[p.texel * std::size_t(ctx.channels)];
+      const float len = glm::length(sum);
+      const vec3 n = len > 0.0f ? sum / len : vec3(0.0f, 0.0f, 1.0f);
+      out[0] = n.x;
+      out[1] = n.y;
+      out[2] = n.z;
+      const float count = float(p.count);
+      if (ctx.aoChannel >= 0) out[ctx.aoChannel] = ao / count;
+      if (ctx.heightChannel >= 0) out[ctx.heightChannel] = height / count;
+      if (ctx.missChannel >= 0) out[ctx.missChannel] = float(missed) / count;
+      ctx.covered[p.texel] = 1;
+    }
+    pending.clear();
+    inputs.clear();
+  };
+  for (int y = y0; y < y0 + th; ++y) {
+    for (int x = x0; x < x0 + tw; ++x) {
+      Slot* texelSlots = &slots[std::size_t(((y - y0) * tw + (x - x0)) * S)];
+      bool any = false;
+      for (int s = 0; s < S && !any; ++s) any = texelSlots[s].tri >= 0;
+      bool conservative = false;
+      if (!any) {
+        // Conservative coverage: a triangle touching the texel gives one sample at its
+        // point closest to the texel centre (nearest such triangle; ties to the lowest id).
+        const vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
+        float bestDistance = 1e30f;
+        for (int id : bin) {
+          const UvTriangle& t = ctx.tris[std::size_t(id)];
+          if (x < t.lo.x || x > t.hi.x || y < t.lo.y || y > t.hi.y || !overlapsTexel(t, {x, y})) continue;
+          const vec2 w = closestBarycentric(t, centre);
+          const vec2 p = (1.0f - w.x - w.y) * t.a + w.x * t.b + w.y * t.c;
+          const float d = glm::distance(p, centre);
+          if (d < bestDistance) {
+            bestDistance = d;
+            texelSlots[0] = {id, w};
+          }
+        }
+        if (texelSlots[0].tri < 0) continue;
+        conservative = true;
+      }
+      const std::size_t texel = std::size_t(y) * std::size_t(W) + std::size_t(x);
+      const std::size_t first = inputs.size();
+      for (int s = 0; s < S; ++s) {
+        if (texelSlots[s].tri < 0) continue;
+        const UvTriangle& t = ctx.tris[std::size_t(texelSlots[s].tri)];
+        const vec2 w = texelSlots[s].w;
+        const vec2 p = (1.0f - w.x - w.y) * t.a + w.x * t.b + w.y * t.c;
+        inputs.push_back({texelSlots[s], vec2(p.x / float(W), p.y / float(H)), texel * 4096u + std::uint64_t(s)});
+      }
+      pending.push_back({texel, first, inputs.size() - first, conservative});
+      if (inputs.size() >= kGroup) flush();
+    }
+  }
+  if (!inputs.empty()) flush();
+}
+
+Image channelImage(const Context& ctx, int first, int count, bool flipRows, const auto& transform) {
+  const int W = ctx.options.width, H = ctx.options.height;
+  Image image(W, H, count, PixelType::F32);
+  auto px = image.pixels<float>();
+  for (int y = 0; y < H; ++y) {
+    const int row = flipRows ? H - 1 - y : y;  // texels are stored v-up, images top-down
+    for (int x = 0; x < W; ++x) {
+      const float* in = &ctx.texels[(std::size_t(y) * std::size_t(W) + std::size_t(x)) * std::size_t(ctx.channels)];
+      float* out = &px[(std::size_t(row) * std::size_t(W) + std::size_t(x)) * std::size_t(count)];
+      transform(in + first, out, ctx.covered[std::size_t(y) * std::size_t(W) + std::size_t(x)] != 0);
+    }
+  }
+  return image;
+}
+
+}  // namespace
+
+vec3 encodeNormalMap(const vec3& unit, bool directX) {
+  const vec3 v = directX ? vec3(unit.x, -unit.y, unit.z) : unit;
+  return v * 0.5f + 0.5f;
+}
+
+vec3 decodeNormalMap(const vec3& rgb, bool directX) {
+  vec3 v = rgb * 2.0f - 1.0f;
+  if (directX) v.y = -v.y;
+  const float len = glm::length(v);
+  return len > 0.0f ? v / len : vec3(0.0f, 0.0f, 1.0f);
+}
+
+BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
+  BakeResult result;
+  BakeStats& stats = result.stats;
+  auto start = Clock::now();
+  detail::Prepared in = detail::prepareInputs(low, high, options, stats, result.warnings);
+  // Not robust (watertight) traversal: ~15 % faster; the rare ray that slips through a
+  // shared vertex is retried (trace.cpp).
+  const raytrace::Scene scene(*in.high, {.quality = raytrace::SceneOptions::Quality::High});
+  stats.bvhBytes = scene.memoryBytes();
+  stats.prepareSeconds = secondsSince(start);
+
+  Context ctx{options, in, scene};
+  const int W = options.width, H = options.height;
+  ctx.root = int(std::lround(std::sqrt(double(options.samples))));
+  ctx.front = options.maxFront.resolve(in.diagonal);
+  ctx.rear = options.maxRear.resolve(in.diagonal);
+  ctx.aoDistance = options.aoDistance.resolve(in.diagonal);
+  ctx.epsilon = 1e-5f * std::max(in.diagonal, scene.bounds().diagonal());
+  ctx.worldNormalMatrix = glm::transpose(glm::inverse(mat3(options.objectToWorld)));
+  ctx.highCornerNormals.resize(in.high->triangleCount());
+  for (std::size_t t = 0; t < ctx.highCornerNormals.size(); ++t) {
+    for (std::size_t k = 0; k < 3; ++k) ctx.highCornerNormals[t][k] = in.high->normals[in.high->indices[3 * t + k]];
+  }
+  stats.frontDistance = ctx.front;
+  stats.rearDistance = ctx.rear;
+  stats.aoDistance = options.ambientOcclusion ? ctx.aoDistance : 0.0f;
+  if (options.ambientOcclusion) ctx.aoChannel = ctx.channels++;
+  if (options.heightMap) ctx.heightChannel = ctx.channels++;
+  if (options.missMask) ctx.missChannel = ctx.channels++;
+  stats.texels = std::uint64_t(W) * std::uint64_t(H);
+  ctx.texels.assign(std::size_t(stats.texels) * std::size_t(ctx.channels), 0.0f);
+  ctx.covered.assign(std::size_t(stats.texels), 0);
+
+  // Triangles in texel space, binned into tiles (in id order, so bins are sorted).
+  start = Clock::now();
+  const double cpuStart = processCpuSeconds();
+  ctx.tilesX = (W + kTile - 1) / kTile;
+  ctx.tilesY = (H + kTile - 1) / kTile;
+  ctx.bins.resize(std::size_t(ctx.tilesX * ctx.tilesY));
+  ctx.tris.resize(in.low.triangleCount());
+  for (std::size_t i = 0; i < ctx.tris.size(); ++i) {
+    UvTriangle& t = ctx.tris[i];
+    const auto corner = [&](int k) { return in.low.uvs[in.low.indices[3 * i + std::size_t(k)]] * vec2(float(W), float(H)); };
+    t.a = corner(0);
+    t.b = corner(1);
+    t.c = corner(2);
+    const float area = edge(t.a, t.b, t.c);
+    const vec2 uvA = in.low.uvs[in.low.indices[3 * i]], uvB = in.low.uvs[in.low.indices[3 * i + 1]],
+               uvC = in.low.uvs[in.low.indices[3 * i + 2]];
+    if (std::fabs((uvB.x - uvA.x) * (uvC.y - uvA.y) - (uvB.y - uvA.y) * (uvC.x - uvA.x)) <= 1e-12f || area == 0.0f) continue;
+    t.invArea = 1.0f / area;
+    const vec2 mn = glm::min(t.a, glm::min(t.b, t.c)), mx = glm::max(t.a, glm::max(t.b, t.c));
+    t.lo = glm::clamp(ivec2(glm::floor(mn)), ivec2(0), ivec2(W - 1, H - 1));
+    t.hi = glm::clamp(ivec2(glm::floor(mx)), ivec2(0), ivec2(W - 1, H - 1));
+    if (mx.x < 0.0f || mx.y < 0.0f || mn.x > float(W) || mn.y > float(H)) continue;  // outside 0..1
+    for (int ty = t.lo.y / kTile; ty <= t.hi.y / kTile; ++ty)
+      for (int tx = t.lo.x / kTile; tx <= t.hi.x / kTile; ++tx) ctx.bins[std::size_t(ty * ctx.tilesX + tx)].push_back(int(i));
+  }
+
+  const std::size_t tileCount = ctx.bins.size();
+  std::vector<Counters> tileCounters(tileCount);
+  std::vector<std::vector<raytrace::Ray>> tileRays(options.rayLog ? tileCount : 0);
+  std::atomic<bool> cancelled{false};
+  {
+    Progress progress("bake", tileCount);
+    const bool showProgress = options.progress;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tileCount, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        if (cancelled.load(std::memory_order_relaxed) || (options.cancel && options.cancel->load())) {
+          cancelled = true;
+          return;
+        }
+        if (!ctx.bins[i].empty()) bakeTile(ctx, int(i), tileCounters[i], options.rayLog ? &tileRays[i] : nullptr);
+        if (showProgress) progress.advance();
+      }
+    });
+  }
+  if (cancelled) fail(ErrorKind::Interrupted, "bake interrupted");
+  for (const Counters& c : tileCounters) {
+    stats.coveredTexels += c.covered;
+    stats.conservativeTexels += c.conservative;
+    stats.samples += c.samples;
+    stats.hits += c.hits;
+    stats.misses += c.misses;
+    stats.rays += c.rays;
+    stats.aoRays += c.aoRays;
+    stats.overlappingSamples += c.overlaps;
+  }
+  stats.traceSeconds = secondsSince(start);
+  stats.traceCpuSeconds = processCpuSeconds() - cpuStart;
+  if (options.rayLog) {
+    for (auto& rays : tileRays) options.rayLog->insert(options.rayLog->end(), rays.begin(), rays.end());
+  }
+  if (stats.overlappingSamples) {
+    const std::string message = fmt::format(
+        "low-poly mesh: {} samples lie in more than one UV triangle (overlapping or mirrored-onto-itself UVs); "
+        "each texel takes the lowest-numbered triangle", stats.overlappingSamples);
+    log::warn("{}", message);
+    result.warnings.push_back(message);
+  }
+  if (stats.samples > 0 && stats.misses * 10 > stats.samples) {
+    const std::string message = fmt::format(
+        "{:.0f}% of samples found no high-poly surface within {:.4g} in front / {:.4g} behind: raise --max-front/"
+        "--max-rear or check that the meshes overlap", 100.0 * double(stats.misses) / double(stats.samples),
+        ctx.front, ctx.rear);
+    log::warn("{}", message);
+    result.warnings.push_back(message);
+  }
+
+  // Dilation, then the maps as images (row 0 on top).
+  start = Clock::now();
+  std::vector<std::uint8_t> filled = ctx.covered;
+  if (options.padding > 0 || options.fillAll) {
+    stats.paddedTexels = dilate(ctx.texels, ctx.channels, W, H, filled,
+                                {.passes = options.fillAll ? -1 : options.padding, .unitVectorChannels = 3});
+  }
+  stats.dilateSeconds = secondsSince(start);
+  const vec3 background = options.space == NormalSpace::Tangent ? vec3(0.0f, 0.0f, 1.0f) : vec3(0.0f);
+  std::vector<std::uint8_t> islands = ctx.covered;
+  ctx.covered = filled;
+  result.normal = channelImage(ctx, 0, 3, true, [&](const float* in, float* out, bool has) {
+    const vec3 rgb = has ? encodeNormalMap(vec3(in[0], in[1], in[2]), options.directX) : background * 0.5f + 0.5f;
+    out[0] = rgb.x;
+    out[1] = rgb.y;
+    out[2] = rgb.z;
+  });
+  if (ctx.aoChannel >= 0) {
+    result.ao = channelImage(ctx, ctx.aoChannel, 1, true, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 1.0f; });
+  }
+  if (ctx.heightChannel >= 0) {
+    result.height = channelImage(ctx, ctx.heightChannel, 1, true, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
+  }
+  ctx.covered = islands;
+  if (ctx.missChannel >= 0) {
+    result.missMask = channelImage(ctx, ctx.missChannel, 1, true, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
+  }
+  result.coverage = Image(W, H, 1, PixelType::U8);
+  auto cov = result.coverage.pixels<std::uint8_t>();
+  for (int y = 0; y < H; ++y) {
+    for (int x = 0; x < W; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(W) + std::size_t(x);
+      cov[std::size_t(H - 1 - y) * std::size_t(W) + std::size_t(x)] = islands[i] ? 255 : filled[i] ? 128 : 0;
+    }
+  }
+  result.low = std::move(in.low);
+  return result;
+}
+
+}  // namespace glint::bake

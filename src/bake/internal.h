@@ -1,0 +1,31 @@
+#pragma once
+// Private pieces of the baker, split out so each file stays readable.
+#include "glint/bake/baker.h"
+
+#include <string>
+#include <vector>
+
+namespace glint::bake::detail {
+
+/// The inputs after checking and preparation.
+struct Prepared {
+  Mesh low;                                   ///< normals ensured, MikkTSpace tangents, split vertices
+  std::vector<std::uint32_t> originalIndices; ///< low.indices before splitting (for the cage)
+  Mesh highWithNormals;                       ///< only used when the high poly had no normals
+  const Mesh* high = nullptr;                 ///< the high poly to trace (input or the copy above)
+  float diagonal = 0.0f;                      ///< low poly bounding-box diagonal
+};
+
+/// Checks options and meshes (one-line errors), generates what is missing, fills the
+/// low-poly related stats and warnings.
+Prepared prepareInputs(const Mesh& low, const Mesh& high, const BakeOptions& options, BakeStats& stats,
+                       std::vector<std::string>& warnings);
+
+/// Bilinear, wrapping sample of channel 0 of a height map at UV (v up).
+float sampleHeight(const Image& height, vec2 uv);
+/// Tangent-space normal of the height map at uv (central differences, one texel apart).
+vec3 detailNormal(const HeightDetail& detail, vec2 uv);
+/// Reoriented normal mapping: `detail` (tangent space, around +Z) rotated onto `base`.
+vec3 combineDetail(const vec3& base, const vec3& detail);
+
+}  // namespace glint::bake::detail

@@ -1,0 +1,45 @@
+#include "glint/bake/output.h"
+
+#include "glint/core/error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+namespace glint::bake {
+
+PixelType outputType(const std::filesystem::path& path, int bits) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  struct Format {
+    const char* ext;
+    int defaultBits;
+    bool allows8, allows16, allows32;
+  };
+  static const Format kFormats[] = {
+      {".png", 8, true, true, false},  {".tga", 8, true, false, false},  {".tif", 16, true, true, false},
+      {".tiff", 16, true, true, false}, {".exr", 32, false, false, true},
+  };
+  for (const Format& f : kFormats) {
+    if (ext != f.ext) continue;
+    const int b = bits == 0 ? f.defaultBits : bits;
+    if ((b == 8 && f.allows8) || (b == 16 && f.allows16) || (b == 32 && f.allows32)) {
+      return b == 8 ? PixelType::U8 : b == 16 ? PixelType::U16 : PixelType::F32;
+    }
+    fail(ErrorKind::Usage, "'{}': {} cannot hold {}-bit maps (PNG 8/16, TGA 8, TIFF 8/16, EXR 32 float)",
+         path.string(), ext, b);
+  }
+  fail(ErrorKind::Usage, "'{}': unknown map format '{}' (use .png, .tga, .tif or .exr)", path.string(), ext);
+}
+
+Image forOutput(const Image& image, PixelType type) { return image.converted(type); }
+
+Image heightForOutput(const Image& height, PixelType type, float range) {
+  if (type == PixelType::F32) return height;
+  Image scaled = height;
+  const float r = range > 0.0f ? range : 1.0f;
+  for (float& v : scaled.pixels<float>()) v = std::clamp(0.5f + 0.5f * v / r, 0.0f, 1.0f);
+  return scaled.converted(type);
+}
+
+}  // namespace glint::bake

@@ -1,0 +1,274 @@
+// Rays and shading for the samples of one texel: where the low poly is, which high-poly
+// hit counts (closest |t|, front first, or through the cage), and what is stored.
+#include "trace.h"
+
+#include "glint/mesh/tangents.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace glint::bake::detail {
+namespace {
+
+/// splitmix64: per-texel random streams that do not depend on scheduling.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+float toUnit(std::uint64_t x) { return float(x >> 40) * (1.0f / float(1ull << 24)); }
+float radicalInverse(std::uint32_t i) {
+  i = (i << 16u) | (i >> 16u);
+  i = ((i & 0x55555555u) << 1u) | ((i & 0xAAAAAAAAu) >> 1u);
+  i = ((i & 0x33333333u) << 2u) | ((i & 0xCCCCCCCCu) >> 2u);
+  i = ((i & 0x0F0F0F0Fu) << 4u) | ((i & 0xF0F0F0F0u) >> 4u);
+  i = ((i & 0x00FF00FFu) << 8u) | ((i & 0xFF00FF00u) >> 8u);
+  return float(i) * 2.3283064365386963e-10f;
+}
+
+/// The low poly at a sample: position, interpolated frame, ray direction.
+struct Geometry {
+  vec3 position{0.0f};
+  vec3 normal{0.0f};  ///< interpolated, not normalized: the shader's frame
+  vec4 tangent{0.0f};
+  vec3 dir{0.0f, 0.0f, 1.0f};  ///< the normal, normalized: the ray direction
+};
+
+Geometry geometryAt(const Context& ctx, const Slot& slot) {
+  const Mesh& low = ctx.in.low;
+  const std::size_t base = 3 * std::size_t(slot.tri);
+  const float w0 = 1.0f - slot.w.x - slot.w.y;
+  const auto lerp = [&](const auto& attr) {
+    return w0 * attr[low.indices[base]] + slot.w.x * attr[low.indices[base + 1]] + slot.w.y * attr[low.indices[base + 2]];
+  };
+  Geometry g;
+  g.position = lerp(low.positions);
+  g.normal = lerp(low.normals);
+  g.tangent = lerp(low.tangents);
+  const float len = glm::length(g.normal);
+  if (len > 0.0f) g.dir = g.normal / len;
+  return g;
+}
+
+/// The hit a sample settled on, the ray that found it, and the signed distance from the
+/// low poly along its normal (+ in front).
+struct Found {
+  std::optional<raytrace::Hit> hit;
+  raytrace::Ray ray;
+  float signedT = 0.0f;
+};
+
+class Caster {
+public:
+  Caster(const Context& ctx, Counters& counters, std::vector<raytrace::Ray>* log)
+      : m_ctx(ctx), m_counters(counters), m_log(log) {}
+
+  void note(const raytrace::Ray& r) const {
+    ++m_counters.rays;
+    if (m_log) m_log->push_back(r);
+  }
+  std::optional<raytrace::Hit> cast(const raytrace::Ray& r) const {
+    note(r);
+    return m_ctx.scene.intersect(r);
+  }
+  /// The scene is built for speed, not watertightness: a ray exactly through a shared
+  /// vertex or edge can slip between triangles. A primary ray that finds nothing is cast
+  /// once more, moved sideways by a hair (deterministic, rare, far below a texel).
+  std::optional<raytrace::Hit> retry(const raytrace::Ray& r, const Geometry& g) const {
+    vec3 side = vec3(g.tangent) - glm::dot(vec3(g.tangent), g.dir) * g.dir;
+    const float len = glm::length(side);
+    side = len > 0.0f ? side / len : (std::fabs(g.dir.x) < 0.9f ? glm::normalize(glm::cross(g.dir, vec3(1, 0, 0)))
+                                                                 : glm::normalize(glm::cross(g.dir, vec3(0, 1, 0))));
+    raytrace::Ray nudged = r;
+    nudged.origin += m_ctx.epsilon * side;
+    return cast(nudged);
+  }
+
+  /// Closest |t|, given the sweep that started `before` behind P (along ±normal, `side`)
+  /// and its hit. If the hit is at or beyond P nothing lies between the sweep's start and
+  /// P: it is the closest. Otherwise the hit behind P bounds a short ray back from P, and
+  /// that ray's hit bounds a last one forward.
+  void resolve(const Geometry& g, const raytrace::Ray& sweep, const std::optional<raytrace::Hit>& sweepHit, float before,
+               float side, Found& f) const {
+    f.ray = sweep;
+    f.hit = sweepHit ? sweepHit : retry(sweep, g);
+    if (!f.hit) return;
+    if (f.hit->t >= before) {
+      f.signedT = side * (f.hit->t - before);
+      return;
+    }
+    float behind = before - f.hit->t;
+    const raytrace::Ray back{g.position, -sweep.direction, 0.0f, behind};
+    if (const auto closer = cast(back)) {  // (rounding may lose the sweep's own hit: keep it then)
+      f.hit = closer;
+      f.ray = back;
+      behind = closer->t;
+    }
+    f.signedT = -side * behind;
+    if (behind > 0.0f) {
+      const raytrace::Ray ahead{g.position, sweep.direction, 0.0f, behind};
+      if (const auto front = cast(ahead); front && front->t < behind) {
+        f.hit = front;
+        f.ray = ahead;
+        f.signedT = side * front->t;
+      }
+    }
+  }
+
+  Found frontFirst(const Geometry& g) const {
+    Found f;
+    const raytrace::Ray front{g.position, g.dir, 0.0f, m_ctx.front};
+    if (m_ctx.front > 0.0f && ((f.hit = cast(front)) || (f.hit = retry(front, g)))) {
+      f.ray = front;
+      f.signedT = f.hit->t;
+    } else if (m_ctx.rear > 0.0f) {
+      f.ray = {g.position, -g.dir, 0.0f, m_ctx.rear};
+      if ((f.hit = cast(f.ray)) || (f.hit = retry(f.ray, g))) f.signedT = -f.hit->t;
+    }
+    return f;
+  }
+
+  /// From the cage towards the low poly, first hit, up to maxRear beyond it.
+  Found fromCage(const Geometry& g, const Slot& slot) const {
+    const auto& ci = m_ctx.in.originalIndices;
+    const auto& cp = m_ctx.options.cage->positions;
+    const std::size_t base = 3 * std::size_t(slot.tri);
+    const vec3 origin = (1.0f - slot.w.x - slot.w.y) * cp[ci[base]] + slot.w.x * cp[ci[base + 1]] + slot.w.y * cp[ci[base + 2]];
+    const vec3 toLow = g.position - origin;
+    const float len = glm::length(toLow);
+    const bool apart = len > 1e-7f * m_ctx.in.diagonal;
+    Found f;
+    f.ray = apart ? raytrace::Ray{origin, toLow / len, 0.0f, len + m_ctx.rear} : raytrace::Ray{g.position, -g.dir, 0.0f, m_ctx.rear};
+    f.hit = cast(f.ray);
+    if (!f.hit) f.hit = retry(f.ray, g);
+    if (f.hit) f.signedT = apart ? len - f.hit->t : -f.hit->t;
+    return f;
+  }
+
+private:
+  const Context& m_ctx;
+  Counters& m_counters;
+  std::vector<raytrace::Ray>* m_log;
+};
+
+/// Ambient occlusion at a high-poly hit: cosine-weighted hemisphere rays, a Hammersley set
+/// rotated by a per-sample random offset (stratified, deterministic).
+float ambientOcclusion(const Context& ctx, const Found& f, const vec3& normal, std::uint64_t seed, Counters& counters) {
+  // The facet, not the smooth normal, decides what is above the surface: start just above
+  // the facet and mirror rays that would dive under it (they would report the surface
+  // itself as an occluder, speckling convex shapes).
+  const vec3 g = f.hit->geometricNormal;
+  const vec3 facet = glm::dot(g, normal) < 0.0f ? -g : g;
+  const vec3 p = f.ray.at(f.hit->t) + ctx.epsilon * facet;
+  const vec3 a = std::fabs(normal.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0);
+  const vec3 t = glm::normalize(glm::cross(a, normal)), b = glm::cross(normal, t);
+  const float r1 = toUnit(mix(seed * 2 + 1)), r2 = toUnit(mix(seed * 2 + 2));
+  const int k = ctx.options.aoSamples;
+  int open = 0;
+  for (int i = 0; i < k; ++i) {
+    const float u1 = std::fmod((float(i) + 0.5f) / float(k) + r1, 1.0f);
+    const float u2 = std::fmod(radicalInverse(std::uint32_t(i)) + r2, 1.0f);
+    const float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
+    vec3 d = r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0f, 1.0f - u1)) * normal;
+    const float below = glm::dot(d, facet);
+    if (below < 0.0f) d -= 2.0f * below * facet;
+    if (!ctx.scene.occluded({p, d, 0.0f, ctx.aoDistance})) ++open;
+  }
+  counters.aoRays += std::uint64_t(k);
+  return float(open) / float(k);
+}
+
+SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const SampleInput& in, Counters& counters) {
+  SampleResult result;
+  const TangentFrame frame = TangentFrame::fromInterpolated(g.normal, g.tangent);
+  vec3 objectNormal = g.dir;  // a miss keeps the low poly's own normal
+  if (f.hit) {
+    result.hit = true;
+    result.height = f.signedT;
+    const std::array<vec3, 3>& corner = ctx.highCornerNormals[f.hit->triangle];
+    const vec3 n = (1.0f - f.hit->u - f.hit->v) * corner[0] + f.hit->u * corner[1] + f.hit->v * corner[2];
+    const float len = glm::length(n);
+    objectNormal = len > 0.0f ? n / len : f.hit->geometricNormal;
+    if (ctx.aoChannel >= 0) result.ao = ambientOcclusion(ctx, f, objectNormal, in.seed, counters);
+  }
+  // Into the output space, with the painted detail applied in tangent space.
+  vec3 m = ctx.options.space == NormalSpace::Tangent || ctx.options.detail ? frame.encode(objectNormal) : vec3(0, 0, 1);
+  if (ctx.options.detail) {
+    m = combineDetail(m, detailNormal(*ctx.options.detail, in.uv));
+    objectNormal = frame.decode(m);
+  }
+  switch (ctx.options.space) {
+    case NormalSpace::Tangent: result.value = m; break;
+    case NormalSpace::Object: result.value = objectNormal; break;
+    case NormalSpace::World: result.value = glm::normalize(ctx.worldNormalMatrix * objectNormal); break;
+  }
+  return result;
+}
+
+}  // namespace
+
+void traceTexel(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results,
+                Counters& counters, std::vector<raytrace::Ray>* rayLog, int& prediction) {
+  const Caster caster(ctx, counters, rayLog);
+  thread_local std::vector<Geometry> geometry;
+  geometry.resize(samples.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) geometry[i] = geometryAt(ctx, samples[i].slot);
+
+  const bool closest = !ctx.options.cage && ctx.options.selection == HitSelection::Closest;
+  if (!closest || ctx.front + ctx.rear <= 0.0f) {
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      Found f;
+      if (ctx.options.cage) f = caster.fromCage(geometry[i], samples[i].slot);
+      else if (ctx.options.selection == HitSelection::FrontFirst) f = caster.frontFirst(geometry[i]);
+      results[i] = shade(ctx, geometry[i], f, samples[i], counters);
+    }
+    return;
+  }
+
+  // Closest |t| on each sample's segment [P − rear·N, P + front·N], starting with one ray
+  // per sample that sweeps the whole segment towards the side where the previous group's
+  // hits were (usually the only ray needed). The group's sweeps are coherent — neighbouring
+  // origins, nearly parallel — so they go to Embree together, traced in SIMD packets.
+  // A tile's first group has no previous one: its first sample is traced alone to decide.
+  const float length = ctx.front + ctx.rear;
+  const auto sweepFor = [&](const Geometry& g, bool towardsFront) {
+    const vec3 d = (towardsFront ? 1.0f : -1.0f) * g.dir;
+    return raytrace::Ray{g.position - (towardsFront ? ctx.rear : ctx.front) * d, d, 0.0f, length};
+  };
+  const auto resolve = [&](std::size_t i, const raytrace::Ray& sweep, const std::optional<raytrace::Hit>& hit,
+                           bool towardsFront, int& front, int& rear) {
+    Found f;
+    caster.resolve(geometry[i], sweep, hit, towardsFront ? ctx.rear : ctx.front, towardsFront ? 1.0f : -1.0f, f);
+    if (f.hit) (f.signedT >= 0.0f ? front : rear) += 1;
+    results[i] = shade(ctx, geometry[i], f, samples[i], counters);
+  };
+  int front = 0, rear = 0;
+  std::size_t first = 0;
+  if (prediction == 0 && !samples.empty()) {
+    const raytrace::Ray sweep = sweepFor(geometry[0], true);
+    resolve(0, sweep, caster.cast(sweep), true, front, rear);
+    if (front + rear > 0) prediction = front >= rear ? 1 : -1;
+    first = 1;
+  }
+  const bool towardsFront = prediction >= 0;
+  thread_local std::vector<raytrace::Ray> sweeps;
+  thread_local std::vector<std::optional<raytrace::Hit>> hits;
+  const std::size_t n = samples.size() - first;
+  sweeps.resize(n);
+  hits.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    sweeps[i] = sweepFor(geometry[first + i], towardsFront);
+    caster.note(sweeps[i]);
+  }
+  ctx.scene.intersectCoherent(sweeps, hits);
+  // The hit triangles' normals are scattered over a large array: ask for them all now, so
+  // the memory fetches overlap instead of stalling each sample in turn.
+  for (const auto& hit : hits) {
+    if (hit) __builtin_prefetch(&ctx.highCornerNormals[hit->triangle]);
+  }
+  for (std::size_t i = 0; i < n; ++i) resolve(first + i, sweeps[i], hits[i], towardsFront, front, rear);
+  if (front + rear > 0) prediction = front >= rear ? 1 : -1;
+}
+
+}  // namespace glint::bake::detail

@@ -1,0 +1,74 @@
+#pragma once
+// Private to the baker: the state a bake shares between its tiles, and the ray casting
+// and shading of one texel's samples (trace.cpp). baker.cpp rasterizes the UV layout
+// into samples and drives the tiles.
+#include "glint/bake/baker.h"
+#include "glint/raytrace/raytracer.h"
+#include "internal.h"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace glint::bake::detail {
+
+/// A low-poly triangle in texel space (x = u·W, y = v·H; y up).
+struct UvTriangle {
+  vec2 a, b, c;
+  float invArea = 0.0f;  ///< 1 / signed area (negative for mirrored UVs); 0: skip
+  ivec2 lo, hi;          ///< inclusive texel bounds
+};
+
+/// One sample position: which low-poly triangle, where in it.
+struct Slot {
+  int tri = -1;
+  vec2 w{0.0f};  ///< barycentric weights of corners 1 and 2
+};
+
+/// Per-tile counters, summed at the end (integers: exact in any order).
+struct Counters {
+  std::uint64_t covered = 0, conservative = 0, samples = 0, hits = 0, misses = 0, rays = 0, aoRays = 0, overlaps = 0;
+};
+
+struct Context {
+  const BakeOptions& options;
+  const Prepared& in;
+  const raytrace::Scene& scene;
+  std::vector<UvTriangle> tris;
+  std::vector<std::vector<int>> bins;  ///< triangles per tile, ascending
+  int tilesX = 0, tilesY = 0, root = 1;
+  float front = 0, rear = 0, aoDistance = 0;
+  float epsilon = 0;  ///< offsets off a surface, and the nudge of a retried ray (scene units)
+  mat3 worldNormalMatrix{1.0f};
+  int channels = 3;  ///< normal (3) [+ ao] [+ height] [+ miss]
+  int aoChannel = -1, heightChannel = -1, missChannel = -1;
+  std::vector<float> texels;          ///< width × height × channels, row 0 = bottom (v = 0)
+  std::vector<std::uint8_t> covered;  ///< per texel
+  /// The high poly's three corner normals per triangle, side by side: one cache line per
+  /// hit instead of four scattered reads (indices, then three normals) on million-triangle meshes.
+  std::vector<std::array<vec3, 3>> highCornerNormals;
+};
+
+/// One sample to trace: its slot, UV and random seed.
+struct SampleInput {
+  Slot slot;
+  vec2 uv{0.0f};
+  std::uint64_t seed = 0;
+};
+
+struct SampleResult {
+  vec3 value{0.0f};  ///< unit vector in the output space
+  float ao = 1.0f;
+  float height = 0.0f;
+  bool hit = false;
+};
+
+/// Traces and shades a group of neighbouring samples (a few texels' worth). `prediction`
+/// carries, from group to group of a tile, which side of the low poly the hits were on
+/// (+1 in front, −1 behind, 0 not known yet: start a tile with 0). It only changes how
+/// many rays are cast, not the answers. Rays are logged when `rayLog` is set.
+void traceTexel(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results,
+                Counters& counters, std::vector<raytrace::Ray>* rayLog, int& prediction);
+
+}  // namespace glint::bake::detail

@@ -1,0 +1,251 @@
+// Embree 3 behind glint::raytrace::Scene: one device and one scene per Scene,
+// one triangle geometry per mesh, buffers owned by Embree (copied in) so the
+// Scene never dangles on a caller's Mesh.
+#include "glint/raytrace/raytracer.h"
+
+#include "glint/core/error.h"
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <string>
+
+namespace glint::raytrace {
+
+struct Scene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  Bounds bounds;
+  std::size_t meshes = 0;
+  std::size_t triangles = 0;
+  std::atomic<std::int64_t> memory{0};
+  std::mutex errorMutex;
+  std::string firstError;
+
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+namespace {
+
+RTCBuildQuality toEmbree(SceneOptions::Quality q) {
+  switch (q) {
+    case SceneOptions::Quality::Fast: return RTC_BUILD_QUALITY_LOW;
+    case SceneOptions::Quality::Default: return RTC_BUILD_QUALITY_MEDIUM;
+    case SceneOptions::Quality::High: return RTC_BUILD_QUALITY_HIGH;
+  }
+  return RTC_BUILD_QUALITY_MEDIUM;
+}
+
+void checkMesh(const Mesh& mesh, const std::string& what) {
+  if (mesh.indices.empty()) fail(ErrorKind::Input, "{}: has no triangles", what);
+  if (mesh.indices.size() % 3 != 0) {
+    fail(ErrorKind::Input, "{}: index count {} is not a multiple of 3", what, mesh.indices.size());
+  }
+  const std::size_t n = mesh.positions.size();
+  for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
+    if (mesh.indices[i] >= n) {
+      fail(ErrorKind::Input, "{}: index {} is {}, out of range for {} vertices", what, i, mesh.indices[i], n);
+    }
+  }
+}
+
+RTCRayHit toEmbree(const Ray& ray) {
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.direction.x;
+  rh.ray.dir_y = ray.direction.y;
+  rh.ray.dir_z = ray.direction.z;
+  rh.ray.tnear = ray.tnear;
+  rh.ray.tfar = ray.tfar;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+std::optional<Hit> toHit(const RTCRayHit& rh) {
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  Hit hit;
+  hit.t = rh.ray.tfar;
+  hit.mesh = rh.hit.geomID;
+  hit.triangle = rh.hit.primID;
+  hit.u = rh.hit.u;
+  hit.v = rh.hit.v;
+  // Embree's unnormalized triangle Ng is parallel to cross(v1 - v0, v2 - v0): it
+  // points to the counter-clockwise side, glint's front (checked by the tests).
+  const vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  const float len = glm::length(ng);
+  hit.geometricNormal = len > 0.0f ? ng / len : vec3(0.0f);
+  return hit;
+}
+
+// Batches are split into chunks of this many rays: large enough to amortise
+// TBB's task overhead, small enough to balance two to a hundred cores.
+constexpr std::size_t kBatchGrain = 256;
+
+}  // namespace
+
+Scene::Scene(const Mesh& mesh, const SceneOptions& options) : Scene(std::span<const Mesh>(&mesh, 1), options) {}
+
+Scene::Scene(std::span<const Mesh> meshes, const SceneOptions& options) : m_impl(std::make_unique<Impl>()) {
+  if (meshes.empty()) fail(ErrorKind::Input, "ray-tracing scene: no meshes");
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    checkMesh(meshes[i], meshes.size() == 1 ? std::string("ray-tracing mesh") : fmt::format("ray-tracing mesh {}", i));
+  }
+
+  Impl& impl = *m_impl;
+  impl.device = rtcNewDevice("verbose=0");
+  if (!impl.device) fail(ErrorKind::Internal, "cannot create an Embree device (error {})", int(rtcGetDeviceError(nullptr)));
+  rtcSetDeviceErrorFunction(
+      impl.device,
+      [](void* user, RTCError code, const char* message) {
+        auto* self = static_cast<Impl*>(user);
+        std::lock_guard lock(self->errorMutex);
+        if (self->firstError.empty()) {
+          self->firstError = fmt::format("Embree error {}: {}", int(code), message ? message : "");
+        }
+      },
+      &impl);
+  rtcSetDeviceMemoryMonitorFunction(
+      impl.device,
+      [](void* user, ssize_t bytes, bool /*post*/) {
+        static_cast<Impl*>(user)->memory.fetch_add(bytes, std::memory_order_relaxed);
+        return true;  // never refuse an allocation
+      },
+      &impl);
+
+  impl.scene = rtcNewScene(impl.device);
+  rtcSetSceneBuildQuality(impl.scene, toEmbree(options.quality));
+  rtcSetSceneFlags(impl.scene, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+
+  bool first = true;
+  for (const Mesh& mesh : meshes) {
+    RTCGeometry geometry = rtcNewGeometry(impl.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(geometry, toEmbree(options.quality));
+    // Embree-owned buffers: rtcSetNewGeometryBuffer pads the vertex buffer so
+    // its 16-byte SIMD loads of the last vertex stay in bounds.
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                 RTC_FORMAT_FLOAT3, sizeof(vec3),
+                                                                 mesh.positions.size()));
+    auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.triangleCount()));
+    if (!vertices || !indices) {
+      rtcReleaseGeometry(geometry);
+      fail(ErrorKind::Internal, "cannot allocate ray-tracing buffers ({})", impl.firstError);
+    }
+    std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(vec3));
+    std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(impl.scene, geometry);  // ids are 0, 1, ... in attach order
+    rtcReleaseGeometry(geometry);
+
+    const Bounds b = mesh.bounds();
+    impl.bounds.min = first ? b.min : glm::min(impl.bounds.min, b.min);
+    impl.bounds.max = first ? b.max : glm::max(impl.bounds.max, b.max);
+    first = false;
+    impl.triangles += mesh.triangleCount();
+  }
+  impl.meshes = meshes.size();
+  rtcCommitScene(impl.scene);
+  if (rtcGetDeviceError(impl.device) != RTC_ERROR_NONE || !impl.firstError.empty()) {
+    fail(ErrorKind::Internal, "cannot build the ray-tracing scene: {}", impl.firstError);
+  }
+}
+
+Scene::~Scene() = default;
+Scene::Scene(Scene&& other) noexcept = default;
+Scene& Scene::operator=(Scene&& other) noexcept = default;
+
+std::optional<Hit> Scene::intersect(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = toEmbree(ray);
+  rtcIntersect1(m_impl->scene, &context, &rh);
+  return toHit(rh);
+}
+
+bool Scene::occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = toEmbree(ray);
+  rtcOccluded1(m_impl->scene, &context, &rh.ray);
+  // Embree marks an occluded ray by setting tfar to -inf.
+  return rh.ray.tfar < 0.0f;
+}
+
+void Scene::intersectBatch(std::span<const Ray> rays, std::span<std::optional<Hit>> hits) const {
+  if (rays.size() != hits.size()) {
+    fail(ErrorKind::Usage, "intersectBatch: {} rays but room for {} hits", rays.size(), hits.size());
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), kBatchGrain),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) hits[i] = intersect(rays[i]);
+                    });
+}
+
+void Scene::intersectCoherent(std::span<const Ray> rays, std::span<std::optional<Hit>> hits) const {
+  if (rays.size() != hits.size()) {
+    fail(ErrorKind::Usage, "intersectCoherent: {} rays but room for {} hits", rays.size(), hits.size());
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  constexpr std::size_t kGroup = 64;  // Embree packetizes within a call; 64 keeps the copy on the stack
+  RTCRayHit buffer[kGroup];
+  for (std::size_t first = 0; first < rays.size(); first += kGroup) {
+    const std::size_t count = std::min(kGroup, rays.size() - first);
+    for (std::size_t i = 0; i < count; ++i) buffer[i] = toEmbree(rays[first + i]);
+    rtcIntersect1M(m_impl->scene, &context, buffer, unsigned(count), sizeof(RTCRayHit));
+    for (std::size_t i = 0; i < count; ++i) hits[first + i] = toHit(buffer[i]);
+  }
+}
+
+std::vector<std::optional<Hit>> Scene::intersectBatch(std::span<const Ray> rays) const {
+  std::vector<std::optional<Hit>> hits(rays.size());
+  intersectBatch(rays, hits);
+  return hits;
+}
+
+void Scene::occludedBatch(std::span<const Ray> rays, std::span<std::uint8_t> blocked) const {
+  if (rays.size() != blocked.size()) {
+    fail(ErrorKind::Usage, "occludedBatch: {} rays but room for {} answers", rays.size(), blocked.size());
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), kBatchGrain),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        blocked[i] = occluded(rays[i]) ? 1 : 0;
+                      }
+                    });
+}
+
+std::vector<std::uint8_t> Scene::occludedBatch(std::span<const Ray> rays) const {
+  std::vector<std::uint8_t> blocked(rays.size());
+  occludedBatch(rays, blocked);
+  return blocked;
+}
+
+Bounds Scene::bounds() const { return m_impl->bounds; }
+std::size_t Scene::meshCount() const { return m_impl->meshes; }
+std::size_t Scene::triangleCount() const { return m_impl->triangles; }
+std::size_t Scene::memoryBytes() const {
+  const std::int64_t bytes = m_impl->memory.load(std::memory_order_relaxed);
+  return bytes > 0 ? std::size_t(bytes) : 0;
+}
+
+}  // namespace glint::raytrace

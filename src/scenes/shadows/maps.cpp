@@ -1,0 +1,133 @@
+// shadows/map, shadows/map-pcf, shadows/planar — the two image-space shadow methods
+// of seeds/002 and seeds/004 on seeds/000's demo world.
+#include "common.h"
+
+#include "glint/render/shadows/planar.h"
+#include "glint/render/shadows/shadow_map.h"
+
+namespace glint::scenes {
+namespace shadows {
+namespace {
+
+using sh::ShadowMapOptions;
+using sh::ShadowMapView;
+
+struct MapVariant {
+  const char* name;
+  const char* description;
+  ShadowMapOptions options;
+};
+
+class MapScene final : public Scene {
+public:
+  explicit MapScene(const MapVariant& v) : m_world(sh::makeDemoWorld()), m_map(m_world, v.options) {
+    m_light.position = m_world.lightPosition;
+  }
+  void render(const FrameInput& frame) override {
+    sh::animateDemoWorld(m_world, frame.time);
+    m_world.lightPosition = m_light.position;
+    m_map.render(m_world, makeCamera(View::Demo, aspectOf(frame)), frame.target);
+  }
+  std::vector<Option> options() override {
+    std::vector<Option> out;
+    m_light.add(out);
+    auto& o = m_map.options();
+    out.push_back({"pcf-radius", "PCF taps: (2r+1)² hardware-filtered comparisons", &o.pcfRadius, 0.0f, 4.0f});
+    out.push_back({"slope-bias", "slope-scaled depth bias (polygon offset factor) of the map pass", &o.offsetFactor, 0.0f, 8.0f});
+    out.push_back({"constant-bias", "constant depth bias (polygon offset units) of the map pass", &o.offsetUnits, 0.0f, 400000.0f});
+    return out;
+  }
+  std::string notes() const override { return m_map.describe(); }
+
+private:
+  sh::World m_world;
+  sh::ShadowMap m_map;
+  LightOptions m_light;
+};
+
+void addMaps(Registry& registry, const char* name, const char* summary, std::vector<MapVariant> variants) {
+  SceneDesc desc{.name = name, .summary = summary};
+  for (const auto& v : variants) desc.variants.push_back({v.name, v.description});
+  desc.create = [variants](int i) -> std::unique_ptr<Scene> { return std::make_unique<MapScene>(variants[std::size_t(i)]); };
+  registry.add(std::move(desc));
+}
+
+class PlanarScene final : public Scene {
+public:
+  explicit PlanarScene(sh::PlanarView view) : m_world(sh::makeDemoWorld()), m_planar(m_world, {.view = view}) {
+    m_light.position = m_world.lightPosition;
+  }
+  void render(const FrameInput& frame) override {
+    sh::animateDemoWorld(m_world, frame.time);
+    m_world.lightPosition = m_light.position;
+    m_planar.render(m_world, makeCamera(View::Demo, aspectOf(frame)), frame.target);
+  }
+  std::vector<Option> options() override {
+    std::vector<Option> out;
+    m_light.add(out);
+    return out;
+  }
+  std::string notes() const override { return m_planar.describe(); }
+
+private:
+  sh::World m_world;
+  sh::PlanarShadow m_planar;
+  LightOptions m_light;
+};
+
+}  // namespace
+}  // namespace shadows
+
+void registerShadowMaps(Registry& registry) {
+  using namespace shadows;
+  addMaps(registry, "shadows/map",
+          "Shadow maps (seeds/004, \"Depth buffers also useful for shadow generation\"): the scene's depth seen "
+          "from the light, in a depth texture through an FBO, compared per pixel — the lecture's five pictures.",
+          {
+              {"without", "Without shadows: the scene lit by the point light, no visibility term.",
+               {.view = ShadowMapView::WithoutShadows}},
+              {"light-view", "Light's view: the scene from the light's position, the frustum the map is drawn with.",
+               {.view = ShadowMapView::LightView}},
+              {"light-depth", "Light's view depth: the shadow map itself (linearised; near black, far white).",
+               {.view = ShadowMapView::LightDepth}},
+              {"projected", "Projected shadow map: the stored depths cast onto the scene from the light like a "
+                            "slide; where a surface is farther than its texel says, it is in shadow.",
+               {.view = ShadowMapView::Projected}},
+              {"with", "With shadows: each pixel's light-space depth compared with the map (sampler2DShadow, "
+                       "3×3 hardware-filtered PCF, slope-scaled bias).",
+               {.view = ShadowMapView::WithShadows}},
+          });
+  addMaps(registry, "shadows/map-pcf",
+          "Shadow-map filtering and bias: hardware comparison, percentage-closer filtering, and the acne / "
+          "peter-panning trade-off of depth bias.",
+          {
+              {"nearest", "One tap, GL_NEAREST comparison: hard, stair-stepped texel edges.",
+               {.size = 512, .pcfRadius = 0, .hardwareFilter = false}},
+              {"hardware", "One tap, GL_LINEAR comparison: the hardware blends 2×2 comparisons (bilinear PCF).",
+               {.size = 512, .pcfRadius = 0}},
+              {"pcf5x5", "5×5 hardware-filtered taps: soft, smooth edges.", {.size = 512, .pcfRadius = 2}},
+              {"no-bias", "No bias: surfaces shadow themselves in moiré bands (shadow acne).",
+               {.pcfRadius = 0, .offsetFactor = 0.0f, .offsetUnits = 0.0f}},
+              {"constant-bias", "A large constant bias only (polygon offset units 300000): the acne is gone, but every "
+                                "stored depth moves back alike, so shadows start late behind contact points "
+                                "(peter panning).",
+               {.pcfRadius = 0, .offsetFactor = 0.0f, .offsetUnits = 300000.0f}},
+              {"slope-bias", "Slope-scaled bias (glPolygonOffset factor 2, units 2): bias only where the surface is "
+                             "steep to the light — no acne, shadows stay attached.",
+               {.pcfRadius = 0}},
+          });
+  SceneDesc planar{
+      .name = "shadows/planar",
+      .summary = "Planar projected shadows rendered into a texture (seeds/002's first method): casters flattened "
+                 "onto the ground from the light into an FBO texture, which the ground looks up.",
+      .variants = {{"applied", "The ground darkened through the shadow texture; casters do not shadow each other "
+                               "(the sphere is lit under the slab)."},
+                   {"texture", "The shadow texture itself: the ground from above, casters' projections in black."}},
+  };
+  planar.create = [](int variant) -> std::unique_ptr<Scene> {
+    return std::make_unique<PlanarScene>(variant == 0 ? sh::PlanarView::Applied : sh::PlanarView::Texture);
+  };
+  registry.add(std::move(planar));
+}
+
+}  // namespace glint::scenes

@@ -1,0 +1,244 @@
+// `glint bake` as a user runs it: outputs and formats, the JSON report, --quiet,
+// determinism across --threads, Ctrl-C, and every kind of bad input (issue 6, item 11):
+// one-line errors, the documented exit status, and no file left behind.
+#include "glint/image/image.h"
+#include "glint/mesh/mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+namespace fs = std::filesystem;
+using namespace glint;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string output;  // stdout + stderr
+};
+
+Run runGlint(const std::string& args) {
+  Run r;
+  const std::string command = GLINT_EXE " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[4096];
+  while (pipe && fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int raw = pipe ? pclose(pipe) : -1;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+fs::path dir(const char* name) {
+  const fs::path d = fs::path(GLINT_TEST_OUTPUT_DIR) / "bake-cli" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::size_t fileCount(const fs::path& d) {
+  return std::size_t(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
+}
+
+bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
+
+/// Writes a mesh as OBJ (positions, and UVs / normals when present).
+void writeObj(const Mesh& m, const fs::path& path) {
+  std::ofstream out(path);
+  for (const vec3& p : m.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (const vec2& t : m.uvs) out << "vt " << t.x << ' ' << t.y << '\n';
+  for (const vec3& n : m.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
+  for (std::size_t i = 0; i < m.indices.size(); i += 3) {
+    out << 'f';
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = m.indices[i + std::size_t(k)] + 1;
+      out << ' ' << v;
+      if (m.hasUvs() || m.hasNormals()) out << '/' << (m.hasUvs() ? std::to_string(v) : "");
+      if (m.hasNormals()) out << '/' << v;
+    }
+    out << '\n';
+  }
+}
+
+/// A low/high sphere pair in `d`: low.obj, high.obj.
+void writeSpheres(const fs::path& d) {
+  writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
+  writeObj(makeUvSphere(1.0f, 64, 32), d / "high.obj");
+}
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+}  // namespace
+
+TEST(BakeCli, WritesTheMapAndTheReportAndNothingElse) {
+  const auto d = dir("ok");
+  writeSpheres(d);
+  fs::create_directories(d / "out");
+  const auto out = d / "out";
+  const auto r = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(out / "n.png") +
+                          " --size 96x64 --samples 4 --ao " + q(out / "ao.png") + " --height " + q(out / "h.exr") +
+                          " --miss-mask " + q(out / "miss.png") + " --json " + q(out / "report.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Image n = loadImage(out / "n.png");
+  EXPECT_EQ(n.width(), 96);
+  EXPECT_EQ(n.height(), 64);
+  EXPECT_EQ(n.type(), PixelType::U8);
+  EXPECT_EQ(loadImage(out / "h.exr").type(), PixelType::F32);
+  EXPECT_EQ(fileCount(out), 5u);  // no temporaries
+  std::ifstream in(out / "report.json");
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* key : {"\"texels\": 6144", "\"rays\":", "\"hit_ratio\": 1.0", "\"misses\": 0", "\"seconds\":",
+                          "\"trace\":", "\"peak_memory_mib\":", "\"samples_per_texel\": 4"}) {
+    EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
+  }
+}
+
+TEST(BakeCli, FormatsAndDepths) {
+  const auto d = dir("formats");
+  writeSpheres(d);
+  const std::string meshes = q(d / "low.obj") + " " + q(d / "high.obj") + " --size 32x32 -q";
+  struct Case {
+    const char* file;
+    const char* extra;
+    PixelType type;
+  };
+  for (const Case& c : {Case{"a.png", "", PixelType::U8}, Case{"b.png", "--bits 16", PixelType::U16},
+                        Case{"c.tga", "", PixelType::U8}, Case{"d.tif", "", PixelType::U16},
+                        Case{"e.exr", "", PixelType::F32}}) {
+    const auto r = runGlint("bake " + meshes + " -o " + q(d / c.file) + " " + c.extra);
+    ASSERT_EQ(r.status, 0) << c.file << ": " << r.output;
+    EXPECT_EQ(r.output, "") << "--quiet prints nothing on success";
+    EXPECT_EQ(loadImage(d / c.file).type(), c.type) << c.file;
+  }
+  // Same bake, any format: the 16-bit and float maps agree with the 8-bit one within its step.
+  const Image a = loadImage(d / "a.png"), b = loadImage(d / "b.png"), e = loadImage(d / "e.exr");
+  EXPECT_LE(compareImages(a, b).maxAbs, 0.5 / 255 + 1e-6);
+  EXPECT_LE(compareImages(a, e).maxAbs, 0.5 / 255 + 1e-6);
+  // --directx flips green and nothing else.
+  ASSERT_EQ(runGlint("bake " + meshes + " -o " + q(d / "dx.exr") + " --directx").status, 0);
+  const Image dx = loadImage(d / "dx.exr");
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      EXPECT_FLOAT_EQ(dx.at(x, y, 0), e.at(x, y, 0));
+      EXPECT_NEAR(dx.at(x, y, 1), 1.0f - e.at(x, y, 1), 1e-6f);
+    }
+  const auto bad = runGlint("bake " + meshes + " -o " + q(d / "f.tga") + " --bits 16");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_TRUE(oneLine(bad.output)) << bad.output;
+}
+
+TEST(BakeCli, SameBytesWhateverTheThreadCount) {
+  const auto d = dir("threads");
+  writeSpheres(d);
+  const std::string meshes = q(d / "low.obj") + " " + q(d / "high.obj") + " --size 64x64 --samples 4 -q";
+  ASSERT_EQ(runGlint("bake " + meshes + " -o " + q(d / "one.png") + " --threads 1").status, 0);
+  ASSERT_EQ(runGlint("bake " + meshes + " -o " + q(d / "two.png") + " --threads 2").status, 0);
+  std::ifstream a(d / "one.png", std::ios::binary), b(d / "two.png", std::ios::binary);
+  const std::string bytesA((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+  const std::string bytesB((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+  EXPECT_FALSE(bytesA.empty());
+  EXPECT_TRUE(bytesA == bytesB);
+}
+
+TEST(BakeCli, HelpExplainsOptionsAndArtistNotes) {
+  const auto r = runGlint("bake --help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* text : {"--samples", "--max-rear", "--padding", "--height-detail", "--directx", "Shared normals",
+                           "UV spacing", "MikkTSpace"}) {
+    EXPECT_NE(r.output.find(text), std::string::npos) << text;
+  }
+}
+
+TEST(BakeCli, BadInputIsOneLineAndLeavesNothing) {
+  const auto d = dir("bad");
+  writeSpheres(d);
+  Mesh noUv = makeUvSphere(1.0f, 16, 8);
+  noUv.uvs.clear();
+  writeObj(noUv, d / "nouv.obj");
+  { std::ofstream(d / "empty.obj") << "# nothing\nv 0 0 0\n"; }
+  { std::ofstream(d / "corrupt.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1\n"; }
+  Mesh nan = makeUvSphere(1.0f, 16, 8);
+  nan.positions[5] = vec3(std::nanf(""));
+  writeObj(nan, d / "nan.obj");
+  const fs::path out = d / "out";
+  fs::create_directories(out);
+  const std::string low = q(d / "low.obj"), high = q(d / "high.obj"), o = " -o " + q(out / "n.png") + " --size 16x16";
+  struct Case {
+    std::string args;
+    int status;
+    const char* message;
+  };
+  const std::vector<Case> cases{
+      {q(d / "nouv.obj") + " " + high + o, 3, "no UVs"},
+      {q(d / "missing.obj") + " " + high + o, 3, "no such file"},
+      {low + " " + q(d / "empty.obj") + o, 3, "empty.obj"},
+      {low + " " + q(d / "corrupt.ply") + o, 3, "corrupt.ply"},
+      {low + " " + q(d / "nan.obj") + o, 3, "not finite"},
+      {low + " " + high + " -o " + q(d / "no-such-dir" / "n.png"), 4, "no-such-dir"},
+      {low + " " + high + o + " --samples 5", 2, "square"},
+      {low + " " + high + " -o " + q(out / "n.bmp"), 2, "unknown map format"},
+      {low + " " + high + o + " --max-front far", 2, "--max-front"},
+      {low + " " + high + o + " --height-detail " + q(d / "missing.png"), 3, "missing.png"},
+  };
+  for (const Case& c : cases) {
+    const auto r = runGlint("bake " + c.args);
+    EXPECT_EQ(r.status, c.status) << c.args << ": " << r.output;
+    EXPECT_TRUE(oneLine(r.output)) << c.args << ": " << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << ": " << r.output;
+    EXPECT_EQ(fileCount(out), 0u) << c.args;
+  }
+}
+
+TEST(BakeCli, WarningsStillBake) {
+  const auto d = dir("warn");
+  Mesh noNormals = makeUvSphere(1.0f, 16, 8);
+  noNormals.normals.clear();
+  writeObj(noNormals, d / "nonormals.obj");
+  Mesh mirrored = makeUvSphere(1.0f, 16, 8);
+  for (vec2& uv : mirrored.uvs) uv.x = uv.x < 0.5f ? uv.x : 1.0f - uv.x;
+  writeObj(mirrored, d / "mirrored.obj");
+  Mesh degenerate = makeUvSphere(1.0f, 16, 8);
+  degenerate.indices.insert(degenerate.indices.end(), {3, 3, 4});
+  writeObj(degenerate, d / "degenerate.obj");
+  writeObj(makeUvSphere(1.0f, 64, 32), d / "high.obj");
+  for (const auto& [file, warning] : std::vector<std::pair<const char*, const char*>>{
+           {"nonormals.obj", "no normals"}, {"mirrored.obj", "mirrored UVs"}, {"degenerate.obj", "zero UV area"}}) {
+    const auto r = runGlint("-q bake " + q(d / file) + " " + q(d / "high.obj") + " -o " + q(d / (std::string(file) + ".png")) +
+                            " --size 32x32");
+    EXPECT_EQ(r.status, 0) << file << ": " << r.output;
+    EXPECT_NE(r.output.find(warning), std::string::npos) << file << ": " << r.output;
+    EXPECT_TRUE(fs::exists(d / (std::string(file) + ".png"))) << file;
+  }
+}
+
+TEST(BakeCli, CtrlCLeavesNoPartialFile) {
+  const auto d = dir("interrupt");
+  writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
+  writeObj(makeUvSphere(1.0f, 128, 64), d / "high.obj");
+  const fs::path out = d / "out";
+  fs::create_directories(out);
+  const std::string lowPath = (d / "low.obj").string(), highPath = (d / "high.obj").string(),
+                    outPath = (out / "n.png").string();
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    execl(GLINT_EXE, GLINT_EXE, "-q", "bake", lowPath.c_str(), highPath.c_str(), "-o", outPath.c_str(), "--size",
+          "2048x2048", "--samples", "64", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // loading done, tracing
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_EQ(fileCount(out), 0u);
+}

@@ -1,0 +1,280 @@
+// Every shadow technique against the ray tracer (glint_raytrace over Embree).
+//
+// For each visible pixel, its world position comes from the depth buffer (unprojected
+// through the inverse view-projection); a ray from there to the light says lit or
+// shadowed. The technique's own classification comes from the GPU: the stencil
+// buffer for volumes (non-zero = shadowed), the visibility term for shadow maps and
+// planar shadows (< 0.5 = shadowed).
+//
+// Compared pixels — the stated band. Left out are:
+//   - pixels within kBand = 2 pixels of a change in the ray-traced classification
+//     (shadow edges are rasterised on the GPU and sampled at pixel centres here; a
+//     shadow map's texels project to about a pixel too);
+//   - silhouette pixels, where the depth-buffer position is not on the surface the
+//     pixel-centre ray hits (more than 1% of the distance away): depth edges;
+//   - surfaces facing away from the light (geometric normal · light direction ≤ 0.02):
+//     they get no direct light whatever the technique says, and a ray from a surface
+//     point grazing its own triangle is ill-posed.
+// On the rest, at least 99.5% must agree, and enough must be shadowed to mean something.
+#include "support/gl_test.h"
+
+#include "glint/gl/render_target.h"
+#include "glint/raytrace/raytracer.h"
+#include "glint/render/shadows/planar.h"
+#include "glint/render/shadows/shadow_map.h"
+#include "glint/render/shadows/stencil_shadows.h"
+
+#include <fmt/format.h>
+
+using namespace glint;
+using namespace glint::render::shadows;
+using glint::render::Camera;
+using glint::testing::GlTest;
+
+namespace {
+
+constexpr ivec2 kSize{320, 180};
+constexpr int kBand = 2;
+
+enum class Truth : std::uint8_t { Excluded, Lit, Shadowed };
+
+struct Comparison {
+  std::size_t compared = 0, agree = 0, shadowed = 0;
+  double agreement() const { return compared ? double(agree) / double(compared) : 0.0; }
+  std::string describe() const {
+    return fmt::format("{} of {} compared pixels agree ({:.3f}%), {} shadowed by the ray tracer", agree, compared,
+                       100.0 * agreement(), shadowed);
+  }
+};
+
+Camera demoCamera(bool inside = false) {
+  const float aspect = float(kSize.x) / float(kSize.y);
+  if (inside) return Camera::lookAt({-0.1f, 0.9f, -0.2f}, {2.6f, 0.2f, 1.6f}, {0, 1, 0}, 70.0f, aspect, 0.05f, 60.0f);
+  return Camera::lookAt({2.2f, 3.4f, 5.6f}, {0.9f, 0.8f, -0.4f}, {0, 1, 0}, 45.0f, aspect, 0.5f, 60.0f);
+}
+
+Camera bunnyCamera() {
+  return Camera::lookAt({0.9f, 1.5f, 2.7f}, {-0.35f, 0.25f, 0.1f}, {0, 1, 0}, 45.0f, float(kSize.x) / float(kSize.y),
+                        0.3f, 40.0f);
+}
+
+/// The ray tracer's verdict per pixel (row 0 = top, like gl::read*), from a depth image.
+class Oracle {
+public:
+  explicit Oracle(const World& world) : m_world(world) {
+    // Primary rays see every object; shadow rays are blocked by casters only (the seed's
+    // sphere can be a receiver that casts nothing).
+    std::vector<Mesh> meshes, casters;
+    for (std::size_t i = 0; i < world.objects.size(); ++i) {
+      meshes.push_back(world.worldMesh(i));
+      if (world.objects[i].castsShadow) casters.push_back(meshes.back());
+    }
+    m_scene.emplace(std::span<const Mesh>(meshes), raytrace::SceneOptions{.robust = true});
+    m_casters.emplace(std::span<const Mesh>(casters), raytrace::SceneOptions{.robust = true});
+    m_size = world.bounds().diagonal();
+  }
+
+  /// `onlyObject`: compare only pixels showing this object (planar shadows: the ground).
+  std::vector<Truth> classify(const Image& depth, const Camera& camera, int onlyObject = -1) const {
+    const mat4 inverse = glm::inverse(camera.viewProjection());
+    const int w = depth.width(), h = depth.height();
+    std::vector<Truth> truth(std::size_t(w * h), Truth::Excluded);
+    std::vector<raytrace::Ray> primary, shadow;
+    std::vector<std::size_t> where;
+    std::vector<vec3> positions;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const float d = depth.at(x, y, 0);
+        if (d >= 1.0f) continue;  // background
+        // Pixel centre in NDC; image row 0 is the top, GL's window row h − 1.
+        const vec4 ndc{(float(x) + 0.5f) / float(w) * 2.0f - 1.0f, (float(h - 1 - y) + 0.5f) / float(h) * 2.0f - 1.0f,
+                       2.0f * d - 1.0f, 1.0f};
+        const vec4 p = inverse * ndc;
+        positions.push_back(vec3(p) / p.w);
+        where.push_back(std::size_t(y * w + x));
+        primary.push_back({.origin = camera.position, .direction = positions.back() - camera.position, .tfar = 2.0f});
+      }
+    }
+    const auto hits = m_scene->intersectBatch(primary);
+    std::vector<std::size_t> shadowOf;
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+      const auto& hit = hits[i];
+      if (!hit || std::abs(hit->t - 1.0f) > 0.01f) continue;  // silhouette: depth is not this surface
+      if (onlyObject >= 0 && int(hit->mesh) != onlyObject) continue;
+      vec3 n = hit->geometricNormal;
+      if (glm::dot(n, primary[i].direction) > 0.0f) n = -n;  // the side the camera sees
+      const vec3 p = positions[i];
+      const vec3 toLight = m_world.lightPosition - p;
+      if (glm::dot(n, glm::normalize(toLight)) <= 0.02f) continue;  // faces away from the light
+      // Start a hair off the surface so the ray does not find its own triangle.
+      const vec3 origin = p + n * (1e-4f * m_size);
+      shadow.push_back({.origin = origin, .direction = m_world.lightPosition - origin, .tnear = 0.0f, .tfar = 1.0f});
+      shadowOf.push_back(where[i]);
+    }
+    const auto blocked = m_casters->occludedBatch(shadow);
+    for (std::size_t i = 0; i < blocked.size(); ++i) truth[shadowOf[i]] = blocked[i] ? Truth::Shadowed : Truth::Lit;
+    return truth;
+  }
+
+private:
+  const World& m_world;
+  std::optional<raytrace::Scene> m_scene;
+  std::optional<raytrace::Scene> m_casters;
+  float m_size = 1.0f;
+};
+
+/// Compares a GPU mask (true = shadowed, top row first) with the ray-traced truth.
+Comparison compare(const std::vector<Truth>& truth, const std::vector<bool>& gpuShadowed, int w, int h) {
+  Comparison c;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const Truth t = truth[std::size_t(y * w + x)];
+      if (t == Truth::Excluded) continue;
+      bool nearEdge = false;
+      for (int dy = -kBand; dy <= kBand && !nearEdge; ++dy)
+        for (int dx = -kBand; dx <= kBand && !nearEdge; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+          const Truth n = truth[std::size_t(yy * w + xx)];
+          nearEdge = n != Truth::Excluded && n != t;
+        }
+      if (nearEdge) continue;
+      ++c.compared;
+      c.shadowed += t == Truth::Shadowed;
+      c.agree += (t == Truth::Shadowed) == gpuShadowed[std::size_t(y * w + x)];
+    }
+  }
+  return c;
+}
+
+/// Stencil volumes: scene depth, then the volume counts; shadowed = stencil ≠ 0.
+Comparison checkVolumes(const World& world, Camera camera, const StencilShadowOptions& options) {
+  if (StencilShadows::needsInfiniteFar(options)) camera.projection = infiniteFarProjection(camera.projection);
+  gl::RenderTarget target(kSize);
+  StencilShadows shadows(world, options);
+  shadows.update(world);
+  target.target().bind();
+  shadows.drawScene(world, camera, LightTerms::Ambient);
+  shadows.countVolumes(world, camera);
+  const Image stencil = gl::readStencil(target.framebuffer(), kSize);
+  const Image depth = gl::readDepth(target.framebuffer(), kSize);
+  std::vector<bool> gpu(std::size_t(kSize.x * kSize.y));
+  const auto s = stencil.pixels<std::uint8_t>();
+  for (std::size_t i = 0; i < gpu.size(); ++i) gpu[i] = s[i] != 0;
+  return compare(Oracle(world).classify(depth, camera), gpu, kSize.x, kSize.y);
+}
+
+/// A technique's visibility picture (gray): shadowed = < 0.5.
+std::vector<bool> shadowedFromVisibility(const Image& color) {
+  std::vector<bool> gpu(std::size_t(color.width() * color.height()));
+  for (int y = 0; y < color.height(); ++y)
+    for (int x = 0; x < color.width(); ++x) gpu[std::size_t(y * color.width() + x)] = color.at(x, y, 0) < 0.5f;
+  return gpu;
+}
+
+void expectAgreement(const Comparison& c, const std::string& what) {
+  EXPECT_GE(c.agreement(), 0.995) << what << ": " << c.describe();
+  EXPECT_GT(c.compared, std::size_t(kSize.x * kSize.y / 3)) << what << ": too few pixels compared";
+  EXPECT_GT(c.shadowed, c.compared / 50) << what << ": too little shadow to test anything";
+  std::printf("%s: %s\n", what.c_str(), c.describe().c_str());
+}
+
+}  // namespace
+
+TEST_F(GlTest, EveryStencilCountingMethodAgreesWithTheRayTracer) {
+  struct Case {
+    const char* name;
+    StencilShadowOptions options;
+  };
+  const Case cases[] = {
+      {"z-pass INVERT", {.counting = StencilCounting::InvertZPass}},
+      {"z-pass", {.counting = StencilCounting::ZPass}},
+      {"z-fail, infinite far", {.counting = StencilCounting::ZFail}},
+      {"z-fail, depth clamp", {.counting = StencilCounting::ZFail, .depthClamp = true}},
+      {"two-sided z-pass", {.counting = StencilCounting::TwoSidedZPass}},
+      {"two-sided z-fail", {.counting = StencilCounting::TwoSidedZFail}},
+      {"GPU extrusion z-fail", {.counting = StencilCounting::TwoSidedZFail, .construction = VolumeConstruction::Gpu}},
+      {"GPU extrusion z-pass", {.counting = StencilCounting::ZPass, .construction = VolumeConstruction::Gpu}},
+      {"two-sided casters z-fail", {.counting = StencilCounting::ZFail, .casters = CasterMode::TwoSided}},
+  };
+  // INVERT counts parity, so its world has one caster (the seed's: the sphere only
+  // receives); the others have the sphere casting inside the slab's volume (t = 6 s),
+  // where volumes overlap.
+  const World single = makeDemoWorld(0.0, false);
+  const World overlapping = makeDemoWorld(6.0, true);
+  for (const Case& c : cases) {
+    const bool parity = c.options.counting == StencilCounting::InvertZPass;
+    expectAgreement(checkVolumes(parity ? single : overlapping, demoCamera(), c.options), c.name);
+  }
+}
+
+TEST_F(GlTest, InvertParityFailsWhereVolumesOverlap) {
+  // The reason counting replaced INVERT: the sphere's shadow inside the slab's comes out lit.
+  const Comparison c = checkVolumes(makeDemoWorld(6.0, true), demoCamera(), {.counting = StencilCounting::InvertZPass});
+  EXPECT_GT(c.compared - c.agree, 100u) << "INVERT should get the overlap wrong: " << c.describe();
+  std::printf("z-pass INVERT, overlapping volumes (expected to fail): %s\n", c.describe().c_str());
+}
+
+TEST_F(GlTest, CameraInsideAVolumeBreaksZPassButNotZFail) {
+  const World world = makeDemoWorld(0.0, true);
+  const Camera inside = demoCamera(true);
+  expectAgreement(checkVolumes(world, inside, {.counting = StencilCounting::TwoSidedZFail}), "inside, z-fail");
+  expectAgreement(checkVolumes(world, inside, {.counting = StencilCounting::ZFail, .depthClamp = true}),
+                  "inside, z-fail, depth clamp");
+  const Comparison zpass = checkVolumes(world, inside, {.counting = StencilCounting::TwoSidedZPass});
+  EXPECT_LT(zpass.agreement(), 0.8) << "z-pass from inside the volume should invert shadows: " << zpass.describe();
+  std::printf("inside, z-pass (expected to fail): %s\n", zpass.describe().c_str());
+}
+
+TEST_F(GlTest, OpenAndNonManifoldBunnySceneDoesNotLeak) {
+  const World world = makeBunnyWorld(loadBunny(), true);
+  expectAgreement(checkVolumes(world, bunnyCamera(), {.counting = StencilCounting::TwoSidedZFail}),
+                  "open bunny, two-sided casters, CPU");
+  expectAgreement(checkVolumes(world, bunnyCamera(),
+                               {.counting = StencilCounting::TwoSidedZFail, .construction = VolumeConstruction::Gpu}),
+                  "open bunny, two-sided casters, GPU extrusion");
+  expectAgreement(checkVolumes(world, bunnyCamera(), {.counting = StencilCounting::ZPass}), "open bunny, z-pass");
+  // The textbook silhouettes leak on the same meshes.
+  const Comparison naive =
+      checkVolumes(world, bunnyCamera(), {.counting = StencilCounting::TwoSidedZFail, .casters = CasterMode::Naive});
+  EXPECT_GT(naive.compared - naive.agree, 100u) << "naive silhouettes should leak: " << naive.describe();
+  std::printf("open bunny, naive silhouettes (expected to leak): %s\n", naive.describe().c_str());
+}
+
+TEST_F(GlTest, ClosedBunnyAgrees) {
+  const World world = makeBunnyWorld(loadBunny(), false);
+  expectAgreement(checkVolumes(world, bunnyCamera(), {.counting = StencilCounting::ZFail}), "closed bunny, z-fail");
+}
+
+TEST_F(GlTest, ShadowMapsAgreeWithTheRayTracer) {
+  struct Case {
+    const char* name;
+    const World world;
+    Camera camera;
+  };
+  const Case cases[] = {{"demo", makeDemoWorld(6.0, true), demoCamera()},
+                        {"open bunny", makeBunnyWorld(loadBunny(), true), bunnyCamera()}};
+  for (const Case& c : cases) {
+    for (int pcf : {0, 1}) {
+      ShadowMap map(c.world, {.pcfRadius = pcf, .view = ShadowMapView::Visibility});
+      gl::RenderTarget target(kSize);
+      map.render(c.world, c.camera, target.target());
+      const auto gpu = shadowedFromVisibility(gl::readColor(target.framebuffer(), kSize));
+      const Image depth = gl::readDepth(target.framebuffer(), kSize);
+      expectAgreement(compare(Oracle(c.world).classify(depth, c.camera), gpu, kSize.x, kSize.y),
+                      fmt::format("shadow map, {}, PCF radius {}", c.name, pcf));
+    }
+  }
+}
+
+TEST_F(GlTest, PlanarShadowsAgreeOnTheGround) {
+  const World world = makeDemoWorld(0.0, true);
+  PlanarShadow planar(world, {.view = PlanarView::Visibility});
+  gl::RenderTarget target(kSize);
+  planar.render(world, demoCamera(), target.target());
+  const auto gpu = shadowedFromVisibility(gl::readColor(target.framebuffer(), kSize));
+  const Image depth = gl::readDepth(target.framebuffer(), kSize);
+  // Only the ground receives planar shadows: compare ground pixels (object 0).
+  const Comparison c = compare(Oracle(world).classify(depth, demoCamera(), 0), gpu, kSize.x, kSize.y);
+  expectAgreement(c, "planar shadows on the ground");
+}
