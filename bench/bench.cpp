@@ -2,7 +2,11 @@
 
 #include "glint/core/text.h"
 
+#include <epoxy/gl.h>
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
 
 #include <cmath>
 #include <limits>
@@ -26,6 +30,20 @@ Suites& Suites::builtin() {
     return s;
   }();
   return suites;
+}
+
+double wallMs(const std::function<void()>& work, int repeats) {
+  work();
+  glFinish();
+  std::vector<double> times;
+  for (int i = 0; i < std::max(repeats, 1); ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    glFinish();
+    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
+  return times[times.size() / 2];
 }
 
 void Recorder::record(Measurement m) { m_rows.push_back(std::move(m)); }

@@ -17,21 +17,6 @@ namespace {
 
 constexpr int kRepeats = 10;
 
-// Median wall time of one run including glFinish: what the application waits for.
-double wallMs(const std::function<void()>& work) {
-  std::vector<double> times;
-  work();
-  glFinish();
-  for (int i = 0; i < kRepeats; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    work();
-    glFinish();
-    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
-  return times[times.size() / 2];
-}
-
 void runRtt(Recorder& recorder) {
   render::rtt::RttContent content;
   const auto draw = [&](ivec2 size) { content.draw(size, 0.5f); };
@@ -47,8 +32,8 @@ void runRtt(Recorder& recorder) {
                      .unit = "ms", .note = "draw in window + glCopyTextureSubImage2D + mipmaps"});
     recorder.record({.group = group, .name = "fbo gpu", .value = gl::GpuTimer::measureMs(fboWork, kRepeats, 2),
                      .unit = "ms", .ratioTo = "copy gpu", .note = "draw into the texture + mipmaps"});
-    recorder.record({.group = group, .name = "copy wall", .value = wallMs(copyWork), .unit = "ms"});
-    recorder.record({.group = group, .name = "fbo wall", .value = wallMs(fboWork), .unit = "ms", .ratioTo = "copy wall"});
+    recorder.record({.group = group, .name = "copy wall", .value = wallMs(copyWork, kRepeats), .unit = "ms"});
+    recorder.record({.group = group, .name = "fbo wall", .value = wallMs(fboWork, kRepeats), .unit = "ms", .ratioTo = "copy wall"});
   }
 }
 

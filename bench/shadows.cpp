@@ -26,20 +26,6 @@ namespace {
 namespace sh = render::shadows;
 constexpr ivec2 kSize{640, 360};
 
-double wallMs(const std::function<void()>& work, int repeats) {
-  std::vector<double> times;
-  work();  // warm-up: shader compilation, first uploads
-  glFinish();
-  for (int i = 0; i < repeats; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    work();
-    glFinish();
-    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
-  return times[times.size() / 2];
-}
-
 void runShadows(Recorder& recorder) {
   for (std::size_t triangles : {10'000u, 100'000u, 1'000'000u}) {
     const sh::World world = sh::makeBenchWorld(triangles);

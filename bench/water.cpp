@@ -17,21 +17,6 @@
 namespace glint::bench {
 namespace {
 
-// Median wall time of `work` (including glFinish: what a frame waits for), after one warm-up.
-double wallMs(const std::function<void()>& work, int repeats) {
-  work();
-  glFinish();
-  std::vector<double> times;
-  for (int i = 0; i < repeats; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    work();
-    glFinish();
-    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
-  return times[times.size() / 2];
-}
-
 void runWater(Recorder& recorder) {
   for (int size : {256, 1024, 4096}) {
     const std::string group = fmt::format("{0}x{0}", size);

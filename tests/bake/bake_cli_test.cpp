@@ -4,6 +4,8 @@
 #include "glint/image/image.h"
 #include "glint/mesh/mesh.h"
 
+#include "support/cli.h"
+
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -20,22 +22,11 @@ namespace fs = std::filesystem;
 using namespace glint;
 
 namespace {
+using Run = glint::testing::CliRun;
+using glint::testing::fileCount;
+using glint::testing::oneLine;
+using glint::testing::runGlint;
 
-struct Run {
-  int status = -1;
-  std::string output;  // stdout + stderr
-};
-
-Run runGlint(const std::string& args) {
-  Run r;
-  const std::string command = GLINT_EXE " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[4096];
-  while (pipe && fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
-  const int raw = pipe ? pclose(pipe) : -1;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
 
 fs::path dir(const char* name) {
   const fs::path d = fs::path(GLINT_TEST_OUTPUT_DIR) / "bake-cli" / name;
@@ -43,12 +34,6 @@ fs::path dir(const char* name) {
   fs::create_directories(d);
   return d;
 }
-
-std::size_t fileCount(const fs::path& d) {
-  return std::size_t(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
-}
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
 
 /// Writes a mesh as OBJ (positions, and UVs / normals when present).
 void writeObj(const Mesh& m, const fs::path& path) {

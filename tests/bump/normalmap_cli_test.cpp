@@ -4,6 +4,8 @@
 #include "glint/image/image.h"
 #include "glint/image/normalmap.h"
 
+#include "support/cli.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -15,20 +17,10 @@ namespace fs = std::filesystem;
 using namespace glint;
 
 namespace {
-struct Run {
-  int status = -1;
-  std::string output;
-};
-
-Run runGlint(const std::string& args) {
-  Run r;
-  FILE* pipe = popen((GLINT_EXE " " + args + " 2>&1").c_str(), "r");
-  char buffer[1024];
-  while (pipe && fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
-  const int raw = pipe ? pclose(pipe) : -1;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+using Run = glint::testing::CliRun;
+using glint::testing::fileCount;
+using glint::testing::oneLine;
+using glint::testing::runGlint;
 
 // One folder per test: ctest runs tests in parallel processes.
 fs::path dir() {

@@ -2,6 +2,8 @@
 // input — a one-line error, the documented exit code, and no files left behind.
 #include "glint/image/image.h"
 
+#include "support/cli.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -14,21 +16,10 @@ namespace fs = std::filesystem;
 using namespace glint;
 
 namespace {
-struct Run {
-  int status = -1;
-  std::string output;  // stdout + stderr
-};
-
-Run runGlint(const std::string& args) {
-  Run r;
-  const std::string command = GLINT_EXE " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[1024];
-  while (pipe && fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
-  const int raw = pipe ? pclose(pipe) : -1;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+using Run = glint::testing::CliRun;
+using glint::testing::fileCount;
+using glint::testing::oneLine;
+using glint::testing::runGlint;
 
 fs::path dir(const char* name) {
   const fs::path d = fs::path(GLINT_TEST_OUTPUT_DIR) / "raster-cli" / name;
@@ -36,12 +27,6 @@ fs::path dir(const char* name) {
   fs::create_directories(d);
   return d;
 }
-
-std::size_t fileCount(const fs::path& d) {
-  return std::size_t(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
-}
-
-bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
 
 void writeFile(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 

@@ -60,6 +60,12 @@ private:
   std::vector<Suite> m_suites;
 };
 
+/// Median wall-clock milliseconds of one run of `work`, each run followed by glFinish (what
+/// an application waits for), after one untimed warm-up run (shader compilation, uploads).
+/// Needs a current GL context. On a software rasterizer this is the meaningful time: its
+/// GPU timer queries miss rasterization deferred to the next flush.
+double wallMs(const std::function<void()>& work, int repeats);
+
 /// Formats a recorder's rows as an aligned text table (ratios computed).
 std::string formatTable(const std::string& suite, const Recorder& recorder);
 /// JSON object {"suite": ..., "rows": [...]} with ratios computed.

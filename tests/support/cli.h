@@ -1,0 +1,37 @@
+#pragma once
+// Running the glint command from tests, as a user would: its exit status and what it
+// printed (stdout and stderr together). Targets using this define GLINT_EXE (the path
+// of the built glint) and depend on the glint target.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace glint::testing {
+
+struct CliRun {
+  int status = -1;     ///< exit status; -1 when killed by a signal
+  std::string output;  ///< stdout + stderr
+};
+
+/// Runs `env glint args` through the shell; env is a prefix such as "VAR=1" or "xvfb-run -a".
+inline CliRun runGlint(const std::string& args, const std::string& env = "") {
+  CliRun r;
+  const std::string command = env + " " GLINT_EXE " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[4096];
+  while (pipe && fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int raw = pipe ? pclose(pipe) : -1;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+inline std::size_t fileCount(const std::filesystem::path& dir) {
+  return std::size_t(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()));
+}
+
+/// glint's errors are exactly one line.
+inline bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
+
+}  // namespace glint::testing
