@@ -57,6 +57,15 @@ std::string html(const std::vector<Entry>& entries, const gl::ContextInfo& info)
     body += fmt::format("<br><code>glint render {}</code></figcaption></figure>\n", escapeHtml(e.ref.fullName()));
   }
   if (current) body += "</div></section>\n";
+  // A table of contents: one link per scene, grouped as the sections are.
+  std::string nav;
+  const scenes::SceneDesc* listed = nullptr;
+  for (const auto& e : entries) {
+    if (e.ref.scene == listed) continue;
+    listed = e.ref.scene;
+    nav += fmt::format("<a href=\"#{0}\">{0}</a> ", escapeHtml(listed->name));
+  }
+  body = "<nav>" + nav + "</nav>\n" + body;
   return fmt::format(R"(<!doctype html>
 <html lang=en><head><meta charset=utf-8><title>glint gallery</title>
 <meta name=viewport content="width=device-width, initial-scale=1">
@@ -70,7 +79,7 @@ img {{ width: 100%; display: block; background: #000; }}
 figcaption {{ padding: .6em .8em; font-size: 13.5px; }}
 .t {{ color: #8c8; float: right; }} .notes {{ color: #cb8; }} code {{ color: #99a; font-size: 12px; }}
 .skipped {{ padding: 3em 1em; color: #c88; text-align: center; }}
-.meta {{ color: #889; }}
+.meta {{ color: #889; }} nav a {{ color: #9bd; margin-right: .8em; white-space: nowrap; }}
 </style></head><body>
 <h1>glint gallery</h1>
 <p class=meta>{} variants · rendered on {} ({}) · frame times are the median of several frames at each picture's size,
