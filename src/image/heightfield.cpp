@@ -1,6 +1,7 @@
 #include "glint/image/heightfield.h"
 
 #include "glint/core/error.h"
+#include "glint/core/hash.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,18 +10,8 @@
 namespace glint {
 namespace {
 
-std::uint32_t hash(std::uint32_t x) {
-  // A small integer hash (lowbias32): good enough for texture noise, identical everywhere.
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return x;
-}
-
 float hash01(int a, int b, unsigned seed) {
-  return float(hash(std::uint32_t(a) * 73856093U ^ hash(std::uint32_t(b) * 19349663U ^ seed)) & 0xFFFFFFU) / float(0xFFFFFF);
+  return float(hash32(std::uint32_t(a) * 73856093U ^ hash32(std::uint32_t(b) * 19349663U ^ seed)) & 0xFFFFFFU) / float(0xFFFFFF);
 }
 
 // Value noise on a lattice of `period` cells per tile, wrapping, smoothly interpolated.

@@ -1,6 +1,7 @@
 #include "glint/sim/wave.h"
 
 #include "glint/core/error.h"
+#include "glint/core/hash.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,15 +36,7 @@ void WaveParams::validate() const {
 }
 
 namespace {
-std::uint32_t hash(std::uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352dU;
-  x ^= x >> 15;
-  x *= 0x846ca68bU;
-  x ^= x >> 16;
-  return x;
-}
-float hash01(std::uint32_t a, std::uint32_t salt) { return float(hash(a * 2654435761U ^ hash(salt)) & 0xFFFFFFU) / float(0xFFFFFF); }
+float hash01(std::uint32_t a, std::uint32_t salt) { return float(hash32(a * 2654435761U ^ hash32(salt)) & 0xFFFFFFU) / float(0xFFFFFF); }
 }  // namespace
 
 std::optional<Drop> rainDrop(long step, const WaveParams& params, const RainOptions& rain, ivec2 size) {
