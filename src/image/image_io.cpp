@@ -1,25 +1,167 @@
 // Image file I/O through OpenImageIO: every format it knows, 8/16-bit and float.
+//
+// OpenImageIO lives in a module (glint_oiio, see oiio_module.h) that is dlopen()ed on
+// first use or by preloadImageIo() on a background thread: linking it would make the
+// dynamic loader map ~260 libraries before main() of every glint command.
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/image/image.h"
 
-#include <OpenImageIO/imageio.h>
+#include "oiio_module.h"
+
+#include <dlfcn.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+#ifndef GLINT_OIIO_MODULE
+#error "GLINT_OIIO_MODULE (the build tree's path of the glint_oiio module) must be defined"
+#endif
 
 namespace glint {
 namespace fs = std::filesystem;
 
 namespace {
-OIIO::TypeDesc oiioType(PixelType type) {
-  switch (type) {
-    case PixelType::U8: return OIIO::TypeDesc::UINT8;
-    case PixelType::U16: return OIIO::TypeDesc::UINT16;
-    case PixelType::F32: return OIIO::TypeDesc::FLOAT;
+// ---------------------------------------------------------------------------------
+// Loading the module
+
+struct OiioApi {
+  GlintOiioReadFn read = nullptr;
+  GlintOiioWriteFn write = nullptr;
+};
+
+// Where to look: next to the running executable (an installed or copied glint), then
+// the build tree's module (tests under build/tests/** and build/app/glint).
+std::vector<fs::path> moduleCandidates() {
+  std::vector<fs::path> candidates;
+  const fs::path built = GLINT_OIIO_MODULE;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path beside = exe.parent_path() / built.filename();
+    if (fs::exists(beside, ec) && beside != built) candidates.push_back(beside);
   }
-  return OIIO::TypeDesc::UINT8;
+  candidates.push_back(built);
+  return candidates;
 }
+
+// dlerror()'s message without the module's path, which the caller's message names.
+std::string dlReason(const fs::path& path, const std::string& fallback) {
+  const char* message = dlerror();
+  std::string reason = message ? message : fallback;
+  if (const std::string prefix = path.string() + ": "; reason.starts_with(prefix)) reason.erase(0, prefix.size());
+  return reason;
+}
+
+// dlopen()s one candidate and checks its ABI; the reason on failure. Never dlclose():
+// OpenImageIO and its dependencies stay mapped for the life of the process.
+std::optional<OiioApi> openModule(const fs::path& path, std::string& reason) {
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    reason = dlReason(path, "dlopen failed");
+    return std::nullopt;
+  }
+  auto symbol = [&](const char* name) -> void* {
+    dlerror();
+    void* address = dlsym(handle, name);
+    if (!address && reason.empty()) reason = dlReason(path, std::string("no symbol ") + name);
+    return address;
+  };
+  reason.clear();
+  auto version = reinterpret_cast<GlintOiioAbiVersionFn>(symbol("glint_oiio_abi_version"));
+  OiioApi api;
+  api.read = reinterpret_cast<GlintOiioReadFn>(symbol("glint_oiio_read"));
+  api.write = reinterpret_cast<GlintOiioWriteFn>(symbol("glint_oiio_write"));
+  if (!reason.empty()) return std::nullopt;
+  if (const int v = version(); v != GLINT_OIIO_ABI_VERSION) {
+    reason = fmt::format("ABI version {}, expected {} (a stale build?)", v, GLINT_OIIO_ABI_VERSION);
+    return std::nullopt;
+  }
+  return api;
+}
+
+// Tries every candidate; the first failure's message when none loads.
+std::optional<OiioApi> loadModule(std::string& error) {
+  error.clear();
+  for (const fs::path& path : moduleCandidates()) {
+    std::string reason;
+    if (auto api = openModule(path, reason)) return api;
+    if (error.empty()) error = fmt::format("cannot load the image I/O module '{}': {}", path.string(), reason);
+  }
+  return std::nullopt;
+}
+
+// The module, loaded once: in the background by preload(), or by the first get().
+// A failed background load is retried by get(), which reports the error. The static
+// instance's destructor joins the background thread, so a process that exits while
+// the module is loading waits for the loader instead of racing it.
+class ModuleLoader {
+public:
+  ~ModuleLoader() {
+    if (m_thread.joinable()) m_thread.join();
+  }
+
+  void preload() {
+    std::lock_guard lock(m_mutex);
+    if (m_api || m_started) return;
+    m_started = true;
+    m_loading = true;
+    try {
+      m_thread = std::thread([this] {
+        std::optional<OiioApi> api;
+        try {
+          std::string error;  // get() retries a failed load and reports it
+          api = loadModule(error);
+        } catch (...) {
+        }
+        std::lock_guard lock(m_mutex);
+        if (api) m_api = api;
+        m_loading = false;
+        m_done.notify_all();
+      });
+    } catch (const std::system_error&) {
+      m_loading = false;  // no thread to spare: the first get() loads in the foreground
+    }
+  }
+
+  const OiioApi& get() {
+    std::unique_lock lock(m_mutex);
+    m_done.wait(lock, [&] { return !m_loading; });
+    if (!m_api) {
+      std::string error;
+      m_api = loadModule(error);
+      if (!m_api) throw Error(ErrorKind::Internal, error);
+    }
+    return *m_api;
+  }
+
+private:
+  std::mutex m_mutex;
+  std::condition_variable m_done;
+  std::thread m_thread;
+  bool m_started = false;  // preload() ran (at most one background thread)
+  bool m_loading = false;  // the background thread is still loading
+  std::optional<OiioApi> m_api;
+};
+
+ModuleLoader& theModule() {
+  static ModuleLoader loader;
+  return loader;
+}
+
+// ---------------------------------------------------------------------------------
+// Reading and writing
 
 std::string lowerExtension(const fs::path& path) {
   std::string ext = path.extension().string();
@@ -34,35 +176,49 @@ PixelType widestTypeFor(const std::string& ext) {
   return PixelType::U8;  // tga, jpg, bmp, ...
 }
 
-std::string firstLine(std::string s) {
-  if (auto nl = s.find('\n'); nl != std::string::npos) s.resize(nl);
-  return s;
+// The module's pixel type codes follow PixelType's order.
+static_assert(int(PixelType::U8) == GLINT_OIIO_U8 && int(PixelType::U16) == GLINT_OIIO_U16 &&
+              int(PixelType::F32) == GLINT_OIIO_F32);
+
+// glint_oiio_read's allocation callback: creates the Image (which may throw — kept
+// here and rethrown by loadImage, since no exception may cross the C boundary).
+struct ReadTarget {
+  Image image;
+  std::exception_ptr exception;
+};
+
+void* allocateImage(void* user, int width, int height, int channels, int pixelType) {
+  auto* target = static_cast<ReadTarget*>(user);
+  try {
+    target->image = Image(width, height, channels, static_cast<PixelType>(pixelType));
+    return target->image.bytes().data();
+  } catch (...) {
+    target->exception = std::current_exception();
+    return nullptr;
+  }
 }
+
+constexpr std::size_t kErrorSize = 1024;
 }  // namespace
+
+void preloadImageIo() { theModule().preload(); }
 
 Image loadImage(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", path.string());
   if (fs::is_directory(path, ec)) fail(ErrorKind::Input, "cannot read '{}': it is a directory", path.string());
-  // Straight (unassociated) alpha in, straight alpha out: glint never premultiplies
-  // behind the caller's back, so RGB survives a round trip whatever the alpha.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto input = OIIO::ImageInput::open(path.string(), &config);
-  if (!input) {
-    fail(ErrorKind::Input, "cannot read image '{}': {}", path.string(), firstLine(OIIO::geterror()));
+  const OiioApi& oiio = theModule().get();
+  ReadTarget target;
+  std::array<char, kErrorSize> error{};
+  switch (oiio.read(path.c_str(), &allocateImage, &target, error.data(), error.size())) {
+    case GLINT_OIIO_OK: return std::move(target.image);
+    case GLINT_OIIO_EMPTY: fail(ErrorKind::Input, "image '{}' is empty", path.string());
+    case GLINT_OIIO_ALLOC_FAILED:
+      if (target.exception) std::rethrow_exception(target.exception);
+      fail(ErrorKind::Internal, "cannot read image '{}': out of memory", path.string());
+    case GLINT_OIIO_EXCEPTION: throw std::runtime_error(error.data());
+    default: fail(ErrorKind::Input, "cannot read image '{}': {}", path.string(), error.data());
   }
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0) fail(ErrorKind::Input, "image '{}' is empty", path.string());
-  PixelType type = PixelType::F32;
-  if (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::INT8) type = PixelType::U8;
-  if (spec.format == OIIO::TypeDesc::UINT16 || spec.format == OIIO::TypeDesc::INT16) type = PixelType::U16;
-  const int channels = std::min(spec.nchannels, 4);
-  Image image(spec.width, spec.height, channels, type);
-  if (!input->read_image(0, 0, 0, channels, oiioType(type), image.bytes().data())) {
-    fail(ErrorKind::Input, "cannot read image '{}': {}", path.string(), firstLine(input->geterror()));
-  }
-  return image;
 }
 
 void saveImage(const Image& image, const fs::path& path) {
@@ -76,18 +232,17 @@ void saveImage(const Image& image, const fs::path& path) {
     toWrite = &convertedImage;
   }
   writeAtomically(path, [&](const fs::path& tmp) {
-    auto output = OIIO::ImageOutput::create(tmp.string());
-    if (!output) {
-      fail(ErrorKind::Output, "cannot write '{}': unknown image format '{}'", path.string(), ext);
-    }
-    OIIO::ImageSpec spec(toWrite->width(), toWrite->height(), toWrite->channels(), oiioType(toWrite->type()));
-    if (toWrite->channels() == 4) {
-      spec.alpha_channel = 3;
-      spec.attribute("oiio:UnassociatedAlpha", 1);
-    }
-    if (!output->open(tmp.string(), spec) ||
-        !output->write_image(oiioType(toWrite->type()), toWrite->bytes().data()) || !output->close()) {
-      fail(ErrorKind::Output, "cannot write '{}': {}", path.string(), firstLine(output->geterror()));
+    const OiioApi& oiio = theModule().get();
+    std::array<char, kErrorSize> error{};
+    const int status = oiio.write(tmp.c_str(), toWrite->width(), toWrite->height(), toWrite->channels(),
+                                  static_cast<int>(toWrite->type()), toWrite->bytes().data(),
+                                  toWrite->channels() == 4, error.data(), error.size());
+    switch (status) {
+      case GLINT_OIIO_OK: return;
+      case GLINT_OIIO_UNKNOWN_FORMAT:
+        fail(ErrorKind::Output, "cannot write '{}': unknown image format '{}'", path.string(), ext);
+      case GLINT_OIIO_EXCEPTION: throw std::runtime_error(error.data());
+      default: fail(ErrorKind::Output, "cannot write '{}': {}", path.string(), error.data());
     }
   });
 }

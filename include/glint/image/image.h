@@ -5,6 +5,7 @@
 //   Image            pixel storage, typed access, conversions
 //   loadImage        read any format OpenImageIO reads (PNG, TGA, JPEG, EXR, HDR, TIFF)
 //   saveImage        write atomically; format from the extension
+//   preloadImageIo   start loading the image I/O module in the background
 //   compareImages    max / mean difference and a visual diff image
 //
 // Row 0 is the TOP row, as in image files. OpenGL's window origin is the lower
@@ -84,6 +85,11 @@ Image loadImage(const std::filesystem::path& path);
 /// format cannot hold the image (e.g. float into PNG is converted to 16-bit first) or the
 /// file cannot be written.
 void saveImage(const Image& image, const std::filesystem::path& path);
+
+/// Starts loading OpenImageIO (a dlopen()ed module: ~260 libraries, ~0.3 s) on a
+/// background thread and returns at once; loadImage/saveImage wait for it, and load it
+/// themselves when this was not called. Call it early in commands that touch images.
+void preloadImageIo();
 
 struct ImageDifference {
   double maxAbs = 0;   ///< largest absolute channel difference, normalized 0..1

@@ -1,0 +1,100 @@
+// glint_oiio: the OpenImageIO side of image_io.cpp, built as a dlopen()ed module
+// (see oiio_module.h for why). Links only OpenImageIO — no glint library, so no
+// duplicated globals; everything it exports is the extern "C" ABI below.
+#include "oiio_module.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <string>
+
+#define GLINT_OIIO_EXPORT __attribute__((visibility("default")))
+
+namespace {
+OIIO::TypeDesc oiioType(int type) {
+  switch (type) {
+    case GLINT_OIIO_U8: return OIIO::TypeDesc::UINT8;
+    case GLINT_OIIO_U16: return OIIO::TypeDesc::UINT16;
+    case GLINT_OIIO_F32: return OIIO::TypeDesc::FLOAT;
+  }
+  return OIIO::TypeDesc::UINT8;
+}
+
+// Copies the first line of `message` into the caller's buffer (always terminated).
+int report(int status, const std::string& message, char* error, std::size_t errorSize) {
+  if (error && errorSize > 0) {
+    const std::size_t line = std::min(message.find('\n'), message.size());
+    const std::size_t n = std::min(line, errorSize - 1);
+    std::memcpy(error, message.data(), n);
+    error[n] = '\0';
+  }
+  return status;
+}
+
+}  // namespace
+
+extern "C" {
+
+GLINT_OIIO_EXPORT int glint_oiio_abi_version(void) { return GLINT_OIIO_ABI_VERSION; }
+
+GLINT_OIIO_EXPORT int glint_oiio_read(const char* path, GlintOiioAllocFn alloc, void* user, char* error,
+                                      std::size_t errorSize) {
+  try {
+    // Straight (unassociated) alpha in, straight alpha out: glint never premultiplies
+    // behind the caller's back, so RGB survives a round trip whatever the alpha.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto input = OIIO::ImageInput::open(path, &config);
+    if (!input) return report(GLINT_OIIO_OPEN_FAILED, OIIO::geterror(), error, errorSize);
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.width <= 0 || spec.height <= 0) return report(GLINT_OIIO_EMPTY, "empty image", error, errorSize);
+    int type = GLINT_OIIO_F32;
+    if (spec.format == OIIO::TypeDesc::UINT8 || spec.format == OIIO::TypeDesc::INT8) type = GLINT_OIIO_U8;
+    if (spec.format == OIIO::TypeDesc::UINT16 || spec.format == OIIO::TypeDesc::INT16) type = GLINT_OIIO_U16;
+    const int channels = std::min(spec.nchannels, 4);
+    void* pixels = alloc(user, spec.width, spec.height, channels, type);
+    if (!pixels) return GLINT_OIIO_ALLOC_FAILED;
+    if (!input->read_image(0, 0, 0, channels, oiioType(type), pixels)) {
+      return report(GLINT_OIIO_READ_FAILED, input->geterror(), error, errorSize);
+    }
+    return GLINT_OIIO_OK;
+  } catch (const std::exception& e) {
+    return report(GLINT_OIIO_EXCEPTION, e.what(), error, errorSize);
+  } catch (...) {
+    return report(GLINT_OIIO_EXCEPTION, "unknown exception in the image I/O module", error, errorSize);
+  }
+}
+
+GLINT_OIIO_EXPORT int glint_oiio_write(const char* path, int width, int height, int channels, int pixelType,
+                                       const void* pixels, int hasAlpha, char* error, std::size_t errorSize) {
+  try {
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output) return report(GLINT_OIIO_UNKNOWN_FORMAT, OIIO::geterror(), error, errorSize);
+    OIIO::ImageSpec spec(width, height, channels, oiioType(pixelType));
+    if (hasAlpha) {
+      spec.alpha_channel = 3;
+      spec.attribute("oiio:UnassociatedAlpha", 1);
+    }
+    // PNG keeps OpenImageIO's zlib level (6). Measured for 1024x1024 RGB 8-bit
+    // (median of 7 writes; "png:compressionLevel" 1 / 2 / 3 against the default):
+    //   glint bake normal map   64 ms 100 KB → 30 ms +67 % / 30 ms +47 % / 33 ms +37 %
+    //   shadows/bunny render    57 ms 133 KB → 31 ms +54 % / 33 ms +45 % / 34 ms +32 %
+    //   env/sphere render      262 ms 877 KB → 61 ms +19 % / 69 ms +15 % / 96 ms +11 %
+    //   city.exr, tone-mapped  236 ms 822 KB → 57 ms +12 % / 68 ms +10 % / 91 ms +7 %
+    // Noisy images write 2.5-4x faster at level 1-3 for 7-19 % more bytes, but the flat
+    // maps glint bake writes grow 37-67 % for a 2x gain: not worth it (and the default
+    // keeps files byte-identical to earlier glint versions).
+    if (!output->open(path, spec) || !output->write_image(oiioType(pixelType), pixels) || !output->close()) {
+      return report(GLINT_OIIO_WRITE_FAILED, output->geterror(), error, errorSize);
+    }
+    return GLINT_OIIO_OK;
+  } catch (const std::exception& e) {
+    return report(GLINT_OIIO_EXCEPTION, e.what(), error, errorSize);
+  } catch (...) {
+    return report(GLINT_OIIO_EXCEPTION, "unknown exception in the image I/O module", error, errorSize);
+  }
+}
+
+}  // extern "C"
