@@ -20,6 +20,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -69,6 +70,13 @@ std::string shellQuote(const fs::path& p) {
   return out + "'";
 }
 
+constexpr int kWholeRunRepeats = 5, kPeerRepeats = 3, kThroughputRepeats = 3;
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
 /// Runs a command line, returns wall seconds, or a negative value when it failed.
 double timeCommand(const std::string& command) {
   const auto start = Clock::now();
@@ -89,24 +97,35 @@ void versusBlender(Recorder& r, const fs::path& dir) {
   bake::writeObj(high, dir / "high.obj");
   const std::string args = fmt::format("{} {} --size 1024x1024 --samples 1 --max-front 0.06 --max-rear 0.06 -q",
                                        shellQuote(dir / "low.obj"), shellQuote(dir / "high.obj"));
-  const double glint = timeCommand(fmt::format("{} bake {} -o {}", shellQuote(self()), args, shellQuote(dir / "glint.png")));
-  if (glint < 0) fail(ErrorKind::Internal, "bench bake: `glint bake` failed");
+  // Medians of several runs: one run of either tool can be slowed by the machine's other load.
+  std::vector<double> glintRuns;
+  for (int i = 0; i < kWholeRunRepeats; ++i) {
+    glintRuns.push_back(timeCommand(fmt::format("{} bake {} -o {}", shellQuote(self()), args, shellQuote(dir / "glint.png"))));
+    if (glintRuns.back() < 0) fail(ErrorKind::Internal, "bench bake: `glint bake` failed");
+  }
+  const double glint = median(glintRuns);
   r.record({.group = group, .name = "glint bake (whole run)", .value = glint, .unit = "s",
-            .note = fmt::format("{} → {} triangles, OBJ load + bake + PNG", high.triangleCount(), low.triangleCount())});
+            .note = fmt::format("median of {}; {} → {} triangles, OBJ load + bake + PNG", glintRuns.size(),
+                                high.triangleCount(), low.triangleCount())});
   if (!blenderAvailable()) {
     r.record({.group = group, .name = "blender cycles", .value = std::nan(""), .unit = "s",
               .note = "peer unavailable: `blender` is not installed (apt install blender)"});
     return;
   }
   const fs::path script = fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "blender_bake.py";
-  const double blender = timeCommand(fmt::format("blender -b --factory-startup --python {} -- {} {} {} 1024 1 0.06 >/dev/null 2>&1",
-                                                 shellQuote(script), shellQuote(dir / "low.obj"),
-                                                 shellQuote(dir / "high.obj"), shellQuote(dir / "blender.png")));
-  if (blender < 0) {
-    r.record({.group = group, .name = "blender cycles", .value = std::nan(""), .unit = "s", .note = "peer failed"});
-    return;
+  std::vector<double> blenderRuns;
+  for (int i = 0; i < kPeerRepeats; ++i) {
+    blenderRuns.push_back(timeCommand(fmt::format("blender -b --factory-startup --python {} -- {} {} {} 1024 1 0.06 >/dev/null 2>&1",
+                                                  shellQuote(script), shellQuote(dir / "low.obj"),
+                                                  shellQuote(dir / "high.obj"), shellQuote(dir / "blender.png"))));
+    if (blenderRuns.back() < 0) {
+      r.record({.group = group, .name = "blender cycles", .value = std::nan(""), .unit = "s", .note = "peer failed"});
+      return;
+    }
   }
-  r.record({.group = group, .name = "blender cycles", .value = blender, .unit = "s", .note = "whole run, same files"});
+  const double blender = median(blenderRuns);
+  r.record({.group = group, .name = "blender cycles", .value = blender, .unit = "s",
+            .note = fmt::format("median of {}; whole run, same files", blenderRuns.size())});
   r.record({.group = group, .name = "speed-up (target ≥ 5)", .value = blender / glint, .unit = "×"});
 }
 
@@ -147,20 +166,15 @@ void throughput(Recorder& r, const Mesh& low, const Mesh& high, int size, int sa
   options.rayLog = &rays;
   bake::bake(low, high, options);  // records the rays
   options.rayLog = nullptr;
-  const auto result = bake::bake(low, high, options);  // timed, without the recording
-  // Throughput of the bake itself: every ray over the whole tracing phase (rasterizing the
-  // UV layout, interpolating, shading and writing texels included).
-  const double bakeWall = double(result.stats.rays) / result.stats.traceSeconds;
-  const double bakeCpu = double(result.stats.rays) / result.stats.traceCpuSeconds;
 
-  // Plain Embree: the same mesh, the same build settings as the baker's Scene (high quality,
-  // not robust), rtcIntersect1
-  // on the same rays in the same order, spread over the same TBB workers in chunks.
+  // Plain Embree: the same mesh, the same build settings as the baker's Scene (medium
+  // quality, not robust), rtcIntersect1 on the same rays in the same order, spread over the
+  // same TBB workers in chunks.
   RTCDevice device = rtcNewDevice("verbose=0");
   RTCScene scene = rtcNewScene(device);
-  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
+  rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_MEDIUM);
   std::memcpy(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(vec3), high.vertexCount()),
               high.positions.data(), high.vertexCount() * sizeof(vec3));
   std::memcpy(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, high.triangleCount()),
@@ -169,42 +183,51 @@ void throughput(Recorder& r, const Mesh& low, const Mesh& high, int size, int sa
   rtcAttachGeometry(scene, geometry);
   rtcReleaseGeometry(geometry);
   rtcCommitScene(scene);
-  std::atomic<std::uint64_t> hits{0};
-  const auto start = Clock::now();
-  const double cpuStart = processCpuSeconds();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    std::uint64_t local = 0;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const raytrace::Ray& ray = rays[i];
-      RTCRayHit rh{};
-      rh.ray.org_x = ray.origin.x;
-      rh.ray.org_y = ray.origin.y;
-      rh.ray.org_z = ray.origin.z;
-      rh.ray.dir_x = ray.direction.x;
-      rh.ray.dir_y = ray.direction.y;
-      rh.ray.dir_z = ray.direction.z;
-      rh.ray.tnear = ray.tnear;
-      rh.ray.tfar = ray.tfar;
-      rh.ray.mask = 0xFFFFFFFFu;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(scene, &context, &rh);
-      local += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-    }
-    hits += local;
-  });
-  const double plainWall = double(rays.size()) / since(start);
-  const double plainCpu = double(rays.size()) / (processCpuSeconds() - cpuStart);
+  const auto plainRun = [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        const raytrace::Ray& ray = rays[i];
+        RTCRayHit rh{};
+        rh.ray.org_x = ray.origin.x;
+        rh.ray.org_y = ray.origin.y;
+        rh.ray.org_z = ray.origin.z;
+        rh.ray.dir_x = ray.direction.x;
+        rh.ray.dir_y = ray.direction.y;
+        rh.ray.dir_z = ray.direction.z;
+        rh.ray.tnear = ray.tnear;
+        rh.ray.tfar = ray.tfar;
+        rh.ray.mask = 0xFFFFFFFFu;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &context, &rh);
+      }
+    });
+  };
+
+  // Alternating runs, medians of each: both see the same machine state over time.
+  std::vector<double> bakeCpu, bakeWall, plainCpu, plainWall;
+  for (int i = 0; i < kThroughputRepeats; ++i) {
+    // Throughput of the bake itself: every ray over the whole tracing phase (rasterizing the
+    // UV layout, interpolating, shading and writing texels included).
+    const auto result = bake::bake(low, high, options);
+    bakeWall.push_back(double(result.stats.rays) / result.stats.traceSeconds / 1e6);
+    bakeCpu.push_back(double(result.stats.rays) / result.stats.traceCpuSeconds / 1e6);
+    const auto start = Clock::now();
+    const double cpuStart = processCpuSeconds();
+    plainRun();
+    plainWall.push_back(double(rays.size()) / since(start) / 1e6);
+    plainCpu.push_back(double(rays.size()) / (processCpuSeconds() - cpuStart) / 1e6);
+  }
   rtcReleaseScene(scene);
   rtcReleaseDevice(device);
-  const std::string what = fmt::format("{:.2f} M rays of the bake, {} triangles", double(rays.size()) / 1e6,
-                                       high.triangleCount());
-  r.record({.group = group, .name = "plain rtcIntersect1 /cpu-s", .value = plainCpu / 1e6, .unit = "Mrays/s", .note = what});
-  r.record({.group = group, .name = "glint bake /cpu-s (≥ 0.7)", .value = bakeCpu / 1e6, .unit = "Mrays/s",
+  const std::string what = fmt::format("{:.2f} M rays of the bake, {} triangles; medians of {} alternating runs",
+                                       double(rays.size()) / 1e6, high.triangleCount(), kThroughputRepeats);
+  r.record({.group = group, .name = "plain rtcIntersect1 /cpu-s", .value = median(plainCpu), .unit = "Mrays/s", .note = what});
+  r.record({.group = group, .name = "glint bake /cpu-s (≥ 0.7)", .value = median(bakeCpu), .unit = "Mrays/s",
             .ratioTo = "plain rtcIntersect1 /cpu-s", .note = "whole tracing phase, per CPU second (load-independent)"});
-  r.record({.group = group, .name = "plain rtcIntersect1 wall", .value = plainWall / 1e6, .unit = "Mrays/s"});
-  r.record({.group = group, .name = "glint bake wall", .value = bakeWall / 1e6, .unit = "Mrays/s",
+  r.record({.group = group, .name = "plain rtcIntersect1 wall", .value = median(plainWall), .unit = "Mrays/s"});
+  r.record({.group = group, .name = "glint bake wall", .value = median(bakeWall), .unit = "Mrays/s",
             .ratioTo = "plain rtcIntersect1 wall", .note = "wall clock: depends on the machine's other load"});
 }
 

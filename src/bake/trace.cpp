@@ -2,6 +2,7 @@
 // hit counts (closest |t|, front first, or through the cage), and what is stored.
 #include "trace.h"
 
+#include "glint/core/error.h"
 #include "glint/mesh/tangents.h"
 
 #include <algorithm>
@@ -35,20 +36,16 @@ struct Geometry {
   vec3 dir{0.0f, 0.0f, 1.0f};  ///< the normal, normalized: the ray direction
 };
 
-Geometry geometryAt(const Context& ctx, const Slot& slot) {
-  const Mesh& low = ctx.in.low;
-  const std::size_t base = 3 * std::size_t(slot.tri);
+/// Written in place, field by field: see sweepInto.
+void geometryAt(const Context& ctx, const Slot& slot, Geometry& g) {
+  const Context::LowCorners& c = ctx.lowCorners[std::size_t(slot.tri)];
   const float w0 = 1.0f - slot.w.x - slot.w.y;
-  const auto lerp = [&](const auto& attr) {
-    return w0 * attr[low.indices[base]] + slot.w.x * attr[low.indices[base + 1]] + slot.w.y * attr[low.indices[base + 2]];
-  };
-  Geometry g;
-  g.position = lerp(low.positions);
-  g.normal = lerp(low.normals);
-  g.tangent = lerp(low.tangents);
+  const auto lerp = [&](const auto& corner) { return w0 * corner[0] + slot.w.x * corner[1] + slot.w.y * corner[2]; };
+  g.position = lerp(c.position);
+  g.normal = lerp(c.normal);
+  g.tangent = lerp(c.tangent);
   const float len = glm::length(g.normal);
-  if (len > 0.0f) g.dir = g.normal / len;
-  return g;
+  g.dir = len > 0.0f ? g.normal * (1.0f / len) : vec3(0.0f, 0.0f, 1.0f);
 }
 
 /// The hit a sample settled on, the ray that found it, and the signed distance from the
@@ -179,20 +176,17 @@ float ambientOcclusion(const Context& ctx, const Found& f, const vec3& normal, s
   return float(open) / float(k);
 }
 
-SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const SampleInput& in, Counters& counters) {
-  SampleResult result;
+/// The high poly's interpolated normal at a hit (its facet normal where that degenerates).
+vec3 highNormal(const Context& ctx, const raytrace::Hit& hit) {
+  const std::array<vec3, 3>& corner = ctx.highCornerNormals[hit.triangle];
+  const vec3 n = (1.0f - hit.u - hit.v) * corner[0] + hit.u * corner[1] + hit.v * corner[2];
+  const float len = glm::length(n);
+  return len > 0.0f ? n * (1.0f / len) : hit.geometricNormal;
+}
+
+/// A sample's value in the output space, painted detail applied in tangent space.
+void store(const Context& ctx, const Geometry& g, vec3 objectNormal, const SampleInput& in, SampleResult& result) {
   const TangentFrame frame = TangentFrame::fromInterpolated(g.normal, g.tangent);
-  vec3 objectNormal = g.dir;  // a miss keeps the low poly's own normal
-  if (f.hit) {
-    result.hit = true;
-    result.height = f.signedT;
-    const std::array<vec3, 3>& corner = ctx.highCornerNormals[f.hit->triangle];
-    const vec3 n = (1.0f - f.hit->u - f.hit->v) * corner[0] + f.hit->u * corner[1] + f.hit->v * corner[2];
-    const float len = glm::length(n);
-    objectNormal = len > 0.0f ? n / len : f.hit->geometricNormal;
-    if (ctx.aoChannel >= 0) result.ao = ambientOcclusion(ctx, f, objectNormal, in.seed, counters);
-  }
-  // Into the output space, with the painted detail applied in tangent space.
   vec3 m = ctx.options.space == NormalSpace::Tangent || ctx.options.detail ? frame.encode(objectNormal) : vec3(0, 0, 1);
   if (ctx.options.detail) {
     m = combineDetail(m, detailNormal(*ctx.options.detail, in.uv));
@@ -203,21 +197,43 @@ SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const 
     case NormalSpace::Object: result.value = objectNormal; break;
     case NormalSpace::World: result.value = glm::normalize(ctx.worldNormalMatrix * objectNormal); break;
   }
+}
+
+SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const SampleInput& in, Counters& counters) {
+  SampleResult result;
+  vec3 objectNormal = g.dir;  // a miss keeps the low poly's own normal
+  if (f.hit) {
+    result.hit = true;
+    result.height = f.signedT;
+    objectNormal = highNormal(ctx, *f.hit);
+    if (ctx.aoChannel >= 0) result.ao = ambientOcclusion(ctx, f, objectNormal, in.seed, counters);
+  }
+  store(ctx, g, objectNormal, in, result);
   return result;
 }
 
 }  // namespace
 
-void traceTexel(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results,
+void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results,
                 Counters& counters, std::vector<raytrace::Ray>* rayLog, int& prediction) {
+  if (samples.size() > kMaxGroup) fail(ErrorKind::Internal, "bake: a group of {} samples (at most {})", samples.size(), kMaxGroup);
   const Caster caster(ctx, counters, rayLog);
-  thread_local std::vector<Geometry> geometry;
-  geometry.resize(samples.size());
-  for (std::size_t i = 0; i < samples.size(); ++i) geometry[i] = geometryAt(ctx, samples[i].slot);
+  // Per-sample working data, a stage at a time: simple loops over neighbouring samples let
+  // the processor overlap one sample's square roots and divisions with the next. Reused
+  // per thread (16 KB), not cleared per group.
+  struct Scratch {
+    std::array<Geometry, kMaxGroup> geometry;
+    std::array<raytrace::Ray, kMaxGroup> sweeps;
+    std::array<std::optional<raytrace::Hit>, kMaxGroup> hits;
+  };
+  thread_local Scratch scratch;
+  auto& [geometry, sweeps, hits] = scratch;
+  const std::size_t count = samples.size();
+  for (std::size_t i = 0; i < count; ++i) geometryAt(ctx, samples[i].slot, geometry[i]);
 
   const bool closest = !ctx.options.cage && ctx.options.selection == HitSelection::Closest;
   if (!closest || ctx.front + ctx.rear <= 0.0f) {
-    for (std::size_t i = 0; i < samples.size(); ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
       Found f;
       if (ctx.options.cage) f = caster.fromCage(geometry[i], samples[i].slot);
       else if (ctx.options.selection == HitSelection::FrontFirst) f = caster.frontFirst(geometry[i]);
@@ -229,45 +245,63 @@ void traceTexel(const Context& ctx, std::span<const SampleInput> samples, std::s
   // Closest |t| on each sample's segment [P − rear·N, P + front·N], starting with one ray
   // per sample that sweeps the whole segment towards the side where the previous group's
   // hits were (usually the only ray needed). The group's sweeps are coherent — neighbouring
-  // origins, nearly parallel — so they go to Embree together, traced in SIMD packets.
+  // origins, nearly parallel — so they go to Embree together.
   // A tile's first group has no previous one: its first sample is traced alone to decide.
+  // Rays are filled in place, field by field: building a temporary and copying it made the
+  // processor wait for partial stores it could not forward (a measured 15 % of this loop).
   const float length = ctx.front + ctx.rear;
-  const auto sweepFor = [&](const Geometry& g, bool towardsFront) {
+  const auto sweepInto = [&](const Geometry& g, bool towardsFront, raytrace::Ray& ray) {
     const vec3 d = (towardsFront ? 1.0f : -1.0f) * g.dir;
-    return raytrace::Ray{g.position - (towardsFront ? ctx.rear : ctx.front) * d, d, 0.0f, length};
+    ray.origin = g.position - (towardsFront ? ctx.rear : ctx.front) * d;
+    ray.direction = d;
+    ray.tnear = 0.0f;
+    ray.tfar = length;
   };
-  const auto resolve = [&](std::size_t i, const raytrace::Ray& sweep, const std::optional<raytrace::Hit>& hit,
-                           bool towardsFront, int& front, int& rear) {
+  int front = 0, rear = 0;
+  const auto resolve = [&](std::size_t i, const raytrace::Ray& sweep, const std::optional<raytrace::Hit>& hit, bool towardsFront) {
     Found f;
     caster.resolve(geometry[i], sweep, hit, towardsFront ? ctx.rear : ctx.front, towardsFront ? 1.0f : -1.0f, f);
     if (f.hit) (f.signedT >= 0.0f ? front : rear) += 1;
     results[i] = shade(ctx, geometry[i], f, samples[i], counters);
   };
-  int front = 0, rear = 0;
   std::size_t first = 0;
-  if (prediction == 0 && !samples.empty()) {
-    const raytrace::Ray sweep = sweepFor(geometry[0], true);
-    resolve(0, sweep, caster.cast(sweep), true, front, rear);
+  if (prediction == 0 && count > 0) {
+    raytrace::Ray sweep;
+    sweepInto(geometry[0], true, sweep);
+    resolve(0, sweep, caster.cast(sweep), true);
     if (front + rear > 0) prediction = front >= rear ? 1 : -1;
     first = 1;
   }
   const bool towardsFront = prediction >= 0;
-  thread_local std::vector<raytrace::Ray> sweeps;
-  thread_local std::vector<std::optional<raytrace::Hit>> hits;
-  const std::size_t n = samples.size() - first;
-  sweeps.resize(n);
-  hits.resize(n);
+  const float side = towardsFront ? 1.0f : -1.0f, before = towardsFront ? ctx.rear : ctx.front;
+  const std::size_t n = count - first;
   for (std::size_t i = 0; i < n; ++i) {
-    sweeps[i] = sweepFor(geometry[first + i], towardsFront);
+    sweepInto(geometry[first + i], towardsFront, sweeps[i]);
     caster.note(sweeps[i]);
   }
-  ctx.scene.intersectCoherent(sweeps, hits);
+  ctx.scene.intersectCoherent(std::span(sweeps).first(n), std::span(hits).first(n));
   // The hit triangles' normals are scattered over a large array: ask for them all now, so
   // the memory fetches overlap instead of stalling each sample in turn.
-  for (const auto& hit : hits) {
-    if (hit) __builtin_prefetch(&ctx.highCornerNormals[hit->triangle]);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (hits[i]) __builtin_prefetch(&ctx.highCornerNormals[hits[i]->triangle]);
   }
-  for (std::size_t i = 0; i < n; ++i) resolve(first + i, sweeps[i], hits[i], towardsFront, front, rear);
+  // The usual case, kept lean: the sweep's first hit is at or beyond P, so it is the
+  // closest either way and this one ray decides (Caster::resolve does the rest).
+  const bool lean = ctx.aoChannel < 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::optional<raytrace::Hit>& hit = hits[i];
+    const std::size_t k = first + i;
+    if (!lean || !hit || hit->t < before) {
+      resolve(k, sweeps[i], hit, towardsFront);
+      continue;
+    }
+    SampleResult& r = results[k];
+    r = SampleResult{};
+    r.hit = true;
+    r.height = side * (hit->t - before);
+    (r.height >= 0.0f ? front : rear) += 1;
+    store(ctx, geometry[k], highNormal(ctx, *hit), samples[k], r);
+  }
   if (front + rear > 0) prediction = front >= rear ? 1 : -1;
 }
 

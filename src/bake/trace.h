@@ -38,6 +38,7 @@ struct Context {
   std::vector<UvTriangle> tris;
   std::vector<std::vector<int>> bins;  ///< triangles per tile, ascending
   int tilesX = 0, tilesY = 0, root = 1;
+  std::vector<vec2> sampleOffsets;  ///< root² sample positions within a texel
   float front = 0, rear = 0, aoDistance = 0;
   float epsilon = 0;  ///< offsets off a surface, and the nudge of a retried ray (scene units)
   mat3 worldNormalMatrix{1.0f};
@@ -48,6 +49,12 @@ struct Context {
   /// The high poly's three corner normals per triangle, side by side: one cache line per
   /// hit instead of four scattered reads (indices, then three normals) on million-triangle meshes.
   std::vector<std::array<vec3, 3>> highCornerNormals;
+  /// The low poly's corners per triangle, side by side, for the same reason.
+  struct LowCorners {
+    std::array<vec3, 3> position, normal;
+    std::array<vec4, 3> tangent;
+  };
+  std::vector<LowCorners> lowCorners;
 };
 
 /// One sample to trace: its slot, UV and random seed.
@@ -64,11 +71,16 @@ struct SampleResult {
   bool hit = false;
 };
 
-/// Traces and shades a group of neighbouring samples (a few texels' worth). `prediction`
+/// The most samples traceGroup takes at once.
+inline constexpr std::size_t kMaxGroup = 128;
+
+/// Traces and shades a group of neighbouring samples (a few texels' worth, at most
+/// kMaxGroup). `prediction`
 /// carries, from group to group of a tile, which side of the low poly the hits were on
 /// (+1 in front, −1 behind, 0 not known yet: start a tile with 0). It only changes how
 /// many rays are cast, not the answers. Rays are logged when `rayLog` is set.
-void traceTexel(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results,
+void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results,
                 Counters& counters, std::vector<raytrace::Ray>* rayLog, int& prediction);
+
 
 }  // namespace glint::bake::detail

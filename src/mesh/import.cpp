@@ -86,7 +86,7 @@ void flatten(const aiScene& scene, const aiNode& node, const mat4& parent, Mesh&
 
 }  // namespace
 
-Mesh loadMesh(const std::filesystem::path& path) {
+Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", name);
@@ -122,7 +122,9 @@ Mesh loadMesh(const std::filesystem::path& path) {
   }
   // GenSmoothNormals leaves meshes that already have normals alone, and Assimp
   // runs the requested steps in its own fixed order (normals before joining).
-  scene = importer.ApplyPostProcessing(aiProcess_GenSmoothNormals | aiProcess_JoinIdenticalVertices);
+  unsigned steps = aiProcess_GenSmoothNormals;
+  if (options.joinVertices) steps |= aiProcess_JoinIdenticalVertices;
+  scene = importer.ApplyPostProcessing(steps);
   if (!scene) fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, firstLine(importer.GetErrorString()));
 
   Mesh result;

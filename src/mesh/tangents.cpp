@@ -331,30 +331,10 @@ std::size_t generateTangents(Mesh& mesh) {
   return mesh.vertexCount() - original;
 }
 
-TangentFrame TangentFrame::fromInterpolated(const vec3& normal, const vec4& tangent) {
-  const vec3 t(tangent);
-  const float sign = tangent.w < 0.0f ? -1.0f : 1.0f;
-  return {t, sign * glm::cross(normal, t), normal};
-}
-
 vec3 TangentFrame::decode(const vec3& m) const {
   const vec3 v = m.x * tangent + m.y * bitangent + m.z * normal;
   const float len = glm::length(v);
   return len > 0.0f ? v / len : normal;
-}
-
-vec3 TangentFrame::encode(const vec3& v) const {
-  // Solve [t b n] m = v. With b = ±cross(n, t) (fromInterpolated), Cramer's rule reduces to
-  // dot products: m ∝ (|n|²(v·t) − (n·t)(v·n),  v·b,  |t|²(v·n) − (n·t)(v·t)), divided by
-  // the Gram determinant |n|²|t|² − (n·t)² ≥ 0, which normalizing removes. Exact for the
-  // skewed frames interpolation produces (tests/mesh/tangents_test.cpp).
-  const float nn = glm::dot(normal, normal), tt = glm::dot(tangent, tangent), nt = glm::dot(normal, tangent);
-  const float gram = nn * tt - nt * nt;
-  if (!(gram > 1e-12f * nn * tt)) return vec3(0.0f, 0.0f, 1.0f);
-  const float vt = glm::dot(v, tangent), vn = glm::dot(v, normal);
-  const vec3 m(nn * vt - nt * vn, glm::dot(v, bitangent), tt * vn - nt * vt);
-  const float len = glm::length(m);
-  return len > 0.0f ? m / len : vec3(0.0f, 0.0f, 1.0f);
 }
 
 }  // namespace glint

@@ -65,7 +65,11 @@ struct TangentFrame {
   vec3 normal{0.0f, 0.0f, 1.0f};
 
   /// b = sign · cross(n, t), with sign = tangent.w (≥ 0 counts as +1).
-  static TangentFrame fromInterpolated(const vec3& normal, const vec4& tangent);
+  static TangentFrame fromInterpolated(const vec3& normal, const vec4& tangent) {
+    const vec3 t(tangent);
+    const float sign = tangent.w < 0.0f ? -1.0f : 1.0f;
+    return {t, sign * glm::cross(normal, t), normal};
+  }
   /// Tangent-space normal → unit normal in the frame's space: normalize(m.x t + m.y b + m.z n).
   vec3 decode(const vec3& m) const;
   /// The inverse of decode: the unit tangent-space vector m with decode(m) = normalize(v), for
@@ -73,7 +77,20 @@ struct TangentFrame {
   /// the frame is not orthonormal (it solves the 3×3 system). For a singular
   /// frame (zero tangent, tangent parallel to the normal) it returns (0, 0, 1), which any
   /// decoder maps to the interpolated normal.
-  vec3 encode(const vec3& v) const;
+  vec3 encode(const vec3& v) const {
+    // Solve [t b n] m = v. With b = ±cross(n, t) (fromInterpolated), Cramer's rule reduces to
+    // dot products: m ∝ (|n|²(v·t) − (n·t)(v·n),  v·b,  |t|²(v·n) − (n·t)(v·t)), divided by
+    // the Gram determinant |n|²|t|² − (n·t)² ≥ 0, which normalizing removes. Exact for the
+    // skewed frames interpolation produces (tests/mesh/tangents_test.cpp). Inline: the baker
+    // calls it once per sample.
+    const float nn = glm::dot(normal, normal), tt = glm::dot(tangent, tangent), nt = glm::dot(normal, tangent);
+    const float gram = nn * tt - nt * nt;
+    if (!(gram > 1e-12f * nn * tt)) return vec3(0.0f, 0.0f, 1.0f);
+    const float vt = glm::dot(v, tangent), vn = glm::dot(v, normal);
+    const vec3 m(nn * vt - nt * vn, glm::dot(v, bitangent), tt * vn - nt * vt);
+    const float len = glm::length(m);
+    return len > 0.0f ? m * (1.0f / len) : vec3(0.0f, 0.0f, 1.0f);
+  }
 };
 
 }  // namespace glint
