@@ -199,6 +199,41 @@ void store(const Context& ctx, const Geometry& g, vec3 objectNormal, const Sampl
   }
 }
 
+/// Many samples' tangent-space values at once, as structure of arrays: the arithmetic of
+/// highNormal, TangentFrame::fromInterpolated and TangentFrame::encode in one loop without
+/// calls or branches, which the compiler runs four samples per instruction. (Measured: the
+/// per-sample version was a third of the baker's own time at one ray per texel.)
+struct EncodeLanes {
+  std::array<float, kMaxGroup> hx, hy, hz;      ///< high-poly normal, interpolated (not unit; the facet
+                                                ///< normal where that has no length)
+  std::array<float, kMaxGroup> nx, ny, nz;      ///< low-poly interpolated normal
+  std::array<float, kMaxGroup> tx, ty, tz, ts;  ///< low-poly interpolated tangent and sign (±1)
+  std::array<float, kMaxGroup> mx, my, mz;      ///< out: the unit tangent-space normal
+};
+
+void encodeLanes(EncodeLanes& l, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    // The high poly's unit normal (highNormal). A zero vector (degenerate facet) stays
+    // zero and ends up singular below.
+    const float hi = 1.0f / std::max(std::sqrt(l.hx[i] * l.hx[i] + l.hy[i] * l.hy[i] + l.hz[i] * l.hz[i]), 1e-30f);
+    const float vx = l.hx[i] * hi, vy = l.hy[i] * hi, vz = l.hz[i] * hi;
+    // The frame: b = sign · cross(n, t) (fromInterpolated).
+    const float nx = l.nx[i], ny = l.ny[i], nz = l.nz[i], tx = l.tx[i], ty = l.ty[i], tz = l.tz[i];
+    const float bx = l.ts[i] * (ny * tz - nz * ty), by = l.ts[i] * (nz * tx - nx * tz), bz = l.ts[i] * (nx * ty - ny * tx);
+    // Solve [t b n] m = v (encode).
+    const float nn = nx * nx + ny * ny + nz * nz, tt = tx * tx + ty * ty + tz * tz, nt = nx * tx + ny * ty + nz * tz;
+    const float gram = nn * tt - nt * nt;
+    const float vt = vx * tx + vy * ty + vz * tz, vn = vx * nx + vy * ny + vz * nz, vb = vx * bx + vy * by + vz * bz;
+    const float mx = nn * vt - nt * vn, my = vb, mz = tt * vn - nt * vt;
+    const float ml = std::sqrt(mx * mx + my * my + mz * mz);
+    const bool regular = (gram > 1e-12f * nn * tt) & (ml > 0.0f);  // &, not &&: no branch in the loop
+    const float mi = 1.0f / std::max(ml, 1e-30f);
+    l.mx[i] = regular ? mx * mi : 0.0f;
+    l.my[i] = regular ? my * mi : 0.0f;
+    l.mz[i] = regular ? mz * mi : 1.0f;
+  }
+}
+
 SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const SampleInput& in, Counters& counters) {
   SampleResult result;
   vec3 objectNormal = g.dir;  // a miss keeps the low poly's own normal
@@ -286,8 +321,13 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
     if (hits[i]) __builtin_prefetch(&ctx.highCornerNormals[hits[i]->triangle]);
   }
   // The usual case, kept lean: the sweep's first hit is at or beyond P, so it is the
-  // closest either way and this one ray decides (Caster::resolve does the rest).
+  // closest either way and this one ray decides (Caster::resolve does the rest). For plain
+  // tangent-space maps its samples are gathered into lanes and encoded together.
   const bool lean = ctx.aoChannel < 0;
+  const bool lanes = ctx.options.space == NormalSpace::Tangent && !ctx.options.detail;
+  thread_local EncodeLanes l;
+  std::array<std::uint8_t, kMaxGroup> laneOf;  // sample i → lane, for the samples in lanes
+  std::size_t laneCount = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::optional<raytrace::Hit>& hit = hits[i];
     const std::size_t k = first + i;
@@ -296,11 +336,40 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
       continue;
     }
     SampleResult& r = results[k];
-    r = SampleResult{};
+    r.ao = 1.0f;
     r.hit = true;
     r.height = side * (hit->t - before);
     (r.height >= 0.0f ? front : rear) += 1;
-    store(ctx, geometry[k], highNormal(ctx, *hit), samples[k], r);
+    if (!lanes) {
+      store(ctx, geometry[k], highNormal(ctx, *hit), samples[k], r);
+      continue;
+    }
+    const std::size_t j = laneCount++;
+    laneOf[i] = std::uint8_t(j);
+    const std::array<vec3, 3>& corner = ctx.highCornerNormals[hit->triangle];
+    const float w0 = 1.0f - hit->u - hit->v;
+    vec3 h = w0 * corner[0] + hit->u * corner[1] + hit->v * corner[2];
+    if (h == vec3(0.0f)) h = hit->geometricNormal;  // rare: opposite corner normals
+    l.hx[j] = h.x;
+    l.hy[j] = h.y;
+    l.hz[j] = h.z;
+    const Geometry& g = geometry[k];
+    l.nx[j] = g.normal.x;
+    l.ny[j] = g.normal.y;
+    l.nz[j] = g.normal.z;
+    l.tx[j] = g.tangent.x;
+    l.ty[j] = g.tangent.y;
+    l.tz[j] = g.tangent.z;
+    l.ts[j] = g.tangent.w < 0.0f ? -1.0f : 1.0f;
+  }
+  if (laneCount > 0) {
+    encodeLanes(l, laneCount);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::optional<raytrace::Hit>& hit = hits[i];
+      if (!lean || !hit || hit->t < before) continue;
+      const std::size_t j = laneOf[i];
+      results[first + i].value = vec3(l.mx[j], l.my[j], l.mz[j]);
+    }
   }
   if (front + rear > 0) prediction = front >= rear ? 1 : -1;
 }
