@@ -281,9 +281,11 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   for (std::size_t t = 0; t < ctx.lowCorners.size(); ++t) {
     for (std::size_t k = 0; k < 3; ++k) {
       const std::uint32_t v = in.low.indices[3 * t + k];
-      ctx.lowCorners[t].position[k] = in.low.positions[v];
-      ctx.lowCorners[t].normal[k] = in.low.normals[v];
-      ctx.lowCorners[t].tangent[k] = in.low.tangents[v];
+      const vec3 &p = in.low.positions[v], &n = in.low.normals[v];
+      const vec4& t4 = in.low.tangents[v];
+      ctx.lowCorners[t].position[k] = Context::Float4{p.x, p.y, p.z, 0.0f};
+      ctx.lowCorners[t].normal[k] = Context::Float4{n.x, n.y, n.z, 0.0f};
+      ctx.lowCorners[t].tangent[k] = Context::Float4{t4.x, t4.y, t4.z, t4.w};
     }
   }
   stats.frontDistance = ctx.front;

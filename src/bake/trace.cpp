@@ -41,9 +41,10 @@ void geometryAt(const Context& ctx, const Slot& slot, Geometry& g) {
   const Context::LowCorners& c = ctx.lowCorners[std::size_t(slot.tri)];
   const float w0 = 1.0f - slot.w.x - slot.w.y;
   const auto lerp = [&](const auto& corner) { return w0 * corner[0] + slot.w.x * corner[1] + slot.w.y * corner[2]; };
-  g.position = lerp(c.position);
-  g.normal = lerp(c.normal);
-  g.tangent = lerp(c.tangent);
+  const Context::Float4 p = lerp(c.position), n = lerp(c.normal), t = lerp(c.tangent);
+  g.position = vec3(p[0], p[1], p[2]);
+  g.normal = vec3(n[0], n[1], n[2]);
+  g.tangent = vec4(t[0], t[1], t[2], t[3]);
   const float len = glm::length(g.normal);
   g.dir = len > 0.0f ? g.normal * (1.0f / len) : vec3(0.0f, 0.0f, 1.0f);
 }

@@ -49,10 +49,12 @@ struct Context {
   /// The high poly's three corner normals per triangle, side by side: one cache line per
   /// hit instead of four scattered reads (indices, then three normals) on million-triangle meshes.
   std::vector<std::array<vec3, 3>> highCornerNormals;
-  /// The low poly's corners per triangle, side by side, for the same reason.
+  /// The low poly's corners per triangle, side by side, for the same reason; as 4-float
+  /// vectors (position xyz0, normal xyz0, tangent xyzw) so interpolating one attribute is
+  /// three vector multiply-adds.
+  using Float4 = float __attribute__((vector_size(16)));
   struct LowCorners {
-    std::array<vec3, 3> position, normal;
-    std::array<vec4, 3> tangent;
+    std::array<Float4, 3> position, normal, tangent;
   };
   std::vector<LowCorners> lowCorners;
 };
