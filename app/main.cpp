@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   cli.require_subcommand(1);
   cli.fallthrough();  // global flags work after the subcommand too (glint render X -q)
   cli.set_help_all_flag("--help-all", "Show help for every subcommand");
+  cli.set_version_flag("--version", "glint " GLINT_VERSION);
   app::GlobalOptions global;
   cli.add_flag("--gl-debug", global.glDebug, "OpenGL debug context; GL errors are logged and counted");
   cli.add_flag("-q,--quiet", global.quiet, "Only warnings and errors");
@@ -64,6 +65,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return cli.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line and the usage exit code, like every other glint error.

@@ -36,6 +36,25 @@ TEST(Cli, ListNamesEveryVariant) {
   EXPECT_NE(r.output.find("basics/depth/mask-off\n"), std::string::npos);
 }
 
+TEST(Cli, VersionPrintsTheProjectVersion) {
+  const auto r = runGlint("--version");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.rfind("glint ", 0), 0u) << r.output;
+  EXPECT_TRUE(oneLine(r.output)) << r.output;
+}
+
+// OpenImageIO (~260 libraries with Debian's build) is a module loaded only by commands
+// that touch images; the dynamic loader's own log shows which objects a run opened.
+TEST(Cli, OnlyCommandsThatTouchImagesLoadOpenImageIO) {
+  auto r = runGlint("list --names", "LD_DEBUG=files");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_EQ(r.output.find("libOpenImageIO"), std::string::npos);
+  const auto d = dir("oiio");
+  r = runGlint("render basics/triangle/color --size 32x32 -o " + (d / "t.png").string(), "LD_DEBUG=files");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("libOpenImageIO"), std::string::npos);
+}
+
 TEST(Cli, RenderWritesTheImageAndNothingElse) {
   const auto d = dir("render");
   const auto r = runGlint("render basics/triangle/depth --size 64x48 -o " + (d / "t.png").string());
