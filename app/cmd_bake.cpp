@@ -8,6 +8,7 @@
 #include "glint/core/file.h"
 #include "glint/core/log.h"
 #include "glint/core/text.h"
+#include "glint/image/image.h"
 #include "glint/mesh/mesh.h"
 
 #include <fmt/format.h>
@@ -214,6 +215,7 @@ Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
     }
     if (!a->json.empty() && a->json != "-") outputs.push_back(a->json);
     for (const auto& path : outputs) checkWritable(path);
+    requireImageIo();
 
     // Inputs (never modified: loaded into memory, prepared there).
     // The high poly (the big file) is parsed here while a second thread reads the rest;

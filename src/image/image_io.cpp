@@ -203,6 +203,15 @@ constexpr std::size_t kErrorSize = 1024;
 
 void preloadImageIo() { theModule().preload(); }
 
+void requireImageIo() {
+  std::error_code ec;
+  for (const fs::path& path : moduleCandidates()) {
+    if (fs::exists(path, ec)) return;
+  }
+  fail(ErrorKind::Internal, "cannot load the image I/O module '{}': no such file (glint looks beside its executable, then in its build tree)",
+       fs::path(GLINT_OIIO_MODULE).filename().string());
+}
+
 Image loadImage(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", path.string());

@@ -91,6 +91,11 @@ void saveImage(const Image& image, const std::filesystem::path& path);
 /// themselves when this was not called. Call it early in commands that touch images.
 void preloadImageIo();
 
+/// Fails at once (Error(Internal), one line) when the image I/O module is not where glint
+/// looks for it, without waiting for it to load: long commands call this before their
+/// work, so a broken install is not discovered only when the result is written.
+void requireImageIo();
+
 struct ImageDifference {
   double maxAbs = 0;   ///< largest absolute channel difference, normalized 0..1
   double meanAbs = 0;  ///< mean absolute channel difference over all channels
