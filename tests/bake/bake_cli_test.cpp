@@ -28,12 +28,7 @@ using glint::testing::oneLine;
 using glint::testing::runGlint;
 
 
-fs::path dir(const char* name) {
-  const fs::path d = fs::path(GLINT_TEST_OUTPUT_DIR) / "bake-cli" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path dir(const char* name) { return glint::testing::freshDir("bake-cli", name); }
 
 /// Writes a mesh as OBJ (positions, and UVs / normals when present).
 void writeObj(const Mesh& m, const fs::path& path) {

@@ -22,13 +22,8 @@ using glint::testing::fileCount;
 using glint::testing::oneLine;
 using glint::testing::runGlint;
 
-// One folder per test: ctest runs tests in parallel processes.
 fs::path dir() {
-  const fs::path d = fs::path(GLINT_TEST_OUTPUT_DIR) / "normalmap-cli" /
-                     ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return glint::testing::freshDir("normalmap-cli", ::testing::UnitTest::GetInstance()->current_test_info()->name());
 }
 
 Image oddHeight() {  // 8-bit gray, 45×29: neither side a power of two

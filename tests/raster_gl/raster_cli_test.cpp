@@ -21,12 +21,7 @@ using glint::testing::fileCount;
 using glint::testing::oneLine;
 using glint::testing::runGlint;
 
-fs::path dir(const char* name) {
-  const fs::path d = fs::path(GLINT_TEST_OUTPUT_DIR) / "raster-cli" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path dir(const char* name) { return glint::testing::freshDir("raster-cli", name); }
 
 void writeFile(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 

@@ -20,12 +20,7 @@ using glint::testing::fileCount;
 using glint::testing::oneLine;
 using glint::testing::runGlint;
 
-fs::path dir(const char* name) {
-  const fs::path d = fs::path(GLINT_TEST_OUTPUT_DIR) / "cli" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path dir(const char* name) { return glint::testing::freshDir("cli", name); }
 
 }  // namespace
 

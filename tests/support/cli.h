@@ -31,6 +31,15 @@ inline std::size_t fileCount(const std::filesystem::path& dir) {
   return std::size_t(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()));
 }
 
+/// An empty folder test-output/<suite>/<name> for one test's files (each test its own:
+/// ctest runs tests in parallel processes).
+inline std::filesystem::path freshDir(const std::string& suite, const std::string& name) {
+  const std::filesystem::path d = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / suite / name;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
 /// glint's errors are exactly one line.
 inline bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
 
