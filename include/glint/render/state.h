@@ -10,6 +10,8 @@
 //   render::PipelineState{.depthWrite = false, .colorMask = {false, false, false, false},
 //                         .stencil = {.enabled = true, .front = {.dppass = GL_INVERT}}}.apply();
 
+#include "glint/core/math.h"
+
 #include <epoxy/gl.h>
 
 #include <array>
@@ -72,5 +74,9 @@ void resetState();
 /// and glStencilMask — a classic trap when the previous pass turned depth writes off —
 /// so clear through this. The masks stay enabled afterwards.
 void clear(GLbitfield buffers, const float color[4] = nullptr, double depth = 1.0, int stencil = 0);
+/// The same with a clear colour.
+inline void clear(GLbitfield buffers, const vec4& color, double depth = 1.0, int stencil = 0) {
+  clear(buffers, &color.r, depth, stencil);
+}
 
 }  // namespace glint::render

@@ -33,9 +33,8 @@ void DynamicCubeMap::render(vec3 centre, const std::function<void(const Camera&)
     m_framebuffer.attachLayer(GL_COLOR_ATTACHMENT0, m_cube, face, 0);
     m_framebuffer.bind();
     glViewport(0, 0, m_size, m_size);
-    PipelineState{}.apply();  // clears obey the write masks: make sure they are all on
-    glClearColor(clear.r, clear.g, clear.b, clear.a);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    PipelineState{}.apply();  // the default state for what is drawn next
+    render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, clear);
     draw(faceCamera(face, centre, nearPlane, farPlane));
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

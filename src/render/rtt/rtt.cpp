@@ -15,9 +15,8 @@ gl::Texture makeTexture(int size, std::string_view label) {
 }
 
 void clearBound(vec4 clear) {
-  PipelineState{}.apply();  // clears obey the colour and depth write masks
-  glClearColor(clear.r, clear.g, clear.b, clear.a);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  PipelineState{}.apply();  // the default state for what is drawn next
+  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, clear);
 }
 }  // namespace
 

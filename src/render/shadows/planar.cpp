@@ -58,8 +58,7 @@ void PlanarShadow::renderTexture(const World& world) {
   glViewport(0, 0, m_options.size, m_options.size);
   // Flattened casters overlap and may be wound either way: no depth test, no culling.
   PipelineState{.depthTest = false, .depthWrite = false}.apply();
-  glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
+  render::clear(GL_COLOR_BUFFER_BIT, vec4(1.0f, 1.0f, 1.0f, 1.0f));
   m_projectProgram.set("uShadowMatrix", planarShadowMatrix({0.0f, 1.0f, 0.0f, -world.groundHeight}, world.lightPosition));
   m_projectProgram.set("uGroundClip", m_groundClip);
   m_scene.drawGeometry(world, mat4(1.0f), m_projectProgram, [](const WorldObject& o) { return o.castsShadow && !o.ground; });
@@ -69,8 +68,7 @@ void PlanarShadow::render(const World& world, const Camera& camera, const gl::Ta
   renderTexture(world);
   target.bind();
   PipelineState{}.apply();
-  glClearColor(0.52f, 0.6f, 0.7f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.52f, 0.6f, 0.7f, 1.0f));
   m_texture.bind(m_options.view == PlanarView::Texture ? 0 : 1);
   m_sampler.bind(m_options.view == PlanarView::Texture ? 0 : 1);
   if (m_options.view == PlanarView::Texture) {

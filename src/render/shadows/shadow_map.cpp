@@ -60,8 +60,7 @@ void ShadowMap::renderMap(const World& world) {
                 .offsetFactor = m_options.offsetFactor,
                 .offsetUnits = m_options.offsetUnits}
       .apply();
-  glClearDepth(1.0);
-  glClear(GL_DEPTH_BUFFER_BIT);
+  render::clear(GL_DEPTH_BUFFER_BIT);
   m_scene.drawGeometry(world, m_light.viewProjection(), m_depthProgram);
 }
 
@@ -69,8 +68,7 @@ void ShadowMap::render(const World& world, const Camera& camera, const gl::Targe
   renderMap(world);
   target.bind();
   PipelineState{}.apply();
-  glClearColor(0.52f, 0.6f, 0.7f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.52f, 0.6f, 0.7f, 1.0f));
   const float aspect = float(target.size.x) / float(target.size.y);
   switch (m_options.view) {
     case ShadowMapView::WithoutShadows: m_scene.draw(world, camera, LightTerms::Full); break;

@@ -116,10 +116,7 @@ void StencilShadows::update(const World& world) {
 
 void StencilShadows::drawScene(const World& world, const Camera& camera, LightTerms terms) const {
   PipelineState{}.apply();
-  glClearColor(0.52f, 0.6f, 0.7f, 1.0f);
-  glClearDepth(1.0);
-  glClearStencil(0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.52f, 0.6f, 0.7f, 1.0f));
   m_scene.draw(world, camera, terms);
 }
 

@@ -57,8 +57,7 @@ public:
   void render(const FrameInput& frame) override {
     frame.target.bind();
     render::PipelineState{}.apply();
-    glClearColor(0.05f, 0.05f, 0.06f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.05f, 0.05f, 0.06f, 1.0f));
     const ivec2 size = frame.target.size;
     const ivec2 cell(size.x / 2, size.y / 2);
     const int gap = std::max(1, size.x / 320);
@@ -76,8 +75,7 @@ public:
       glEnable(GL_SCISSOR_TEST);
       glScissor(origin.x, origin.y, extent.x, extent.y);
       glViewport(origin.x, origin.y, extent.x, extent.y);
-      glClearColor(kBackground.r, kBackground.g, kBackground.b, kBackground.a);
-      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, kBackground);
     };
     panel(0, 1);
     m_vertexNormals.draw(m_low, model, camera, lights, material);

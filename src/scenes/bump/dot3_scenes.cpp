@@ -66,9 +66,7 @@ public:
     rebuildIfNeeded();
     frame.target.bind();
     render::PipelineState{}.apply();
-    glClearColor(0.05f, 0.06f, 0.08f, 1.0f);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.05f, 0.06f, 0.08f, 1.0f));
     const bool twoUp = m_variant.normalization == Normalization::SideBySide;
     const render::Camera camera = dot3Camera(frame.target.size, twoUp ? 4.4f : 2.9f);
     const vec3 lightLocal = circlingLight(frame.time, m_lightRadius, m_lightHeight, m_lightSpeed);

@@ -65,8 +65,7 @@ public:
     // 2. The frame: the same surroundings, then the bubble reflecting them.
     frame.target.bind();
     render::PipelineState{}.apply();
-    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
     if (m_show == Show::Faces) {
       m_cross.draw(m_local.texture(), frame.target.size);
       return;

@@ -44,8 +44,7 @@ public:
   void render(const FrameInput& frame) override {
     frame.target.bind();
     render::PipelineState{}.apply();
-    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
     const render::Camera camera = viewCamera(m_variant.azimuth, frame.target.size);
     m_classic.drawSkybox(m_cube, camera);
     for (std::size_t i = 0; i < m_meshes.size(); ++i) {

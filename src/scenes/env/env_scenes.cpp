@@ -30,8 +30,7 @@ enum class Mode { Cube, Sphere, Compare };
 void clearTarget(const FrameInput& frame) {
   frame.target.bind();
   render::PipelineState{}.apply();
-  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
 }
 
 class MirrorScene final : public Scene {
@@ -65,8 +64,7 @@ public:
       glScissor(size.x / 2, 0, size.x - size.x / 2, size.y);
       drawHalf(camera, Lookup::SphereMap);
       glScissor(size.x / 2 - 1, 0, 2, size.y);
-      glClearColor(0.9f, 0.9f, 0.9f, 1.0f);
-      glClear(GL_COLOR_BUFFER_BIT);
+      render::clear(GL_COLOR_BUFFER_BIT, vec4(0.9f, 0.9f, 0.9f, 1.0f));
       glDisable(GL_SCISSOR_TEST);
     } else {
       drawHalf(camera, m_mode == Mode::Cube ? Lookup::CubeMap : Lookup::SphereMap);
@@ -100,8 +98,7 @@ private:
     const auto ball = [&](Lookup lookup, const gl::Texture& environment) {
       target.target().bind();
       render::PipelineState{}.apply();
-      glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 0.0f));
       reflector(lookup).draw(m_meshes[0], m_models[0], camera, environment, sphereMapFrame({1, 1}));
       return gl::readColor(target.framebuffer(), kQualitySize);
     };
