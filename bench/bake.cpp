@@ -55,6 +55,16 @@ double peakRssMiB() {
 /// version lies up to 0.012 inside it; 0.06 leaves room (the same value drives Blender).
 const bake::Distance kDistance{0.06f, false};
 
+/// A square bake with the bench's ray distances, no progress bar.
+bake::BakeOptions bakeOptions(int size, int samples) {
+  bake::BakeOptions options;
+  options.width = options.height = size;
+  options.samples = samples;
+  options.progress = false;
+  options.maxFront = options.maxRear = kDistance;
+  return options;
+}
+
 /// The low poly every case uses: a 1,152-triangle torus.
 Mesh lowPoly() { return makeTorus(1.0f, 0.35f, 48, 12); }
 
@@ -134,11 +144,7 @@ void bigBake(Recorder& r) {
   const std::string group = "b: 2048² 36 spp";
   const Mesh low = lowPoly();
   const Mesh high = highPoly(1 << 20);
-  bake::BakeOptions options;
-  options.width = options.height = 2048;
-  options.samples = 36;
-  options.progress = false;
-  options.maxFront = options.maxRear = kDistance;
+  const bake::BakeOptions options = bakeOptions(2048, 36);
   const auto start = Clock::now();
   const double cpuStart = processCpuSeconds();
   const auto result = bake::bake(low, high, options);
@@ -157,11 +163,7 @@ void bigBake(Recorder& r) {
 /// (c) the bake's rays, replayed through plain Embree.
 void throughput(Recorder& r, const Mesh& low, const Mesh& high, int size, int samples) {
   const std::string group = fmt::format("c: {}² {} spp", size, samples);
-  bake::BakeOptions options;
-  options.width = options.height = size;
-  options.samples = samples;
-  options.progress = false;
-  options.maxFront = options.maxRear = kDistance;
+  bake::BakeOptions options = bakeOptions(size, samples);
   std::vector<raytrace::Ray> rays;
   options.rayLog = &rays;
   bake::bake(low, high, options);  // records the rays
@@ -236,11 +238,7 @@ void scaling(Recorder& r) {
   const Mesh low = lowPoly();
   for (int triangles : {10000, 100000, 1000000}) {
     const Mesh high = highPoly(triangles);
-    bake::BakeOptions options;
-    options.width = options.height = 1024;
-    options.samples = 4;
-    options.progress = false;
-    options.maxFront = options.maxRear = kDistance;
+    const bake::BakeOptions options = bakeOptions(1024, 4);
     const auto start = Clock::now();
     const auto result = bake::bake(low, high, options);
     const double seconds = since(start);

@@ -177,12 +177,19 @@ float ambientOcclusion(const Context& ctx, const Found& f, const vec3& normal, s
   return float(open) / float(k);
 }
 
-/// The high poly's interpolated normal at a hit (its facet normal where that degenerates).
-vec3 highNormal(const Context& ctx, const raytrace::Hit& hit) {
+/// The high poly's interpolated normal at a hit, not normalized; its facet normal where the
+/// interpolation has no length (opposite corner normals).
+vec3 interpolatedHighNormal(const Context& ctx, const raytrace::Hit& hit) {
   const std::array<vec3, 3>& corner = ctx.highCornerNormals[hit.triangle];
   const vec3 n = (1.0f - hit.u - hit.v) * corner[0] + hit.u * corner[1] + hit.v * corner[2];
+  return n == vec3(0.0f) ? hit.geometricNormal : n;
+}
+
+/// The same, unit length.
+vec3 highNormal(const Context& ctx, const raytrace::Hit& hit) {
+  const vec3 n = interpolatedHighNormal(ctx, hit);
   const float len = glm::length(n);
-  return len > 0.0f ? n * (1.0f / len) : hit.geometricNormal;
+  return len > 0.0f ? n * (1.0f / len) : n;
 }
 
 /// A sample's value in the output space, painted detail applied in tangent space.
@@ -256,14 +263,15 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
   const Caster caster(ctx, counters, rayLog);
   // Per-sample working data, a stage at a time: simple loops over neighbouring samples let
   // the processor overlap one sample's square roots and divisions with the next. Reused
-  // per thread (16 KB), not cleared per group.
+  // per thread (about 25 KB), not cleared per group.
   struct Scratch {
     std::array<Geometry, kMaxGroup> geometry;
     std::array<raytrace::Ray, kMaxGroup> sweeps;
     std::array<std::optional<raytrace::Hit>, kMaxGroup> hits;
+    EncodeLanes lanes;
   };
   thread_local Scratch scratch;
-  auto& [geometry, sweeps, hits] = scratch;
+  auto& [geometry, sweeps, hits, l] = scratch;
   const std::size_t count = samples.size();
   for (std::size_t i = 0; i < count; ++i) geometryAt(ctx, samples[i].slot, geometry[i]);
 
@@ -326,7 +334,6 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
   // tangent-space maps its samples are gathered into lanes and encoded together.
   const bool lean = ctx.aoChannel < 0;
   const bool lanes = ctx.options.space == NormalSpace::Tangent && !ctx.options.detail;
-  thread_local EncodeLanes l;
   std::array<std::uint8_t, kMaxGroup> laneOf;  // sample i → lane, for the samples in lanes
   std::size_t laneCount = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -347,10 +354,7 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
     }
     const std::size_t j = laneCount++;
     laneOf[i] = std::uint8_t(j);
-    const std::array<vec3, 3>& corner = ctx.highCornerNormals[hit->triangle];
-    const float w0 = 1.0f - hit->u - hit->v;
-    vec3 h = w0 * corner[0] + hit->u * corner[1] + hit->v * corner[2];
-    if (h == vec3(0.0f)) h = hit->geometricNormal;  // rare: opposite corner normals
+    const vec3 h = interpolatedHighNormal(ctx, *hit);
     l.hx[j] = h.x;
     l.hy[j] = h.y;
     l.hz[j] = h.z;
