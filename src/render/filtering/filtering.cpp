@@ -1,4 +1,4 @@
-#include "glint/render/filtering.h"
+#include "glint/render/filtering/filtering.h"
 
 #include "glint/core/error.h"
 #include "glint/gl/context.h"

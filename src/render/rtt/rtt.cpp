@@ -1,4 +1,4 @@
-#include "glint/render/rtt.h"
+#include "glint/render/rtt/rtt.h"
 
 #include "glint/core/error.h"
 #include "glint/render/camera.h"

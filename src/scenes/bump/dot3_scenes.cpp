@@ -18,7 +18,7 @@
 
 namespace glint::scenes {
 namespace {
-using namespace bumpscene;
+using namespace bump;
 using render::bump::Dot3Stage;
 
 enum class Normalization {

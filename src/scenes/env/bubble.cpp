@@ -16,7 +16,7 @@
 
 namespace glint::scenes {
 namespace {
-using namespace envscene;
+using namespace env;
 
 constexpr int kDynamicSize = 128;  // per face: the bubble is small on screen
 constexpr float kBubbleRadius = 1.0f;

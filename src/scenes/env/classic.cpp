@@ -11,7 +11,7 @@
 
 namespace glint::scenes {
 namespace {
-using namespace envscene;
+using namespace env;
 
 struct ClassicVariant {
   const char* name;
@@ -55,7 +55,7 @@ public:
 
   std::string notes() const override {
     return "Fixed-function texgen in a compatibility-profile context: per-vertex coordinates, interpolated. "
-           "tests/render/classic_test compares it with the shader path.";
+           "tests/env/classic_test compares it with the shader path.";
   }
 
 private:

@@ -2,7 +2,7 @@
 // copy to a texture, (b) draw straight into the texture through a framebuffer object.
 // The texture then covers a spinning cube; both variants show the same picture.
 #include "glint/render/camera.h"
-#include "glint/render/rtt.h"
+#include "glint/render/rtt/rtt.h"
 #include "glint/render/state.h"
 #include "glint/scenes/scene.h"
 
