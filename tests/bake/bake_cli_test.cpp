@@ -7,6 +7,7 @@
 #include "support/cli.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -74,11 +75,20 @@ TEST(BakeCli, WritesTheMapAndTheReportAndNothingElse) {
   EXPECT_EQ(loadImage(out / "h.exr").type(), PixelType::F32);
   EXPECT_EQ(fileCount(out), 5u);  // no temporaries
   std::ifstream in(out / "report.json");
-  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const char* key : {"\"texels\": 6144", "\"rays\":", "\"hit_ratio\": 1.0", "\"misses\": 0", "\"seconds\":",
-                          "\"trace\":", "\"peak_memory_mib\":", "\"samples_per_texel\": 4"}) {
-    EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
+  const auto report = nlohmann::json::parse(in);  // throws (fails the test) on malformed JSON
+  EXPECT_EQ(report["tool"], "bake");
+  EXPECT_EQ(report["texels"], 6144);
+  EXPECT_EQ(report["samples_per_texel"], 4);
+  EXPECT_EQ(report["hit_ratio"], 1.0);
+  EXPECT_EQ(report["misses"], 0);
+  EXPECT_GT(report["rays"].get<double>(), 0.0);
+  EXPECT_GE(report["threads"].get<int>(), 1);
+  for (const char* phase : {"load", "prepare", "trace", "dilate", "write"}) {
+    EXPECT_GE(report["seconds"][phase].get<double>(), 0.0) << phase;
+    EXPECT_LE(report["seconds"][phase].get<double>(), report["seconds"]["total"].get<double>()) << phase;
   }
+  EXPECT_GT(report["peak_memory_mib"].get<double>(), 1.0);
+  EXPECT_TRUE(report["warnings"].is_array());
 }
 
 TEST(BakeCli, FormatsAndDepths) {
