@@ -1,32 +1,17 @@
 #include "glint/render/env/environment.h"
 
 #include "glint/core/error.h"
+#include "glint/core/locations.h"
 #include "glint/image/envmap.h"
 #include "glint/render/gpu_mesh.h"
 
 #include <cmath>
-#include <cstdlib>
-
-#ifndef GLINT_DATA_DIR
-#define GLINT_DATA_DIR "data"
-#endif
 
 namespace glint::render::env {
 namespace fs = std::filesystem;
 
-fs::path dataDirectory() {
-  if (const char* dir = std::getenv("GLINT_DATA_DIR"); dir && *dir) return dir;
-  return GLINT_DATA_DIR;
-}
-
 fs::path findEnvironment(std::string_view name) {
-  const fs::path path = dataDirectory() / "env" / (std::string(name) + ".exr");
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    fail(ErrorKind::Input, "environment '{}' not found at {} (run scripts/setup to extract it, or set GLINT_DATA_DIR)",
-         name, path.string());
-  }
-  return path;
+  return findDataFile(fs::path("env") / (std::string(name) + ".exr"), fmt::format("environment '{}'", name));
 }
 
 Image loadEquirect(const fs::path& path) {

@@ -3,15 +3,12 @@
 #include "glint/render/shadows/world.h"
 
 #include "glint/core/error.h"
+#include "glint/core/locations.h"
 #include "glint/core/log.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-
-#ifndef GLINT_DATA_DIR
-#define GLINT_DATA_DIR "data"
-#endif
 
 namespace glint::render::shadows {
 
@@ -144,16 +141,10 @@ World makeBenchWorld(std::size_t triangles) {
   return w;
 }
 
-std::filesystem::path bunnyPath() {
-  const char* dir = std::getenv("GLINT_DATA_DIR");
-  return std::filesystem::path(dir && *dir ? dir : GLINT_DATA_DIR) / "bunny" / "bunny.ply";
-}
+std::filesystem::path bunnyPath() { return findDataFile("bunny/bunny.ply", "the Stanford bunny"); }
 
 Mesh loadBunny() {
   const auto path = bunnyPath();
-  if (!std::filesystem::exists(path))
-    fail(ErrorKind::Input, "the Stanford bunny is not at {} (run scripts/setup to fetch it, or set GLINT_DATA_DIR)",
-         path.string());
   const log::Level saved = log::level();
   log::setLevel(std::max(saved, log::Level::Error));  // "no normals; generating" is expected for the PLY
   Mesh mesh;

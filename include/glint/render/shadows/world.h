@@ -63,10 +63,10 @@ World makeBunnyWorld(const Mesh& bunny, bool openBase);
 /// About `triangles` triangles: a grid of UV spheres (casters) over a ground, for benchmarks.
 World makeBenchWorld(std::size_t triangles);
 
-/// $GLINT_DATA_DIR/bunny/bunny.ply, else <source>/data/bunny/bunny.ply (from scripts/setup).
+/// bunny/bunny.ply in glint's data (core/locations.h's findDataFile; scripts/setup fetches
+/// it). Error(Input) naming where it looked and `scripts/setup` when it is missing.
 std::filesystem::path bunnyPath();
-/// Loads the bunny from bunnyPath() with winding checked (outward). Error(Input) naming the
-/// path and `scripts/setup` when it is missing.
+/// Loads the bunny from bunnyPath() with winding checked (outward). Error(Input) as bunnyPath().
 Mesh loadBunny();
 
 }  // namespace glint::render::shadows
