@@ -47,16 +47,8 @@ struct Comparison {
   }
 };
 
-Camera demoCamera(bool inside = false) {
-  const float aspect = float(kSize.x) / float(kSize.y);
-  if (inside) return Camera::lookAt({-0.1f, 0.9f, -0.2f}, {2.6f, 0.2f, 1.6f}, {0, 1, 0}, 70.0f, aspect, 0.05f, 60.0f);
-  return Camera::lookAt({2.2f, 3.4f, 5.6f}, {0.9f, 0.8f, -0.4f}, {0, 1, 0}, 45.0f, aspect, 0.5f, 60.0f);
-}
-
-Camera bunnyCamera() {
-  return Camera::lookAt({0.9f, 1.5f, 2.7f}, {-0.35f, 0.25f, 0.1f}, {0, 1, 0}, 45.0f, float(kSize.x) / float(kSize.y),
-                        0.3f, 40.0f);
-}
+// The scenes' own cameras (render/shadows/world.h), at the test's aspect.
+Camera cameraFor(SceneView view, ivec2 size = kSize) { return sceneCamera(view, float(size.x) / float(size.y)); }
 
 /// The ray tracer's verdict per pixel (row 0 = top, like gl::read*), from a depth image.
 class Oracle {
@@ -204,20 +196,21 @@ TEST_F(GlTest, EveryStencilCountingMethodAgreesWithTheRayTracer) {
   const World overlapping = makeDemoWorld(6.0, true);
   for (const Case& c : cases) {
     const bool parity = c.options.counting == StencilCounting::InvertZPass;
-    expectAgreement(checkVolumes(parity ? single : overlapping, demoCamera(), c.options), c.name);
+    expectAgreement(checkVolumes(parity ? single : overlapping, cameraFor(SceneView::Demo), c.options), c.name);
   }
 }
 
 TEST_F(GlTest, InvertParityFailsWhereVolumesOverlap) {
   // The reason counting replaced INVERT: the sphere's shadow inside the slab's comes out lit.
-  const Comparison c = checkVolumes(makeDemoWorld(6.0, true), demoCamera(), {.counting = StencilCounting::InvertZPass});
+  const Comparison c =
+      checkVolumes(makeDemoWorld(6.0, true), cameraFor(SceneView::Demo), {.counting = StencilCounting::InvertZPass});
   EXPECT_GT(c.compared - c.agree, 100u) << "INVERT should get the overlap wrong: " << c.describe();
   std::printf("z-pass INVERT, overlapping volumes (expected to fail): %s\n", c.describe().c_str());
 }
 
 TEST_F(GlTest, CameraInsideAVolumeBreaksZPassButNotZFail) {
   const World world = makeDemoWorld(0.0, true);
-  const Camera inside = demoCamera(true);
+  const Camera inside = cameraFor(SceneView::Inside);
   expectAgreement(checkVolumes(world, inside, {.counting = StencilCounting::TwoSidedZFail}), "inside, z-fail");
   expectAgreement(checkVolumes(world, inside, {.counting = StencilCounting::ZFail, .depthClamp = true}),
                   "inside, z-fail, depth clamp");
@@ -228,22 +221,25 @@ TEST_F(GlTest, CameraInsideAVolumeBreaksZPassButNotZFail) {
 
 TEST_F(GlTest, OpenAndNonManifoldBunnySceneDoesNotLeak) {
   const World world = makeBunnyWorld(loadBunny(), true);
-  expectAgreement(checkVolumes(world, bunnyCamera(), {.counting = StencilCounting::TwoSidedZFail}),
+  expectAgreement(checkVolumes(world, cameraFor(SceneView::Bunny), {.counting = StencilCounting::TwoSidedZFail}),
                   "open bunny, two-sided casters, CPU");
-  expectAgreement(checkVolumes(world, bunnyCamera(),
+  expectAgreement(checkVolumes(world, cameraFor(SceneView::Bunny),
                                {.counting = StencilCounting::TwoSidedZFail, .construction = VolumeConstruction::Gpu}),
                   "open bunny, two-sided casters, GPU extrusion");
-  expectAgreement(checkVolumes(world, bunnyCamera(), {.counting = StencilCounting::ZPass}), "open bunny, z-pass");
+  expectAgreement(checkVolumes(world, cameraFor(SceneView::Bunny), {.counting = StencilCounting::ZPass}),
+                  "open bunny, z-pass");
   // The textbook silhouettes leak on the same meshes.
   const Comparison naive =
-      checkVolumes(world, bunnyCamera(), {.counting = StencilCounting::TwoSidedZFail, .casters = CasterMode::Naive});
+      checkVolumes(world, cameraFor(SceneView::Bunny),
+                   {.counting = StencilCounting::TwoSidedZFail, .casters = CasterMode::Naive});
   EXPECT_GT(naive.compared - naive.agree, 100u) << "naive silhouettes should leak: " << naive.describe();
   std::printf("open bunny, naive silhouettes (expected to leak): %s\n", naive.describe().c_str());
 }
 
 TEST_F(GlTest, ClosedBunnyAgrees) {
   const World world = makeBunnyWorld(loadBunny(), false);
-  expectAgreement(checkVolumes(world, bunnyCamera(), {.counting = StencilCounting::ZFail}), "closed bunny, z-fail");
+  expectAgreement(checkVolumes(world, cameraFor(SceneView::Bunny), {.counting = StencilCounting::ZFail}),
+                  "closed bunny, z-fail");
 }
 
 TEST_F(GlTest, ShadowMapsAgreeWithTheRayTracer) {
@@ -252,8 +248,8 @@ TEST_F(GlTest, ShadowMapsAgreeWithTheRayTracer) {
     const World world;
     Camera camera;
   };
-  const Case cases[] = {{"demo", makeDemoWorld(6.0, true), demoCamera()},
-                        {"open bunny", makeBunnyWorld(loadBunny(), true), bunnyCamera()}};
+  const Case cases[] = {{"demo", makeDemoWorld(6.0, true), cameraFor(SceneView::Demo)},
+                        {"open bunny", makeBunnyWorld(loadBunny(), true), cameraFor(SceneView::Bunny)}};
   for (const Case& c : cases) {
     for (int pcf : {0, 1}) {
       ShadowMap map(c.world, {.pcfRadius = pcf, .view = ShadowMapView::Visibility});
@@ -271,10 +267,10 @@ TEST_F(GlTest, PlanarShadowsAgreeOnTheGround) {
   const World world = makeDemoWorld(0.0, true);
   PlanarShadow planar(world, {.view = PlanarView::Visibility});
   gl::RenderTarget target(kSize);
-  planar.render(world, demoCamera(), target.target());
+  planar.render(world, cameraFor(SceneView::Demo), target.target());
   const auto gpu = shadowedFromVisibility(gl::readColor(target.framebuffer(), kSize));
   const Image depth = gl::readDepth(target.framebuffer(), kSize);
   // Only the ground receives planar shadows: compare ground pixels (object 0).
-  const Comparison c = compare(Oracle(world).classify(depth, demoCamera(), 0), gpu, kSize.x, kSize.y);
+  const Comparison c = compare(Oracle(world).classify(depth, cameraFor(SceneView::Demo), 0), gpu, kSize.x, kSize.y);
   expectAgreement(c, "planar shadows on the ground");
 }

@@ -26,7 +26,7 @@ public:
   void render(const FrameInput& frame) override {
     sh::animateDemoWorld(m_world, frame.time);
     m_world.lightPosition = m_light.position;
-    m_map.render(m_world, makeCamera(View::Demo, aspectOf(frame)), frame.target);
+    m_map.render(m_world, sh::sceneCamera(SceneView::Demo, aspectOf(frame)), frame.target);
   }
   std::vector<Option> options() override {
     std::vector<Option> out;
@@ -60,7 +60,7 @@ public:
   void render(const FrameInput& frame) override {
     sh::animateDemoWorld(m_world, frame.time);
     m_world.lightPosition = m_light.position;
-    m_planar.render(m_world, makeCamera(View::Demo, aspectOf(frame)), frame.target);
+    m_planar.render(m_world, sh::sceneCamera(SceneView::Demo, aspectOf(frame)), frame.target);
   }
   std::vector<Option> options() override {
     std::vector<Option> out;
