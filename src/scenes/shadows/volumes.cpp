@@ -51,8 +51,8 @@ public:
     m_light.add(out);
     auto& o = m_shadows.options();
     out.push_back({"quad-alpha", "opacity of the shadow quad (composite quad)", &o.quadAlpha, 0.0f, 1.0f});
-    out.push_back({"volume-keep", "fraction of the lit colour the re-drawn volume keeps (seed: 0.85, 0.5)",
-                   &o.volumeKeep, 0.0f, 1.0f});
+    out.push_back({"volume-opacity", "opacity of the black re-drawn volume (composite volume; seed: 0.85, 0.5)",
+                   &o.volumeOpacity, 0.0f, 1.0f});
     out.push_back({"offset-factor", "polygon offset slope factor of the volume passes", &o.offsetFactor, 0.0f, 8.0f});
     out.push_back({"offset-units", "polygon offset units of the volume passes", &o.offsetUnits, 0.0f, 64.0f});
     return out;
@@ -74,9 +74,9 @@ void add(Registry& registry, const char* name, const char* summary, std::vector<
   registry.add(std::move(desc));
 }
 
-constexpr StencilShadowOptions invert(ShadowComposite composite, float keep = 0.85f) {
+constexpr StencilShadowOptions invert(ShadowComposite composite, float opacity = 0.85f) {
   return {.counting = StencilCounting::InvertZPass, .casters = CasterMode::Closed, .composite = composite,
-          .volumeKeep = keep};
+          .volumeOpacity = opacity};
 }
 
 }  // namespace
@@ -95,10 +95,12 @@ void registerShadowVolumes(Registry& registry) {
           {"quad", "(i) a full-screen black quad, 55% opaque, alpha-blended where the stencil is set: simple, but "
                    "shadowed surfaces keep their diffuse and specular highlights under the tint.",
            invert(ShadowComposite::ShadowQuad), SceneView::Demo, false},
-          {"volume-85", "(ii) the volume drawn again into colour with alpha under the stencil test, keeping 85% of "
-                        "the lit colour: lighting still shows through (the seed's choice).",
+          {"volume-85", "(ii) the volume drawn again into colour under the stencil test, black and 85% opaque: "
+                        "shadows keep 15% of the lit colour, a trace of diffuse and specular still shows (the "
+                        "seed's choice, \"not too bad\").",
            invert(ShadowComposite::VolumeAlpha, 0.85f), SceneView::Demo, false},
-          {"volume-50", "(ii) the same at 50%: the shadow is much more noticeable.",
+          {"volume-50", "(ii) the same at 50% opacity: shadows keep half the lit colour, and the diffuse and "
+                        "specular light through them is much more noticeable.",
            invert(ShadowComposite::VolumeAlpha, 0.5f), SceneView::Demo, false},
           {"overlap", "INVERT counts parity: with the sphere inside the slab's volume and casting too, its shadow "
                       "inside the slab's shadow is crossed twice and comes out lit — why counting replaced it.",
