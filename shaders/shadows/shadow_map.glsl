@@ -20,6 +20,7 @@
 layout(binding = 0) uniform sampler2DShadow uShadowMap;
 uniform mat4 uLightViewProj;  // world → the light's clip space
 uniform int uPcfRadius;       // 0: one (hardware 2×2) tap; r: (2r+1)² taps
+uniform bool uReceiverPlane;  // false: every tap compares the pixel's own depth (acne, for the lesson)
 
 // d(depth)/d(u, v) of the receiver's plane from the screen derivatives of (u, v, depth):
 // the 2×2 system [dx.xy; dy.xy] · g = (dx.z, dy.z). Zero where the plane is seen edge-on
@@ -35,6 +36,7 @@ float shadowMapVisibility(vec3 p) {
   vec3 coord = clip.xyz / clip.w * 0.5 + 0.5;
   // Derivatives first: they need all four pixels of the 2×2 quad in the same flow.
   vec2 gradient = receiverPlaneDepthGradient(dFdx(coord), dFdy(coord));
+  if (!uReceiverPlane) gradient = vec2(0.0);
   // Behind the light or outside its frustum: the map knows nothing there; call it lit.
   if (clip.w <= 0.0) return 1.0;
   if (any(lessThan(coord, vec3(0.0))) || any(greaterThan(coord, vec3(1.0)))) return 1.0;

@@ -36,6 +36,8 @@ public:
     out.push_back({"slope-bias", "slope-scaled depth bias (polygon offset factor) of the map pass", &o.offsetFactor, 0.0f, 8.0f});
     out.push_back({"constant-bias", "constant depth bias (polygon offset units) of the map pass", &o.offsetUnits, 0.0f,
                    2000000.0f});
+    out.push_back({"receiver-plane", "PCF taps compare with the receiver's plane at each tap (0: acne as the radius "
+                   "grows)", &o.receiverPlaneBias});
     return out;
   }
   std::string notes() const override { return m_map.describe(); }

@@ -47,6 +47,8 @@ struct ShadowMapOptions {
   bool hardwareFilter = true;   ///< GL_LINEAR comparison (2×2 PCF per tap) vs GL_NEAREST
   float offsetFactor = 2.0f;    ///< slope-scaled bias (glPolygonOffset factor)
   float offsetUnits = 2.0f;     ///< constant bias in depth steps (glPolygonOffset units)
+  bool receiverPlaneBias = true;  ///< PCF taps compare with the receiver's plane at the tap (false: with
+                                  ///< the pixel's own depth, which shows acne as the radius grows)
   ShadowMapView view = ShadowMapView::WithShadows;
 };
 
