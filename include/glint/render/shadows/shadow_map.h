@@ -5,7 +5,7 @@
 // Contents
 //   ShadowMapView      the lecture's set of pictures: without/with shadows, light's view,
 //                      light's view depth, projected shadow map; and a visibility mask
-//   ShadowMapOptions   map size, PCF, hardware comparison filter, polygon-offset bias
+//   ShadowMapOptions   map size, PCF, hardware comparison filter, polygon-offset and receiver-plane bias
 //   ShadowMap          the technique: depth from the light via an FBO, then the scene
 //
 // How it works: the scene's depth is drawn from the light into a depth texture (an
