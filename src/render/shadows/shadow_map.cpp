@@ -93,6 +93,7 @@ void ShadowMap::render(const World& world, const Camera& camera, const gl::Targe
       const gl::Program& program = projected ? m_projectedProgram : m_shadowedProgram;
       program.set("uLightViewProj", m_light.viewProjection());
       program.set("uPcfRadius", m_options.pcfRadius);
+      program.set("uReceiverPlane", m_options.receiverPlaneBias);
       program.set("uLightNearFar", vec2(m_lightNear, m_lightFar));
       m_depth.bind(0);
       m_compare.bind(0);
@@ -111,9 +112,10 @@ void ShadowMap::render(const World& world, const Camera& camera, const gl::Targe
 std::string ShadowMap::describe() const {
   const int taps = (2 * m_options.pcfRadius + 1) * (2 * m_options.pcfRadius + 1);
   return fmt::format("shadow map {0}x{0} (DEPTH_COMPONENT24), {1} tap{2} of {3} comparison, bias: slope factor {4}, "
-                     "units {5}; light frustum near {6:.2f}, far {7:.2f}",
+                     "units {5}{6}; light frustum near {7:.2f}, far {8:.2f}",
                      m_options.size, taps, taps > 1 ? "s" : "", m_options.hardwareFilter ? "2×2 linear" : "nearest",
-                     m_options.offsetFactor, m_options.offsetUnits, m_lightNear, m_lightFar);
+                     m_options.offsetFactor, m_options.offsetUnits,
+                     taps > 1 && m_options.receiverPlaneBias ? ", receiver plane per tap" : "", m_lightNear, m_lightFar);
 }
 
 }  // namespace glint::render::shadows

@@ -213,7 +213,7 @@ void StencilShadows::composite(const World& world, const Camera& camera) const {
                     .blend = alpha}
           .apply();
       const gl::Program& p = m_options.construction == VolumeConstruction::Gpu ? m_extrudeProgram : m_volumeProgram;
-      p.set("uColor", vec4(0.0f, 0.0f, 0.0f, 1.0f - m_options.volumeKeep));
+      p.set("uColor", vec4(0.0f, 0.0f, 0.0f, m_options.volumeOpacity));
       drawVolumes(world, camera, true);
       break;
     }

@@ -141,6 +141,17 @@ World makeBenchWorld(std::size_t triangles) {
   return w;
 }
 
+Camera sceneCamera(SceneView view, float aspect) {
+  switch (view) {
+    case SceneView::Demo: return Camera::lookAt({2.2f, 3.4f, 5.6f}, {0.9f, 0.8f, -0.4f}, {0, 1, 0}, 45.0f, aspect, 0.5f, 60.0f);
+    case SceneView::Inside:
+      return Camera::lookAt({-0.1f, 0.9f, -0.2f}, {2.6f, 0.2f, 1.6f}, {0, 1, 0}, 70.0f, aspect, 0.05f, 60.0f);
+    case SceneView::Bunny:
+      return Camera::lookAt({0.9f, 1.5f, 2.7f}, {-0.35f, 0.25f, 0.1f}, {0, 1, 0}, 45.0f, aspect, 0.3f, 40.0f);
+  }
+  return {};
+}
+
 std::filesystem::path bunnyPath() { return findDataFile("bunny/bunny.ply", "the Stanford bunny"); }
 
 Mesh loadBunny() {
