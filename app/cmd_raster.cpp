@@ -127,7 +127,7 @@ Frame meshFrame(const Mesh& mesh, ivec2 size, vec3 camera, bool cull) {
                                  .stencilTest = true,  // counts depth-test passes: how often each pixel was overwritten
                                  .stencilFront = {.dppass = raster::StencilOp::Incr},
                                  .stencilBack = {.dppass = raster::StencilOp::Incr},
-                                 .cullFace = cull},
+                                 .cull = cull},
           .indices = mesh.indices};
   job.vertices.reserve(mesh.vertexCount());
   for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {

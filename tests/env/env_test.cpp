@@ -178,7 +178,7 @@ ReflectionCheck checkMirrorBall(const renv::Reflector& mirror, const gl::Texture
   render::GpuMesh ball(makeUvSphere(1.0f, 128, 64));
   gl::RenderTarget target(size);
   target.target().bind();
-  render::PipelineState{}.apply();
+  render::PipelineState{.depthTest = true}.apply();
   glClearColor(0, 0, 0, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   mirror.draw(ball, mat4(1.0f), camera, environment, sphereFrame);

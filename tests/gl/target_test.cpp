@@ -31,7 +31,7 @@ Image draw(const gl::RenderTarget& rt, const std::vector<std::pair<gl::Target, r
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, vec4(0.1f, 0.2f, 0.3f, 1.0f));
   for (const auto& [target, camera] : parts) {
     target.bind();
-    render::PipelineState{.cull = true}.apply();
+    render::PipelineState{.depthTest = true, .cull = true}.apply();
     render::RasterTriangles(sphereIn(camera)).draw();
   }
   rt.target().bind();

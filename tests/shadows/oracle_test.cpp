@@ -327,7 +327,7 @@ GalleryFrame renderGallery(const std::string& name, SceneView view, const std::v
 Image renderUnshadowed(const World& world, const Camera& camera, ivec2 size, LightTerms terms = LightTerms::Full) {
   gl::RenderTarget target(size);
   target.target().bind();
-  render::PipelineState{}.apply();
+  render::PipelineState{.depthTest = true}.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   WorldRenderer(world).draw(world, camera, terms);
   return gl::readColor(target.framebuffer(), size);

@@ -61,7 +61,7 @@ void NormalMapping::draw(const GpuMesh& mesh, const mat4& model, const Camera& c
   m_program.set("uSpecular", material.specular);
   m_program.set("uShininess", material.shininess);
 
-  PipelineState{.cull = true}.apply();
+  PipelineState{.depthTest = true, .cull = true}.apply();
   if (usesMap) {
     gl::Sampler::unbind(0);
     normalMap->bind(0);

@@ -55,7 +55,7 @@ void ShadowMap::renderMap(const World& world) {
   m_light = lightCamera(world, m_focus);
   m_fbo.bind();
   glViewport(0, 0, m_options.size, m_options.size);
-  PipelineState{.colorMask = {false, false, false, false},
+  PipelineState{.depthTest = true, .colorMask = {false, false, false, false},
                 .polygonOffset = m_options.offsetFactor != 0.0f || m_options.offsetUnits != 0.0f,
                 .offsetFactor = m_options.offsetFactor,
                 .offsetUnits = m_options.offsetUnits}
@@ -67,7 +67,7 @@ void ShadowMap::renderMap(const World& world) {
 void ShadowMap::render(const World& world, const Camera& camera, const gl::Target& target) {
   renderMap(world);
   target.bind();
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.52f, 0.6f, 0.7f, 1.0f));
   const float aspect = float(target.size.x) / float(target.size.y);
   switch (m_options.view) {
@@ -106,7 +106,7 @@ void ShadowMap::render(const World& world, const Camera& camera, const gl::Targe
       break;
     }
   }
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
 }
 
 std::string ShadowMap::describe() const {

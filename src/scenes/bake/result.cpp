@@ -56,7 +56,7 @@ public:
 
   void render(const FrameInput& frame) override {
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.05f, 0.05f, 0.06f, 1.0f));
     const int gap = std::max(1, frame.target.size.x / 320);
     // Four panels in reading order: low poly, low poly + map / high poly, the map.
@@ -82,7 +82,7 @@ public:
     panel(1, 1);
     m_view.draw(m_map);
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
   }
 
 private:

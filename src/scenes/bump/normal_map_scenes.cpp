@@ -106,7 +106,7 @@ public:
 
   void render(const FrameInput& frame) override {
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.05f, 0.06f, 0.08f, 1.0f));
     const ivec2 size = frame.target.size;
     if (m_variant.model == Model::Maps) {

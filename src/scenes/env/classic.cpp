@@ -43,7 +43,7 @@ public:
 
   void render(const FrameInput& frame) override {
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
     const render::Camera camera = viewCamera(m_variant.azimuth, frame.target.size);
     m_classic.drawSkybox(m_cube, camera);

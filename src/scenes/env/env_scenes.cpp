@@ -29,7 +29,7 @@ enum class Mode { Cube, Sphere, Compare };
 
 void clearTarget(const FrameInput& frame) {
   frame.target.bind();
-  render::PipelineState{}.apply();
+  render::PipelineState{.depthTest = true}.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
 }
 
@@ -99,7 +99,7 @@ private:
     const render::Camera camera = viewCamera(m_view.azimuth, kQualitySize);
     const auto ball = [&](Lookup lookup, const gl::Texture& environment) {
       target.target().bind();
-      render::PipelineState{}.apply();
+      render::PipelineState{.depthTest = true}.apply();
       render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 0.0f));
       reflector(lookup).draw(m_meshes[0], m_models[0], camera, environment, sphereMapFrame({1, 1}));
       return gl::readColor(target.framebuffer(), kQualitySize);
