@@ -27,6 +27,7 @@ using Run = glint::testing::CliRun;
 using glint::testing::fileCount;
 using glint::testing::oneLine;
 using glint::testing::runGlint;
+using glint::testing::runShell;
 
 
 fs::path dir(const char* name) { return glint::testing::freshDir("bake-cli", name); }
@@ -209,6 +210,30 @@ TEST(BakeCli, WarningsStillBake) {
   }
 }
 
+TEST(BakeCli, ProgressBarOnATerminalSilenceWithQuiet) {
+  // The shared tool plumbing (core/tool.h): a progress bar when stderr is a terminal (a
+  // pseudo-terminal from util-linux's `script` here), nothing at all with -q.
+  const auto d = dir("progress");
+  writeSpheres(d);
+  const std::string bake = std::string(GLINT_EXE) + " bake " + q(d / "low.obj") + " " + q(d / "high.obj") +
+                           " --size 128x128 -o ";
+  const auto onTerminal = [&](const std::string& args) {
+    return runShell("script -qec " + q(bake + args) + " /dev/null");
+  };
+  const auto loud = onTerminal(q(d / "loud.png"));
+  ASSERT_EQ(loud.status, 0) << loud.output;
+  EXPECT_NE(loud.output.find("bake ["), std::string::npos) << loud.output;
+  EXPECT_NE(loud.output.find("texels baked"), std::string::npos) << loud.output;
+  const auto quiet = onTerminal(q(d / "quiet.png") + " -q");
+  ASSERT_EQ(quiet.status, 0) << quiet.output;
+  EXPECT_EQ(quiet.output, "");
+  // Not a terminal (a pipe, as in CI logs): no bar, just the summary line.
+  const auto piped = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " --size 128x128 -o " +
+                              q(d / "piped.png"));
+  ASSERT_EQ(piped.status, 0) << piped.output;
+  EXPECT_EQ(piped.output.find("bake ["), std::string::npos) << piped.output;
+}
+
 TEST(BakeCli, CtrlCLeavesNoPartialFile) {
   const auto d = dir("interrupt");
   writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
@@ -228,6 +253,21 @@ TEST(BakeCli, CtrlCLeavesNoPartialFile) {
   kill(pid, SIGINT);
   int status = 0;
   waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_EQ(fileCount(out), 0u);
+
+  // SIGTERM (a scheduler cancelling the job) is handled the same way.
+  const pid_t term = fork();
+  ASSERT_GE(term, 0);
+  if (term == 0) {
+    execl(GLINT_EXE, GLINT_EXE, "-q", "bake", lowPath.c_str(), highPath.c_str(), "-o", outPath.c_str(), "--size",
+          "2048x2048", "--samples", "64", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  kill(term, SIGTERM);
+  waitpid(term, &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 130);
   EXPECT_EQ(fileCount(out), 0u);
