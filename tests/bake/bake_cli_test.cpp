@@ -234,7 +234,7 @@ TEST(BakeCli, ProgressBarOnATerminalSilenceWithQuiet) {
   EXPECT_EQ(piped.output.find("bake ["), std::string::npos) << piped.output;
 }
 
-TEST(BakeCli, CtrlCLeavesNoPartialFile) {
+TEST(BakeCli, CtrlCOrSigtermLeavesNoPartialFile) {
   const auto d = dir("interrupt");
   writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
   writeObj(makeUvSphere(1.0f, 128, 64), d / "high.obj");
@@ -242,33 +242,21 @@ TEST(BakeCli, CtrlCLeavesNoPartialFile) {
   fs::create_directories(out);
   const std::string lowPath = (d / "low.obj").string(), highPath = (d / "high.obj").string(),
                     outPath = (out / "n.png").string();
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    execl(GLINT_EXE, GLINT_EXE, "-q", "bake", lowPath.c_str(), highPath.c_str(), "-o", outPath.c_str(), "--size",
-          "2048x2048", "--samples", "64", static_cast<char*>(nullptr));
-    _exit(127);
+  // Ctrl-C (SIGINT) and a scheduler cancelling the job (SIGTERM) are handled alike.
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      execl(GLINT_EXE, GLINT_EXE, "-q", "bake", lowPath.c_str(), highPath.c_str(), "-o", outPath.c_str(), "--size",
+            "2048x2048", "--samples", "64", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // loading done, tracing
+    kill(pid, signal);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << "signal " << signal;
+    EXPECT_EQ(WEXITSTATUS(status), 130) << "signal " << signal;
+    EXPECT_EQ(fileCount(out), 0u) << "signal " << signal;
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // loading done, tracing
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
-  EXPECT_EQ(fileCount(out), 0u);
-
-  // SIGTERM (a scheduler cancelling the job) is handled the same way.
-  const pid_t term = fork();
-  ASSERT_GE(term, 0);
-  if (term == 0) {
-    execl(GLINT_EXE, GLINT_EXE, "-q", "bake", lowPath.c_str(), highPath.c_str(), "-o", outPath.c_str(), "--size",
-          "2048x2048", "--samples", "64", static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
-  kill(term, SIGTERM);
-  waitpid(term, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
-  EXPECT_EQ(fileCount(out), 0u);
 }
