@@ -191,10 +191,13 @@ private:
   void handleKeys() {
     std::vector<int> keys;
     keys.swap(m_keyPresses);
-    const bool imguiWantsKeys = ImGui::GetIO().WantCaptureKeyboard;
+    // Keys go to the panel only while one of its text fields is edited (Ctrl+click on a
+    // slider). Not io.WantCaptureKeyboard: it also holds while the panel is being dragged,
+    // and it dates from the last frame, which a key pressed right after a drag outruns.
+    const bool typing = ImGui::GetIO().WantTextInput;
     for (const int key : keys) {
       if (key == GLFW_KEY_ESCAPE) m_window.requestClose();
-      if (imguiWantsKeys) continue;
+      if (typing) continue;
       switch (key) {
         case GLFW_KEY_RIGHT: step(+1, false); break;
         case GLFW_KEY_LEFT: step(-1, false); break;
