@@ -30,9 +30,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <optional>
-#include <vector>
 
 namespace glint::app {
 namespace fs = std::filesystem;
@@ -52,6 +52,20 @@ enum class Drag {
   None,   ///< no drag, or one that belongs to the panel
   Orbit,  ///< left button: turn around the camera's target
   Pan,    ///< right or middle button: move eye and target in the view plane
+};
+
+/// One input event, as GLFW reported it.
+struct InputEvent {
+  enum class Kind {
+    Key,     ///< a key pressed (code: GLFW_KEY_*)
+    Button,  ///< a mouse button pressed or released (code: GLFW_MOUSE_BUTTON_*, action)
+    Move,    ///< the pointer moved to `value` (window units)
+    Wheel,   ///< the wheel turned by value.y notches (positive: away from the user)
+  };
+  Kind kind;
+  int code = 0;
+  int action = 0;
+  vec2 value{0.0f};
 };
 
 constexpr float kOrbitPerHeight = kPi;  // radians of turn for a drag over the window's height
@@ -106,11 +120,12 @@ public:
       const double dt = std::chrono::duration<double>(now - last).count();
       last = now;
       if (!m_paused) m_time += dt;
-      handleKeys();
+      handleInput();
       checkHotReload();
       drawFrame(dt);
       ++frame;
-      for (; m_shotsRequested > 0; --m_shotsRequested) saveShot();
+      if (m_shotRequested) saveShot();
+      m_shotRequested = false;
       if (!m_args.screenshot.empty() && frame >= std::max(m_args.frames, 2)) {
         const ivec2 size = m_window.framebufferSize();
         saveImage(gl::readColor(gl::Framebuffer::defaultFramebuffer(), size), m_args.screenshot);
@@ -142,6 +157,7 @@ private:
     }
     if (index != m_current) m_time = ref.scene->defaultTime;
     if (ref.scene != m_variants[m_current].scene) resetView();  // another scene, another world: its own camera
+    m_defined.reset();  // known again once the new scene has drawn a frame
     m_current = index;
     updateTitle();
   }
@@ -164,53 +180,65 @@ private:
   }
 
   // -- Input ---------------------------------------------------------------------------
-  // Keys and the mouse arrive through GLFW's callbacks, in the order they happened: a key
-  // tapped between two frames, or a press, drag and release between two frames (a slow
-  // frame, or synthetic input), is seen whole. Polling the state once a frame would lose
-  // both.
+  // Keys and the mouse arrive through GLFW's callbacks and are handled in the order they
+  // happened: a key tapped between two frames, or a press, drag and release between two
+  // frames (a slow frame, or synthetic input), is seen whole, and "C, then drag" never
+  // becomes "drag, then C". Polling the state once a frame would lose or reorder them.
 
   static Viewer* self(GLFWwindow* window) { return static_cast<Viewer*>(glfwGetWindowUserPointer(window)); }
 
   void installInputCallbacks() {
     GLFWwindow* w = m_window.handle();
     glfwSetWindowUserPointer(w, this);
+    using Kind = InputEvent::Kind;
     glfwSetKeyCallback(w, [](GLFWwindow* window, int key, int, int action, int) {
-      if (Viewer* v = self(window); v && action == GLFW_PRESS) v->m_keyPresses.push_back(key);
+      if (Viewer* v = self(window); v && action == GLFW_PRESS) v->m_input.push_back({.kind = Kind::Key, .code = key});
     });
     glfwSetMouseButtonCallback(w, [](GLFWwindow* window, int button, int action, int) {
-      if (Viewer* v = self(window)) v->mouseButton(button, action);
+      if (Viewer* v = self(window)) v->m_input.push_back({.kind = Kind::Button, .code = button, .action = action});
     });
     glfwSetCursorPosCallback(w, [](GLFWwindow* window, double x, double y) {
-      if (Viewer* v = self(window)) v->mouseMoved(vec2(float(x), float(y)));
+      if (Viewer* v = self(window)) v->m_input.push_back({.kind = Kind::Move, .value = vec2(float(x), float(y))});
     });
     glfwSetScrollCallback(w, [](GLFWwindow* window, double, double y) {
-      if (Viewer* v = self(window)) v->mouseWheel(float(y));
+      if (Viewer* v = self(window)) v->m_input.push_back({.kind = Kind::Wheel, .value = vec2(0.0f, float(y))});
     });
   }
 
-  void handleKeys() {
-    std::vector<int> keys;
-    keys.swap(m_keyPresses);
+  /// Handles the events since the last frame, in order. A screenshot (F12) ends the batch:
+  /// the frame drawn next shows exactly the events before it; the rest wait a frame.
+  void handleInput() {
+    while (!m_input.empty()) {
+      const InputEvent e = m_input.front();
+      m_input.pop_front();
+      switch (e.kind) {
+        case InputEvent::Kind::Key: keyPressed(e.code); break;
+        case InputEvent::Kind::Button: mouseButton(e.code, e.action); break;
+        case InputEvent::Kind::Move: mouseMoved(e.value); break;
+        case InputEvent::Kind::Wheel: mouseWheel(e.value.y); break;
+      }
+      if (m_shotRequested) return;
+    }
+  }
+
+  void keyPressed(int key) {
+    if (key == GLFW_KEY_ESCAPE) m_window.requestClose();
     // Keys go to the panel only while one of its text fields is edited (Ctrl+click on a
     // slider). Not io.WantCaptureKeyboard: it also holds while the panel is being dragged,
     // and it dates from the last frame, which a key pressed right after a drag outruns.
-    const bool typing = ImGui::GetIO().WantTextInput;
-    for (const int key : keys) {
-      if (key == GLFW_KEY_ESCAPE) m_window.requestClose();
-      if (typing) continue;
-      switch (key) {
-        case GLFW_KEY_RIGHT: step(+1, false); break;
-        case GLFW_KEY_LEFT: step(-1, false); break;
-        case GLFW_KEY_DOWN: step(+1, true); break;
-        case GLFW_KEY_UP: step(-1, true); break;
-        case GLFW_KEY_SPACE: m_paused = !m_paused; break;
-        case GLFW_KEY_R: load(m_current); break;
-        case GLFW_KEY_TAB: m_showPanel = !m_showPanel; break;
-        case GLFW_KEY_C:
-        case GLFW_KEY_HOME: resetView(); break;
-        case GLFW_KEY_F12: ++m_shotsRequested; break;
-        default: break;
-      }
+    if (ImGui::GetIO().WantTextInput) return;
+    switch (key) {
+      case GLFW_KEY_RIGHT: step(+1, false); break;
+      case GLFW_KEY_LEFT: step(-1, false); break;
+      case GLFW_KEY_DOWN: step(+1, true); break;
+      case GLFW_KEY_UP: step(-1, true); break;
+      case GLFW_KEY_SPACE: m_paused = !m_paused; break;
+      case GLFW_KEY_R: load(m_current); break;
+      case GLFW_KEY_TAB: m_showPanel = !m_showPanel; break;
+      case GLFW_KEY_C:
+      case GLFW_KEY_HOME: resetView(); break;
+      case GLFW_KEY_F12: m_shotRequested = true; break;
+      default: break;
     }
   }
 
@@ -367,8 +395,9 @@ private:
     } else if (m_view.isIdentity()) {
       ImGui::TextWrapped("mouse: left drag orbit, right/middle drag pan, wheel zoom");
     } else {
-      ImGui::TextWrapped("view moved: yaw %.0f°, pitch %.0f°, zoom %.2f  (C or Home: the scene's camera)",
-                         double(glm::degrees(m_view.yaw)), double(glm::degrees(m_view.pitch)), double(m_view.zoom));
+      ImGui::TextWrapped("view moved: yaw %.0f°, pitch %.0f°, zoom %.2f%s  (C or Home: the scene's camera)",
+                         double(glm::degrees(m_view.yaw)), double(glm::degrees(m_view.pitch)), double(m_view.zoom),
+                         m_view.pan == vec3(0.0f) ? "" : ", panned");
     }
     ImGui::TextWrapped("arrows: variant/scene   space: pause   R: reload   F12: screenshot   Tab: panel   Esc: quit");
     ImGui::PopStyleColor();
@@ -390,8 +419,8 @@ private:
   double m_frameMs = 16.0;
   bool m_paused = false;
   bool m_showPanel = true;
-  std::vector<int> m_keyPresses;  // keys pressed since the last frame, in order
-  int m_shotsRequested = 0;
+  std::deque<InputEvent> m_input;  // events since the last frame, in order
+  bool m_shotRequested = false;
   // The camera: the user's change to it, and the camera the scene defined last frame
   // (empty for a 2D view).
   render::OrbitControl m_view;

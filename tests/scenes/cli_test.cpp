@@ -155,6 +155,14 @@ TEST(Cli, ViewerOpensAWindowWithTheSceneAndThePanel) {
   EXPECT_GT(dark, 5000) << "no panel background found";
 }
 
+TEST(Cli, ViewerShotDirMustBeADirectory) {
+  // Checked before any window opens: no display needed.
+  const auto r = runGlint("view basics/triangle --shot-dir /nonexistent-dir");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_TRUE(oneLine(r.output)) << r.output;
+  EXPECT_NE(r.output.find("--shot-dir"), std::string::npos) << r.output;
+}
+
 // The mouse on a real X server: tests/scenes/viewer_input.sh drives `glint view` with
 // xdotool (XTEST: the events a user's mouse makes) and saves F12 screenshots; see the
 // script for the steps. Compared right of x = 520, where the panel never is (it starts at

@@ -16,10 +16,13 @@
 #   8  after Home (the defined camera again)
 # OUT_DIR/2d: basics/triangle/color (NDC geometry, no camera)
 #   1  the first frame  2  the picture  3  after left and right drags and the wheel over it
-set -euo pipefail
+set -Eeuo pipefail
 glint="$1"
 out="$2"
 wid=""
+viewer=""
+# On failure: what the viewer said, and no viewer left behind (xvfb-run then stops the server).
+trap 'cat "$out"/*/viewer.log >&2 2>/dev/null || true; [[ -n "$viewer" ]] && kill "$viewer" 2>/dev/null || true' ERR
 
 # shot DIR N: presses F12 and waits until the viewer has written DIR/glint-view-N.png
 # (written atomically: once it exists it is whole).
