@@ -1,8 +1,15 @@
 // glint view — the interactive viewer: a GLFW window, a Dear ImGui panel, every scene.
 //
 // Keys: ←/→ previous/next variant, ↑/↓ previous/next scene, Space pause time,
-// R reload shaders, Tab hide/show the panel, Esc quit. Run from a source checkout,
-// shaders are re-read from shaders/ whenever a file changes (hot reload).
+// R reload shaders, F12 screenshot, Tab hide/show the panel, Esc quit. Run from a source
+// checkout, shaders are re-read from shaders/ whenever a file changes (hot reload).
+//
+// The mouse moves the camera of every 3D scene (the scenes pass their camera through
+// FrameInput::camera): left drag orbits around the camera's target, right or middle drag
+// pans, the wheel zooms, C or Home returns to the scene's own camera. The moved view
+// stays while stepping through the variants of one scene (they are made to be compared
+// from one viewpoint) and goes back to the defined camera on another scene. 2D views
+// (images, NDC geometry) ask for no camera, and the mouse leaves them alone.
 #include "common.h"
 
 #include "glint/core/error.h"
@@ -18,10 +25,14 @@
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <fmt/format.h>
 #include <imgui.h>
 
 #include <chrono>
+#include <cmath>
+#include <deque>
 #include <filesystem>
+#include <optional>
 
 namespace glint::app {
 namespace fs = std::filesystem;
@@ -32,8 +43,33 @@ struct ViewArgs {
   std::string size = "1280x800";
   std::string screenshot;
   int frames = 0;
+  std::string shotDir = ".";
   std::string shaderDir;
 };
+
+/// What a mouse drag over the scene does.
+enum class Drag {
+  None,   ///< no drag, or one that belongs to the panel
+  Orbit,  ///< left button: turn around the camera's target
+  Pan,    ///< right or middle button: move eye and target in the view plane
+};
+
+/// One input event, as GLFW reported it.
+struct InputEvent {
+  enum class Kind {
+    Key,     ///< a key pressed (code: GLFW_KEY_*)
+    Button,  ///< a mouse button pressed or released (code: GLFW_MOUSE_BUTTON_*, action)
+    Move,    ///< the pointer moved to `value` (window units)
+    Wheel,   ///< the wheel turned by value.y notches (positive: away from the user)
+  };
+  Kind kind;
+  int code = 0;
+  int action = 0;
+  vec2 value{0.0f};
+};
+
+constexpr float kOrbitPerHeight = kPi;  // radians of turn for a drag over the window's height
+constexpr float kZoomPerNotch = 0.9f;   // distance factor per wheel notch towards the scene
 
 // Newest modification time of any file under dir (0 when dir is not set).
 fs::file_time_type newestShaderTime(const fs::path& dir) {
@@ -53,6 +89,7 @@ public:
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini litter in the working directory
     ImGui::StyleColorsDark();
+    installInputCallbacks();  // before ImGui's backend, which then chains to them
     ImGui_ImplGlfw_InitForOpenGL(m_window.handle(), true);
     ImGui_ImplOpenGL3_Init("#version 450");
     const auto& all = m_registry.allVariants();
@@ -71,6 +108,7 @@ public:
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
+    glfwSetWindowUserPointer(m_window.handle(), nullptr);
   }
 
   int run() {
@@ -82,10 +120,12 @@ public:
       const double dt = std::chrono::duration<double>(now - last).count();
       last = now;
       if (!m_paused) m_time += dt;
-      handleKeys();
+      handleInput();
       checkHotReload();
       drawFrame(dt);
       ++frame;
+      if (m_shotRequested) saveShot();
+      m_shotRequested = false;
       if (!m_args.screenshot.empty() && frame >= std::max(m_args.frames, 2)) {
         const ivec2 size = m_window.framebufferSize();
         saveImage(gl::readColor(gl::Framebuffer::defaultFramebuffer(), size), m_args.screenshot);
@@ -116,6 +156,8 @@ private:
       if (index != m_current) m_scene.reset();
     }
     if (index != m_current) m_time = ref.scene->defaultTime;
+    if (ref.scene != m_variants[m_current].scene) resetView();  // another scene, another world: its own camera
+    m_defined.reset();  // known again once the new scene has drawn a frame
     m_current = index;
     updateTitle();
   }
@@ -137,24 +179,128 @@ private:
     load(i);
   }
 
-  bool pressed(int key) {
-    const bool down = glfwGetKey(m_window.handle(), key) == GLFW_PRESS;
-    const bool was = m_keys[key];
-    m_keys[key] = down;
-    return down && !was;
+  // -- Input ---------------------------------------------------------------------------
+  // Keys and the mouse arrive through GLFW's callbacks and are handled in the order they
+  // happened: a key tapped between two frames, or a press, drag and release between two
+  // frames (a slow frame, or synthetic input), is seen whole, and "C, then drag" never
+  // becomes "drag, then C". Polling the state once a frame would lose or reorder them.
+
+  static Viewer* self(GLFWwindow* window) { return static_cast<Viewer*>(glfwGetWindowUserPointer(window)); }
+
+  void installInputCallbacks() {
+    GLFWwindow* w = m_window.handle();
+    glfwSetWindowUserPointer(w, this);
+    using Kind = InputEvent::Kind;
+    glfwSetKeyCallback(w, [](GLFWwindow* window, int key, int, int action, int) {
+      if (Viewer* v = self(window); v && action == GLFW_PRESS) v->m_input.push_back({.kind = Kind::Key, .code = key});
+    });
+    glfwSetMouseButtonCallback(w, [](GLFWwindow* window, int button, int action, int) {
+      if (Viewer* v = self(window)) v->m_input.push_back({.kind = Kind::Button, .code = button, .action = action});
+    });
+    glfwSetCursorPosCallback(w, [](GLFWwindow* window, double x, double y) {
+      if (Viewer* v = self(window)) v->m_input.push_back({.kind = Kind::Move, .value = vec2(float(x), float(y))});
+    });
+    glfwSetScrollCallback(w, [](GLFWwindow* window, double, double y) {
+      if (Viewer* v = self(window)) v->m_input.push_back({.kind = Kind::Wheel, .value = vec2(0.0f, float(y))});
+    });
   }
 
-  void handleKeys() {
-    const bool imguiWantsKeys = ImGui::GetIO().WantCaptureKeyboard;
-    if (pressed(GLFW_KEY_ESCAPE)) m_window.requestClose();
-    if (imguiWantsKeys) return;
-    if (pressed(GLFW_KEY_RIGHT)) step(+1, false);
-    if (pressed(GLFW_KEY_LEFT)) step(-1, false);
-    if (pressed(GLFW_KEY_DOWN)) step(+1, true);
-    if (pressed(GLFW_KEY_UP)) step(-1, true);
-    if (pressed(GLFW_KEY_SPACE)) m_paused = !m_paused;
-    if (pressed(GLFW_KEY_R)) load(m_current);
-    if (pressed(GLFW_KEY_TAB)) m_showPanel = !m_showPanel;
+  /// Handles the events since the last frame, in order. A screenshot (F12) ends the batch:
+  /// the frame drawn next shows exactly the events before it; the rest wait a frame.
+  void handleInput() {
+    while (!m_input.empty()) {
+      const InputEvent e = m_input.front();
+      m_input.pop_front();
+      switch (e.kind) {
+        case InputEvent::Kind::Key: keyPressed(e.code); break;
+        case InputEvent::Kind::Button: mouseButton(e.code, e.action); break;
+        case InputEvent::Kind::Move: mouseMoved(e.value); break;
+        case InputEvent::Kind::Wheel: mouseWheel(e.value.y); break;
+      }
+      if (m_shotRequested) return;
+    }
+  }
+
+  void keyPressed(int key) {
+    if (key == GLFW_KEY_ESCAPE) m_window.requestClose();
+    // Keys go to the panel only while one of its text fields is edited (Ctrl+click on a
+    // slider). Not io.WantCaptureKeyboard: it also holds while the panel is being dragged,
+    // and it dates from the last frame, which a key pressed right after a drag outruns.
+    if (ImGui::GetIO().WantTextInput) return;
+    switch (key) {
+      case GLFW_KEY_RIGHT: step(+1, false); break;
+      case GLFW_KEY_LEFT: step(-1, false); break;
+      case GLFW_KEY_DOWN: step(+1, true); break;
+      case GLFW_KEY_UP: step(-1, true); break;
+      case GLFW_KEY_SPACE: m_paused = !m_paused; break;
+      case GLFW_KEY_R: load(m_current); break;
+      case GLFW_KEY_TAB: m_showPanel = !m_showPanel; break;
+      case GLFW_KEY_C:
+      case GLFW_KEY_HOME: resetView(); break;
+      case GLFW_KEY_F12: m_shotRequested = true; break;
+      default: break;
+    }
+  }
+
+  // A press belongs to the panel when it lands on it, or while one of its popups is open
+  // or one of its widgets is held. That is what io.WantCaptureMouse says, asked for the
+  // press's own position: ImGui 1.86 computes WantCaptureMouse from where the pointer was
+  // at the last frame, which a quick move-and-click has already left.
+  bool panelOwns(vec2 p) const {
+    const bool onPanel = p.x >= m_panelMin.x && p.y >= m_panelMin.y && p.x < m_panelMax.x && p.y < m_panelMax.y;
+    return onPanel || m_panelBusy;
+  }
+
+  void mouseButton(int button, int action) {
+    if (action == GLFW_RELEASE) {
+      if (button == m_dragButton) m_drag = Drag::None;
+      return;
+    }
+    if (m_drag != Drag::None || !m_defined || panelOwns(m_cursor)) return;
+    if (button == GLFW_MOUSE_BUTTON_LEFT) m_drag = Drag::Orbit;
+    else if (button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE) m_drag = Drag::Pan;
+    else return;
+    m_dragButton = button;
+  }
+
+  void mouseMoved(vec2 p) {
+    const vec2 delta = p - m_cursor;
+    m_cursor = p;
+    if (m_drag == Drag::None || !m_defined) return;
+    int width = 0, height = 0;
+    glfwGetWindowSize(m_window.handle(), &width, &height);  // cursor positions are in window units
+    const float h = float(std::max(height, 1));
+    // Grab the scene: it follows the pointer. Dragging right turns the eye to the left
+    // (yaw down), dragging down lifts it (pitch up) — the convention of Blender and
+    // three.js's OrbitControls.
+    if (m_drag == Drag::Orbit) m_view.orbitBy(-delta.x / h * kOrbitPerHeight, delta.y / h * kOrbitPerHeight, *m_defined);
+    else m_view.panBy(vec2(-delta.x, delta.y) / h, *m_defined);
+  }
+
+  void mouseWheel(float notches) {
+    if (!m_defined || panelOwns(m_cursor)) return;  // over the panel the wheel scrolls the panel
+    m_view.zoomBy(std::pow(kZoomPerNotch, notches));
+  }
+
+  void resetView() {
+    m_view = {};
+    m_drag = Drag::None;
+  }
+
+  /// F12: the window as it is now, into --shot-dir as glint-view-N.png (the first N not taken).
+  void saveShot() {
+    const fs::path dir(m_args.shotDir);
+    const auto name = [&](int n) { return dir / fmt::format("glint-view-{}.png", n); };
+    std::error_code ec;
+    int n = 1;
+    while (fs::exists(name(n), ec)) ++n;
+    const fs::path path = name(n);
+    try {
+      saveImage(gl::readColor(gl::Framebuffer::defaultFramebuffer(), m_window.framebufferSize()), path);
+      log::info("screenshot → {}", path.string());
+    } catch (const Error& e) {
+      m_error = e.what();  // e.g. an unwritable --shot-dir: say so in the panel, keep running
+    }
   }
 
   void checkHotReload() {
@@ -179,18 +325,24 @@ private:
       if (m_scene) {
         m_timer.begin();
         render::resetState();  // ImGui and the previous scene leave state behind
-        m_scene->render({.target = target, .time = m_time, .deltaTime = m_paused ? 0.0 : dt});
+        const scenes::FrameInput frame{.target = target, .time = m_time, .deltaTime = m_paused ? 0.0 : dt, .view = m_view};
+        m_scene->render(frame);
         m_timer.end();
+        m_defined = frame.definedCamera;  // empty for a 2D view: the mouse then leaves it alone
+        if (!m_defined) m_drag = Drag::None;
       } else {
         target.bind();
         render::clear(GL_COLOR_BUFFER_BIT, vec4(0.3f, 0.1f, 0.1f, 1.0f));  // no scene: a dim red backdrop
+        m_defined.reset();
       }
     }
     m_frameMs = 0.9 * m_frameMs + 0.1 * dt * 1000.0;
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
+    m_panelMin = m_panelMax = vec2(0.0f);
     if (m_showPanel) drawPanel();
+    m_panelBusy = ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopup) || ImGui::IsAnyItemActive();
     ImGui::Render();
     screen.bind();
     glViewport(0, 0, size.x, size.y);
@@ -238,8 +390,20 @@ private:
     ImGui::Text("time %.2f s %s", m_time, m_paused ? "(paused: space)" : "");
     if (!m_error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", m_error.c_str());
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("arrows: variant/scene   space: pause   R: reload   Tab: panel   Esc: quit");
+    if (!m_defined) {
+      ImGui::TextWrapped("2D view: no camera to move");
+    } else if (m_view.isIdentity()) {
+      ImGui::TextWrapped("mouse: left drag orbit, right/middle drag pan, wheel zoom");
+    } else {
+      ImGui::TextWrapped("view moved: yaw %.0f°, pitch %.0f°, zoom %.2f%s  (C or Home: the scene's camera)",
+                         double(glm::degrees(m_view.yaw)), double(glm::degrees(m_view.pitch)), double(m_view.zoom),
+                         m_view.pan == vec3(0.0f) ? "" : ", panned");
+    }
+    ImGui::TextWrapped("arrows: variant/scene   space: pause   R: reload   F12: screenshot   Tab: panel   Esc: quit");
     ImGui::PopStyleColor();
+    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    m_panelMin = vec2(pos.x, pos.y);
+    m_panelMax = vec2(pos.x + size.x, pos.y + size.y);
     ImGui::End();
   }
 
@@ -255,7 +419,19 @@ private:
   double m_frameMs = 16.0;
   bool m_paused = false;
   bool m_showPanel = true;
-  std::map<int, bool> m_keys;
+  std::deque<InputEvent> m_input;  // events since the last frame, in order
+  bool m_shotRequested = false;
+  // The camera: the user's change to it, and the camera the scene defined last frame
+  // (empty for a 2D view).
+  render::OrbitControl m_view;
+  std::optional<render::Camera> m_defined;
+  Drag m_drag = Drag::None;
+  int m_dragButton = -1;
+  vec2 m_cursor{0.0f};
+  // The panel's rectangle last frame (window units; empty when hidden), and whether a popup
+  // is open or a widget held: presses there belong to ImGui.
+  vec2 m_panelMin{0.0f}, m_panelMax{0.0f};
+  bool m_panelBusy = false;
   fs::file_time_type m_shaderTime{};
   std::chrono::steady_clock::time_point m_lastPoll{};
 };
@@ -264,7 +440,9 @@ private:
 Command viewCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<ViewArgs>();
   auto* cmd = app.add_subcommand("view", "Open the interactive viewer (a window with a panel of variants and options)");
-  cmd->footer("Keys: left/right variant, up/down scene, space pause, R reload shaders, Tab panel, Esc quit.\n"
+  cmd->footer("Keys: left/right variant, up/down scene, space pause, R reload shaders, F12 screenshot, Tab panel,\n"
+              "Esc quit. Mouse, in 3D scenes: left drag orbits, right or middle drag pans, the wheel zooms,\n"
+              "C or Home returns to the scene's camera (kept across variants, reset on another scene).\n"
               "Without a display, run it under Xvfb: xvfb-run -s '-screen 0 1280x800x24' glint view");
   cmd->add_option("scene", args->scene, "scene or scene/variant to start with (default: the first)");
   cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
@@ -272,8 +450,12 @@ Command viewCommand(CLI::App& app, const GlobalOptions& global) {
                   "Directory to hot-reload shaders from (default: the source tree's shaders/ when it exists)");
   cmd->add_option("--screenshot", args->screenshot, "Save the window (scene + panel) to this image after --frames frames and exit");
   cmd->add_option("--frames", args->frames, "Frames to draw before --screenshot (default 2)");
+  cmd->add_option("--shot-dir", args->shotDir, "Directory F12 saves screenshots into (glint-view-1.png, -2, ...)")
+      ->capture_default_str();
   return Command{.run = [args, &global] {
     if (!args->scene.empty()) scenes::Registry::builtin().resolve(args->scene);  // fail fast on a typo
+    if (std::error_code ec; !fs::is_directory(args->shotDir, ec))
+      fail(ErrorKind::Usage, "--shot-dir: '{}' is not a directory", args->shotDir);
     fs::path dir = args->shaderDir.empty() ? fs::path(GLINT_SOURCE_SHADER_DIR) : fs::path(args->shaderDir);
     std::error_code ec;
     if (fs::is_directory(dir, ec)) {

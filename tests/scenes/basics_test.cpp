@@ -19,11 +19,11 @@ vec3 pixel(const Image& img, int glX, int glY) {
 
 double area(vec2 a, vec2 b, vec2 c) { return 0.5 * double((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y)); }
 
-Image render(const char* name) { return scenes::renderVariant(scenes::Registry::builtin().resolve(name)).image; }
+Image renderImage(const char* name) { return scenes::renderVariant(scenes::Registry::builtin().resolve(name)).image; }
 }  // namespace
 
 TEST_F(GlTest, TriangleCentrePixelIsTheBarycentricBlendOfVertexColours) {
-  const Image img = render("basics/triangle/color");
+  const Image img = renderImage("basics/triangle/color");
   ASSERT_EQ(img.width(), 500);
   // Window coordinates from the lecture: L (50,450) red, M (450,450) green, N (250,50) blue.
   const vec2 L{50, 450}, M{450, 450}, N{250, 50};
@@ -64,30 +64,30 @@ TEST_F(GlTest, DepthFunctionsDecideWhoWins) {
   auto isBlue = [](vec3 c) { return c.b > 0.3f && c.r < c.b * 0.7f; };
   auto isBackground = [](vec3 c) { return std::abs(c.r - 0.12f) < 0.01f && std::abs(c.b - 0.18f) < 0.01f; };
 
-  const Image less = render("basics/depth/less");
+  const Image less = renderImage("basics/depth/less");
   EXPECT_TRUE(isRed(at(less, -0.5f, 0.5f)));        // red only: 0.65 < 0.8
   EXPECT_TRUE(isBlue(at(less, -0.2f, 0.0f)));       // overlap, blue 0.56 < red 0.65
   EXPECT_TRUE(isRed(at(less, 0.15f, 0.0f)));        // overlap, blue 0.70 is rejected (the lecture's 0.72 case)
   EXPECT_TRUE(isBackground(at(less, 0.55f, 0.0f)));  // blue 0.86 loses to the cleared 0.8
 
-  const Image greater = render("basics/depth/greater");
+  const Image greater = renderImage("basics/depth/greater");
   EXPECT_TRUE(isBackground(at(greater, -0.5f, 0.5f)));  // red 0.65 > 0.8 fails
   EXPECT_TRUE(isBlue(at(greater, 0.55f, 0.0f)));        // 0.86 > 0.8 passes
 
-  const Image maskOff = render("basics/depth/mask-off");
+  const Image maskOff = renderImage("basics/depth/mask-off");
   EXPECT_TRUE(isBlue(at(maskOff, 0.15f, 0.0f)));  // red left 0.8 in the depth buffer
 
-  const Image never = render("basics/depth/never");
+  const Image never = renderImage("basics/depth/never");
   EXPECT_TRUE(isBackground(at(never, -0.5f, 0.5f)));
-  const Image always = render("basics/depth/always");
+  const Image always = renderImage("basics/depth/always");
   EXPECT_TRUE(isBlue(at(always, 0.15f, 0.0f)));  // painter's order
 }
 
 TEST_F(GlTest, ScenesDoNotInheritStateFromThePreviousScene) {
   // triangle/depth ends with a full-screen pass that turns depth writes off; glClear
   // honours the depth mask, so a scene drawn next must still get a cleared depth buffer.
-  const Image fresh = render("basics/depth/less");
-  render("basics/triangle/depth");
-  const Image after = render("basics/depth/less");
+  const Image fresh = renderImage("basics/depth/less");
+  renderImage("basics/triangle/depth");
+  const Image after = renderImage("basics/depth/less");
   EXPECT_EQ(compareImages(fresh, after).maxAbs, 0.0);
 }

@@ -8,6 +8,8 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -21,6 +23,34 @@ using glint::testing::oneLine;
 using glint::testing::runGlint;
 
 fs::path dir(const char* name) { return glint::testing::freshDir("cli", name); }
+
+bool haveXvfbAndXdotool() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1 && command -v xdotool >/dev/null 2>&1") == 0;
+}
+
+/// How two screenshots differ over the columns x ≥ x0 (right of where the viewer's panel
+/// can be, whose frame-time text changes every frame).
+struct SceneDifference {
+  double differing = 0;  ///< fraction of pixels with a channel differing by more than 1/255
+  double mean = 0;       ///< mean absolute channel difference, 0..1
+};
+SceneDifference sceneDifference(const Image& a, const Image& b, int x0) {
+  EXPECT_EQ(a.width(), b.width());
+  EXPECT_EQ(a.height(), b.height());
+  std::size_t differing = 0, n = 0;
+  double sum = 0;
+  for (int y = 0; y < std::min(a.height(), b.height()); ++y)
+    for (int x = x0; x < std::min(a.width(), b.width()); ++x, ++n) {
+      float worst = 0;
+      for (int c = 0; c < 3; ++c) {
+        const float d = std::abs(a.at(x, y, c) - b.at(x, y, c));
+        worst = std::max(worst, d);
+        sum += d;
+      }
+      differing += worst > 1.5f / 255.0f;
+    }
+  return {double(differing) / double(std::max<std::size_t>(n, 1)), sum / double(std::max<std::size_t>(3 * n, 1))};
+}
 
 }  // namespace
 
@@ -123,4 +153,54 @@ TEST(Cli, ViewerOpensAWindowWithTheSceneAndThePanel) {
     }
   EXPECT_GT(text, 50) << "no panel text found";
   EXPECT_GT(dark, 5000) << "no panel background found";
+}
+
+TEST(Cli, ViewerShotDirMustBeADirectory) {
+  // Checked before any window opens: no display needed.
+  const auto r = runGlint("view basics/triangle --shot-dir /nonexistent-dir");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_TRUE(oneLine(r.output)) << r.output;
+  EXPECT_NE(r.output.find("--shot-dir"), std::string::npos) << r.output;
+}
+
+// The mouse on a real X server: tests/scenes/viewer_input.sh drives `glint view` with
+// xdotool (XTEST: the events a user's mouse makes) and saves F12 screenshots; see the
+// script for the steps. Compared right of x = 520, where the panel never is (it starts at
+// x 10..390 and is dragged left).
+TEST(Cli, ViewerMouseOrbitsPansAndZoomsThe3DCameraAndLeaves2DViewsAlone) {
+  if (!haveXvfbAndXdotool()) GTEST_SKIP() << "xvfb-run or xdotool not installed (scripts/setup --test)";
+  const auto d = dir("viewer-input");
+  const std::string script = std::string(GLINT_SOURCE_DIR) + "/tests/scenes/viewer_input.sh";
+  const auto r = glint::testing::runShell("xvfb-run -a -s '-screen 0 1024x768x24' " + script + " " GLINT_EXE " " + d.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  constexpr int kX0 = 520;
+  const auto shot = [&](const char* scene, int n) { return loadImage(d / scene / ("glint-view-" + std::to_string(n) + ".png")); };
+  // Same view, same renderer, a static scene: the pictures are identical; the slack (0.1%
+  // of pixels, mean 0.2/255) only keeps a stray edge pixel from failing the test.
+  const auto same = [&](const Image& a, const Image& b) {
+    const SceneDifference diff = sceneDifference(a, b, kX0);
+    return diff.differing <= 0.001 && diff.mean <= 0.2 / 255.0;
+  };
+  // A moved camera moves most of the picture (measured: 60–100% of these pixels).
+  const auto moved = [&](const Image& a, const Image& b) { return sceneDifference(a, b, kX0).differing > 0.3; };
+
+  const Image defined = shot("3d", 2);
+  ASSERT_EQ(defined.width(), 800);
+  ASSERT_EQ(defined.height(), 600);
+  EXPECT_TRUE(same(shot("3d", 1), defined)) << "the scene is not static: the comparisons below mean nothing";
+  EXPECT_TRUE(same(shot("3d", 3), defined)) << "a drag on the panel moved the camera";
+  EXPECT_TRUE(moved(shot("3d", 4), defined)) << "a left drag did not orbit";
+  EXPECT_TRUE(same(shot("3d", 5), defined)) << "C did not return to the defined camera";
+  EXPECT_TRUE(moved(shot("3d", 6), defined)) << "the wheel did not zoom";
+  EXPECT_TRUE(moved(shot("3d", 7), defined)) << "a right drag did not pan";
+  EXPECT_TRUE(same(shot("3d", 8), defined)) << "Home did not return to the defined camera";
+
+  // basics/triangle draws NDC vertices: the same picture whatever the mouse did. (Part of
+  // the triangle is in the compared columns, so "the same" is not a blank compared to itself.)
+  const Image flat = shot("2d", 2);
+  int triangle = 0;
+  for (int y = 0; y < flat.height(); ++y)
+    for (int x = kX0; x < flat.width(); ++x) triangle += flat.at(x, y, 1) > 0.3f;
+  EXPECT_GT(triangle, 5000);
+  EXPECT_TRUE(same(shot("2d", 3), flat)) << "the mouse changed a 2D view";
 }

@@ -21,15 +21,19 @@
 //   - Deterministic: everything animated is a function of FrameInput::time, never
 //     the wall clock, so `--time 1.5` always gives the same picture.
 //   - Draw into FrameInput::target, at its size; set all state you rely on.
+//   - A 3D scene passes its camera through FrameInput::camera() once per frame, so the
+//     viewer's mouse can move it; 2D views (images, NDC geometry) do not call it.
 //   - Options are data (Option), so the viewer shows them as widgets and the CLI
 //     sets them with `--set name=value`.
 
 #include "glint/core/math.h"
 #include "glint/gl/context.h"
 #include "glint/gl/render_target.h"
+#include "glint/render/camera.h"
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -40,6 +44,20 @@ struct FrameInput {
   gl::Target target;     ///< where to draw, and its size
   double time = 0.0;     ///< seconds since the scene started; drives all animation
   double deltaTime = 0;  ///< seconds since the previous frame (0 for a single headless frame)
+  render::OrbitControl view{};  ///< the viewer user's orbit, pan and zoom; the identity everywhere else
+
+  /// The scene's own camera as the user moved it: `view.apply(defined)`, which is `defined`
+  /// itself in headless renders. Call it once per frame with the camera the scene defines
+  /// (before Camera::cropped for split screens):
+  ///
+  ///   const render::Camera camera = frame.camera(render::Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.35f, 45.0f, 16.0f / 9.0f));
+  render::Camera camera(const render::Camera& defined) const {
+    definedCamera = defined;
+    return view.apply(defined);
+  }
+  /// Set by camera(): the camera the scene defined this frame. Empty after a frame of a
+  /// 2D view — the viewer then leaves the mouse alone.
+  mutable std::optional<render::Camera> definedCamera;
 };
 
 /// A tweakable parameter a scene exposes. `value` points into the scene.

@@ -71,8 +71,8 @@ public:
       return;
     }
     const ivec2 size = frame.target.size;
-    const auto camera = render::Camera::orbit(vec3(0.0f), 5.0f, 0.35f + 0.1f * t, 0.2f, 45.0f,
-                                              float(size.x) / float(size.y));
+    const auto camera = frame.camera(render::Camera::orbit(vec3(0.0f), 5.0f, 0.35f + 0.1f * t, 0.2f, 45.0f,
+                                                           float(size.x) / float(size.y)));
     drawSurroundings(camera, t);
     m_bubble.draw(m_sphere, glm::scale(mat4(1.0f), vec3(kBubbleRadius)), camera, m_local.texture(), t);
   }

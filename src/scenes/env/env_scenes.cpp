@@ -55,7 +55,7 @@ public:
     if (m_mode == Mode::Compare && !m_quality) m_quality = measureQuality();
     clearTarget(frame);
     const ivec2 size = frame.target.size;
-    const render::Camera camera = viewCamera(m_view.azimuth + m_spin * float(frame.time), size);
+    const render::Camera camera = frame.camera(viewCamera(m_view.azimuth + m_spin * float(frame.time), size));
     if (m_mode == Mode::Compare) {
       // Split screen like the seed's demo: cube map on the left, sphere map on the right,
       // one camera over the whole frame (each half shows its half of the same view), and

@@ -52,7 +52,7 @@ public:
       m_measuredBias = m_mode.lodBias;
     }
     frame.target.bind();
-    m_ground.draw(flt::GroundPlane::camera(frame.target.size, m_speed * float(frame.time)), m_mode);
+    m_ground.draw(frame.camera(flt::GroundPlane::camera(frame.target.size, m_speed * float(frame.time))), m_mode);
   }
 
   std::string notes() const override {

@@ -46,7 +46,7 @@ public:
     render::PipelineState{.depthTest = true, .cull = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.32f, 0.34f, 0.38f, 1.0f));
     const ivec2 size = frame.target.size;
-    const auto camera = render::Camera::orbit(vec3(0.0f), 3.0f, 0.0f, 0.35f, 45.0f, float(size.x) / float(size.y));
+    const auto camera = frame.camera(render::Camera::orbit(vec3(0.0f), 3.0f, 0.0f, 0.35f, 45.0f, float(size.x) / float(size.y)));
     mat4 model = glm::rotate(mat4(1.0f), 0.5f * t + 0.6f, vec3(0.0f, 1.0f, 0.0f));
     model = glm::rotate(model, 0.3f, vec3(1.0f, 0.0f, 0.0f));
     m_program.set("uModel", model);

@@ -26,7 +26,11 @@ public:
   void render(const FrameInput& frame) override {
     sh::animateDemoWorld(m_world, frame.time);
     m_world.lightPosition = m_light.position;
-    m_map.render(m_world, sh::sceneCamera(SceneView::Demo, aspectOf(frame)), frame.target);
+    const render::Camera eye = sh::sceneCamera(SceneView::Demo, aspectOf(frame));
+    // The light's own views (light-view, light-depth) do not look through the eye: no camera to move.
+    const sh::ShadowMapView view = m_map.options().view;
+    const bool fromLight = view == sh::ShadowMapView::LightView || view == sh::ShadowMapView::LightDepth;
+    m_map.render(m_world, fromLight ? eye : frame.camera(eye), frame.target);
   }
   std::vector<Option> options() override {
     std::vector<Option> out;
@@ -63,7 +67,9 @@ public:
   void render(const FrameInput& frame) override {
     sh::animateDemoWorld(m_world, frame.time);
     m_world.lightPosition = m_light.position;
-    m_planar.render(m_world, sh::sceneCamera(SceneView::Demo, aspectOf(frame)), frame.target);
+    const render::Camera eye = sh::sceneCamera(SceneView::Demo, aspectOf(frame));
+    const bool texture = m_planar.options().view == sh::PlanarView::Texture;  // the texture alone: a 2D view
+    m_planar.render(m_world, texture ? eye : frame.camera(eye), frame.target);
   }
   std::vector<Option> options() override {
     std::vector<Option> out;

@@ -40,7 +40,7 @@ public:
   void render(const FrameInput& frame) override {
     sh::animateDemoWorld(m_world, frame.time + m_variant.time);
     m_world.lightPosition = m_light.position;
-    render::Camera camera = sh::sceneCamera(m_variant.view, aspectOf(frame));
+    render::Camera camera = frame.camera(sh::sceneCamera(m_variant.view, aspectOf(frame)));
     if (sh::StencilShadows::needsInfiniteFar(m_shadows.options()))
       camera.projection = sh::infiniteFarProjection(camera.projection);
     m_shadows.render(m_world, camera, frame.target);
