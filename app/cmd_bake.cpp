@@ -16,10 +16,12 @@
 #include <tbb/global_control.h>
 
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <exception>
 #include <future>
 #include <memory>
@@ -215,7 +217,18 @@ Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
     }
     if (!a->json.empty() && a->json != "-") outputs.push_back(a->json);
     for (const auto& path : outputs) checkWritable(path);
-    requireImageIo();
+    // OpenImageIO is needed for a detail map and for outputs other than PNG (libspng).
+    bool needsImageIo = !a->detail.empty();
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+      const bool json = !a->json.empty() && a->json != "-" && i + 1 == outputs.size();
+      std::string ext = std::filesystem::path(outputs[i]).extension().string();
+      for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+      if (!json && ext != ".png") needsImageIo = true;
+    }
+    if (needsImageIo) {
+      requireImageIo();
+      preloadImageIo();
+    }
 
     // Inputs (never modified: loaded into memory, prepared there).
     // The high poly (the big file) is parsed here while a second thread reads the rest;

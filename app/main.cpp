@@ -76,7 +76,9 @@ int main(int argc, char** argv) {
   log::setLevel(global.verbose ? log::Level::Debug : global.quiet ? log::Level::Warn : log::Level::Info);
   // OpenImageIO is a module of ~260 libraries (~0.3 s to load): commands that touch
   // images load it on the second core while they parse meshes or set up GL.
-  static const std::set<std::string> kNoImages{"list", "info", "mesh-info"};
+  // (`bake` starts it itself, only when it reads an image or writes one that is not PNG:
+  // PNG goes through libspng, and the load would take the second core from the mesh parser.)
+  static const std::set<std::string> kNoImages{"list", "info", "mesh-info", "bake"};
   for (CLI::App* sub : cli.get_subcommands())
     if (!kNoImages.contains(sub->get_name())) preloadImageIo();
   try {
