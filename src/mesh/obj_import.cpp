@@ -145,12 +145,12 @@ void onPosition(void* user, float x, float y, float z, float w) {
     std::vector<float> numbers;
     std::string bad;
     if (!strictNumbers(lastLine(s), numbers, bad)) {
-      if (s.chunk->error.empty()) s.chunk->error = fmt::format("vertex {}: '{}' is not a finite number", index + 1, bad);
+      if (s.chunk->error.empty()) s.chunk->error = fmt::format("position {} is not finite ('{}')", index, bad);
       return;
     }
     if (numbers.size() == 4) {
       if (numbers[3] == 0.0f) {
-        if (s.chunk->error.empty()) s.chunk->error = fmt::format("vertex {}: homogeneous w is 0", index + 1);
+        if (s.chunk->error.empty()) s.chunk->error = fmt::format("position {} has a homogeneous w of 0", index);
         return;
       }
       x = numbers[0] / numbers[3];
