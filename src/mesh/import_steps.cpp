@@ -11,9 +11,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -163,7 +165,7 @@ MappedFile::MappedFile(const std::filesystem::path& path) {
   }
   m_size = std::size_t(st.st_size);
   if (m_size > 0) {
-    void* data = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+    void* data = ::mmap(nullptr, m_size, PROT_READ, MAP_PRIVATE, fd, 0);
     if (data == MAP_FAILED) {
       ::close(fd);
       fail(ErrorKind::Input, "cannot read '{}': {}", path.string(), std::strerror(errno));
@@ -321,28 +323,66 @@ std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::v
 }
 
 void joinVertices(Mesh& mesh) {
+  // First occurrence wins, as in Assimp, found in parallel: every used vertex is put in a
+  // lock-free open-addressing table whose slot keeps the smallest index with that key;
+  // then a sequential pass numbers the representatives in vertex order.
   const std::size_t n = mesh.positions.size();
-  std::vector<char> used(n, 0);
-  for (std::uint32_t i : mesh.indices) used[i] = 1;
+  const bool hasNormals = mesh.hasNormals(), hasUvs = mesh.hasUvs();
+  const auto key = [&](std::size_t i) {
+    return VertexKey{mesh.positions[i], hasNormals ? mesh.normals[i] : vec3(0.0f), hasUvs ? mesh.uvs[i] : vec2(0.0f)};
+  };
+  std::vector<std::atomic<std::uint8_t>> used(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.indices.size(), 1 << 16), [&](const auto& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) used[mesh.indices[k]].store(1, std::memory_order_relaxed);
+  });
+  std::size_t capacity = 16;
+  while (capacity < 2 * n) capacity *= 2;
+  constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
+  std::vector<std::atomic<std::uint32_t>> table(capacity);
+  for (auto& slot : table) slot.store(kEmpty, std::memory_order_relaxed);
+  std::vector<std::uint32_t> slotOf(n, kEmpty);
+  const VertexKeyHash hash;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      if (!used[i].load(std::memory_order_relaxed)) continue;
+      const VertexKey k = key(i);
+      for (std::size_t s = hash(k) & (capacity - 1);; s = (s + 1) & (capacity - 1)) {
+        std::uint32_t held = table[s].load(std::memory_order_acquire);
+        if (held == kEmpty) {
+          if (table[s].compare_exchange_strong(held, std::uint32_t(i), std::memory_order_acq_rel)) {
+            slotOf[i] = std::uint32_t(s);
+            break;
+          }
+          // Lost the race: `held` is now the winner; fall through and compare with it.
+        }
+        if (key(held) == k) {
+          while (held > i && !table[s].compare_exchange_weak(held, std::uint32_t(i), std::memory_order_acq_rel)) {
+          }
+          slotOf[i] = std::uint32_t(s);
+          break;
+        }
+      }
+    }
+  });
   std::vector<std::uint32_t> replace(n, 0);
-  std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> seen;
-  seen.reserve(n);
   Mesh out;
   out.positions.reserve(n);
-  const bool hasNormals = mesh.hasNormals(), hasUvs = mesh.hasUvs();
   for (std::size_t i = 0; i < n; ++i) {
-    if (!used[i]) continue;
-    const VertexKey k{mesh.positions[i], hasNormals ? mesh.normals[i] : vec3(0.0f), hasUvs ? mesh.uvs[i] : vec2(0.0f)};
-    const auto [it, inserted] = seen.try_emplace(k, std::uint32_t(out.positions.size()));
-    if (inserted) {
-      out.positions.push_back(k.position);
-      if (hasNormals) out.normals.push_back(k.normal);
-      if (hasUvs) out.uvs.push_back(k.uv);
+    if (slotOf[i] == kEmpty) continue;
+    const std::uint32_t first = table[slotOf[i]].load(std::memory_order_relaxed);
+    if (first == i) {
+      replace[i] = std::uint32_t(out.positions.size());
+      out.positions.push_back(mesh.positions[i]);
+      if (hasNormals) out.normals.push_back(mesh.normals[i]);
+      if (hasUvs) out.uvs.push_back(mesh.uvs[i]);
+    } else {
+      replace[i] = replace[first];  // first < i: already numbered
     }
-    replace[i] = it->second;
   }
   out.indices = std::move(mesh.indices);
-  for (std::uint32_t& i : out.indices) i = replace[i];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.indices.size(), 1 << 16), [&](const auto& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) out.indices[k] = replace[out.indices[k]];
+  });
   mesh = std::move(out);
 }
 

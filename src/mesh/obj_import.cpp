@@ -382,16 +382,29 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   // Pass 1: count vertex records per chunk.
   tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t i) {
     Chunk& c = chunks[i];
-    for (const char* p = c.begin; p < c.end;) {
-      const char* lineEnd = p;
-      while (lineEnd < c.end && *lineEnd != '\n' && *lineEnd != '\r') ++lineEnd;
+    const auto count = [&c](const char* p, const char* lineEnd) {
       switch (classify(p, lineEnd)) {
         case Record::Position: ++c.positions; break;
         case Record::TexCoord: ++c.texCoords; break;
         case Record::Normal: ++c.normals; break;
         case Record::Other: break;
       }
-      p = lineEnd + 1;
+    };
+    // Lines end at LF, CR LF or a lone CR (as tinyobjloader reads them); memchr finds them.
+    for (const char* p = c.begin; p < c.end;) {
+      const void* found = std::memchr(p, '\n', std::size_t(c.end - p));
+      const char* lf = found ? static_cast<const char*>(found) : c.end;
+      for (const char* q = p;;) {
+        const void* cr = std::memchr(q, '\r', std::size_t(lf - q));
+        if (!cr) {
+          count(q, lf);
+          break;
+        }
+        count(q, static_cast<const char*>(cr));
+        q = static_cast<const char*>(cr) + 1;
+        if (q >= lf) break;
+      }
+      p = lf + 1;
     }
   });
   std::size_t positionCount = 0, texCoordCount = 0, normalCount = 0;
