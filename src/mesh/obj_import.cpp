@@ -204,7 +204,6 @@ void onNormal(void* user, float x, float y, float z) {
 void onFace(void* user, tinyobj::index_t* indices, int count) {
   auto& s = *static_cast<ParseState*>(user);
   Chunk& c = *s.chunk;
-  const std::size_t face = c.faceSize.size();
   if (count < 3) {
     // Assimp keeps it as a point or line, which then splits the mesh's vertices.
     if (c.declined.empty()) c.declined = "a face with fewer than 3 corners";
@@ -225,7 +224,7 @@ void onFace(void* user, tinyobj::index_t* indices, int count) {
     const tinyobj::index_t& i = indices[k];
     std::uint32_t v = 0, t = kAbsent, n = kAbsent;
     if (i.vertex_index == 0) {
-      if (c.error.empty()) c.error = fmt::format("face {} of a chunk: invalid vertex index", face + 1);
+      if (c.error.empty()) c.error = "a face has a vertex index that is 0 or not a number";
       return;
     }
     if (!resolve(i.vertex_index, c.firstPosition + s.localPositions, s.totalPositions, v)) {
@@ -320,9 +319,7 @@ public:
 
   void face(std::size_t index) {
     if (!m_hasObject || m_meshOrphan) createObject("defaultobject");
-    if (m_parts.empty() || m_parts.back().second != index || m_meshFaces == 0) {
-      m_parts.emplace_back(index, index);
-    }
+    if (m_meshFaces == 0) m_parts.emplace_back(index, index);  // the mesh's first face
     m_parts.back().second = index + 1;
     ++m_meshFaces;
   }
@@ -441,6 +438,10 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
     std::string warn, err;
     if (!tinyobj::LoadObjWithCallback(stream, callbacks, &state, nullptr, &warn, &err) && c.error.empty()) {
       c.error = err.empty() ? "tinyobjloader failed" : err.substr(0, err.find('\n'));
+    }
+    if ((state.localPositions != c.positions || state.localTexCoords != c.texCoords ||
+         state.localNormals != c.normals) && c.declined.empty()) {
+      c.declined = "vertex records counted differently";  // never seen: a guard, not a path
     }
   });
   const auto t2 = Clock::now();
