@@ -132,26 +132,22 @@ void earCut(const PolyMesh& mesh, std::uint32_t start, int n, std::vector<std::u
   for (std::size_t i = firstOut; i < out.size(); ++i) out[i] += start;
 }
 
-struct VertexKey {
-  vec3 position, normal;
-  vec2 uv;
-  bool operator==(const VertexKey& o) const { return position == o.position && normal == o.normal && uv == o.uv; }
-};
-
-struct VertexKeyHash {
-  std::size_t operator()(const VertexKey& k) const {
-    // Hash the values, not the bits: +0 and -0 compare equal, so they must hash equal.
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    const float values[8] = {k.position.x, k.position.y, k.position.z, k.normal.x, k.normal.y, k.normal.z, k.uv.x, k.uv.y};
-    for (float f : values) {
-      std::uint32_t bits = 0;
-      f += 0.0f;  // -0 → +0
-      std::memcpy(&bits, &f, 4);
-      h = (h ^ bits) * 0x100000001b3ull;
-    }
-    return std::size_t(h ^ (h >> 29));
+/// Hash of a position's values (not bits: +0 and -0 compare equal, so they hash equal).
+std::size_t positionHash(const vec3& p) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (float f : {p.x, p.y, p.z}) {
+    std::uint32_t bits = 0;
+    f += 0.0f;  // -0 → +0
+    std::memcpy(&bits, &f, 4);
+    h = (h ^ bits) * 0x100000001b3ull;
   }
-};
+  return std::size_t(h ^ (h >> 29));
+}
+
+float squareDistance(const vec3& a, const vec3& b) {
+  const vec3 d = a - b;
+  return d.x * d.x + d.y * d.y + d.z * d.z;
+}
 
 }  // namespace
 
@@ -323,61 +319,68 @@ std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::v
 }
 
 void joinVertices(Mesh& mesh) {
-  // First occurrence wins, as in Assimp, found in parallel: every used vertex is put in a
-  // lock-free open-addressing table whose slot keeps the smallest index with that key;
-  // then a sequential pass numbers the representatives in vertex order.
+  // Assimp's rule: vertices at exactly the same position are one when their normals and
+  // uvs differ by at most 1e-5; a vertex joins the most recent earlier representative it
+  // is that close to (Assimp's hash map finds that one first), else becomes one itself.
+  // Positions are grouped in parallel in a lock-free open-addressing table whose slot
+  // keeps the position's first vertex; representatives are then chosen in vertex order.
   const std::size_t n = mesh.positions.size();
   const bool hasNormals = mesh.hasNormals(), hasUvs = mesh.hasUvs();
-  const auto key = [&](std::size_t i) {
-    return VertexKey{mesh.positions[i], hasNormals ? mesh.normals[i] : vec3(0.0f), hasUvs ? mesh.uvs[i] : vec2(0.0f)};
-  };
   std::vector<std::atomic<std::uint8_t>> used(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.indices.size(), 1 << 16), [&](const auto& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) used[mesh.indices[k]].store(1, std::memory_order_relaxed);
   });
   std::size_t capacity = 16;
   while (capacity < 2 * n) capacity *= 2;
-  constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
   std::vector<std::atomic<std::uint32_t>> table(capacity);
-  for (auto& slot : table) slot.store(kEmpty, std::memory_order_relaxed);
-  std::vector<std::uint32_t> slotOf(n, kEmpty);
-  const VertexKeyHash hash;
+  for (auto& slot : table) slot.store(kNone, std::memory_order_relaxed);
+  std::vector<std::uint32_t> slotOf(n, kNone);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       if (!used[i].load(std::memory_order_relaxed)) continue;
-      const VertexKey k = key(i);
-      for (std::size_t s = hash(k) & (capacity - 1);; s = (s + 1) & (capacity - 1)) {
+      const vec3& p = mesh.positions[i];
+      for (std::size_t s = positionHash(p) & (capacity - 1);; s = (s + 1) & (capacity - 1)) {
         std::uint32_t held = table[s].load(std::memory_order_acquire);
-        if (held == kEmpty) {
+        if (held == kNone) {
           if (table[s].compare_exchange_strong(held, std::uint32_t(i), std::memory_order_acq_rel)) {
             slotOf[i] = std::uint32_t(s);
             break;
           }
-          // Lost the race: `held` is now the winner; fall through and compare with it.
+          // Lost the race: `held` is the winner now; compare with it.
         }
-        if (key(held) == k) {
-          while (held > i && !table[s].compare_exchange_weak(held, std::uint32_t(i), std::memory_order_acq_rel)) {
-          }
+        if (mesh.positions[held] == p) {
           slotOf[i] = std::uint32_t(s);
           break;
         }
       }
     }
   });
-  std::vector<std::uint32_t> replace(n, 0);
+  constexpr float kSquareEpsilon = 1e-5f * 1e-5f;
+  // Per position (slot): its newest representative; per representative: the one before.
+  std::vector<std::uint32_t> replace(n, 0), latest(capacity, kNone), previous(n, kNone);
   Mesh out;
   out.positions.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (slotOf[i] == kEmpty) continue;
-    const std::uint32_t first = table[slotOf[i]].load(std::memory_order_relaxed);
-    if (first == i) {
-      replace[i] = std::uint32_t(out.positions.size());
-      out.positions.push_back(mesh.positions[i]);
-      if (hasNormals) out.normals.push_back(mesh.normals[i]);
-      if (hasUvs) out.uvs.push_back(mesh.uvs[i]);
-    } else {
-      replace[i] = replace[first];  // first < i: already numbered
+    if (slotOf[i] == kNone) continue;
+    std::uint32_t& newest = latest[slotOf[i]];
+    std::uint32_t rep = newest;
+    for (; rep != kNone; rep = previous[rep]) {
+      if ((!hasNormals || squareDistance(mesh.normals[rep], mesh.normals[i]) <= kSquareEpsilon) &&
+          (!hasUvs || squareDistance(vec3(mesh.uvs[rep], 0.0f), vec3(mesh.uvs[i], 0.0f)) <= kSquareEpsilon)) {
+        break;
+      }
     }
+    if (rep != kNone) {
+      replace[i] = replace[rep];
+      continue;
+    }
+    previous[i] = newest;
+    newest = std::uint32_t(i);
+    replace[i] = std::uint32_t(out.positions.size());
+    out.positions.push_back(mesh.positions[i]);
+    if (hasNormals) out.normals.push_back(mesh.normals[i]);
+    if (hasUvs) out.uvs.push_back(mesh.uvs[i]);
   }
   out.indices = std::move(mesh.indices);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.indices.size(), 1 << 16), [&](const auto& r) {
@@ -425,27 +428,18 @@ Mesh finishPart(PolyMesh&& part, bool join, bool& generatedNormals) {
   }
   mesh.positions = std::move(part.positions);
   mesh.uvs = std::move(part.uvs);
-  if (generatedNormals) {
-    mesh.normals = smoothNormals(mesh.positions, mesh.indices);
-  } else {
-    mesh.normals = std::move(part.normals);
-    // What loadMesh's identity node transform does to normals (Mesh::transform): unit length.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.normals.size(), 1 << 16),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                          vec3& n = mesh.normals[i];
-                          const float length = glm::length(n);
-                          n = length > 0.0f ? n / length : n;
-                        }
-                      });
-  }
-  if (generatedNormals) {
-    for (vec3& n : mesh.normals) {
-      const float length = glm::length(n);
-      n = length > 0.0f ? n / length : n;
-    }
-  }
+  // Assimp joins before glint normalizes (the identity node transform in loadMesh's
+  // Mesh::transform), so joining compares the normals as read or generated.
+  mesh.normals = generatedNormals ? smoothNormals(mesh.positions, mesh.indices) : std::move(part.normals);
   if (join) joinVertices(mesh);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.normals.size(), 1 << 16),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        vec3& n = mesh.normals[i];
+                        const float length = glm::length(n);
+                        n = length > 0.0f ? n / length : n;
+                      }
+                    });
   return mesh;
 }
 

@@ -75,8 +75,9 @@ void expandPerCorner(PolyMesh& mesh);
 /// 1e-4 of the bounding-box diagonal share the normalized sum. `triangles` are vertex indices.
 std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::vector<std::uint32_t>& triangles);
 
-/// Assimp's JoinIdenticalVertices: vertices equal in position, normal and uv become one;
-/// the first occurrence in vertex order keeps its place, unreferenced vertices are dropped.
+/// Assimp's JoinIdenticalVertices: vertices at exactly the same position whose normals and
+/// uvs differ by at most 1e-5 become one; representatives keep vertex order, unreferenced
+/// vertices are dropped.
 void joinVertices(Mesh& mesh);
 
 /// The post-processing chain on one part, into a Mesh (normals unit length, as loadMesh's

@@ -260,6 +260,18 @@ f 7//2 8//2 9//2
   EXPECT_FALSE(m.hasUvs()) << "uvs are dropped when a part has none (Mesh::append)";
 }
 
+TEST(ImportOracle, ObjJoiningToleratesTinyNormalAndUvDifferencesOnly) {
+  // Assimp joins vertices at exactly the same position whose normals and uvs differ by at
+  // most 1e-5; a position 1e-6 away is another vertex.
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0.000001 0 0\n"
+                          "vt 0 0\nvt 0.000001 0\nvt 0.1 0\n"
+                          "vn 0 0 1\nvn 0 0.000002 1\nvn 0 0.1 1\n"
+                          "f 1/1/1 2/1/1 3/1/1\nf 1/2/2 4/1/1 3/1/1\nf 1/3/1 2/1/1 4/1/1\nf 1/1/3 4/1/1 2/1/1\n"
+                          "f 5/1/1 2/1/1 4/1/1\n";
+  const Mesh m = expectSameAsAssimp(writeFile("near.obj", obj));
+  EXPECT_EQ(m.vertexCount(), 4u + 2u + 1u) << "corner 1 near-equal joins; uv 0.1, normal 0.1 and x 1e-6 do not";
+}
+
 TEST(ImportOracle, ObjWithoutNormalsOrUvs) {
   const fs::path path = writeFile("torus-bare.obj", torusObj(24, 12, false, false));
   const Mesh m = expectSameAsAssimp(path);
