@@ -14,6 +14,7 @@
 #include <cctype>
 #include <string>
 #include <system_error>
+#include <type_traits>
 #include <vector>
 
 namespace glint {
