@@ -117,7 +117,9 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   std::size_t corners = 0;
   for (int f = 0; f < faceCount; ++f) {
     const std::int64_t n = list->GetListEntryNumValues(f);
-    if (n < 3) throw Declined("a face with fewer than 3 corners");  // a point or line for Assimp
+    // No corners: corrupt (Assimp crashes or aborts on such files). 1–2: a point or line.
+    if (n <= 0) fail(ErrorKind::Input, "cannot read mesh '{}': face {} has no corners", name, f);
+    if (n < 3) throw Declined("a face with fewer than 3 corners");
     mesh.faceStart[std::size_t(f)] = std::uint32_t(corners);
     corners += std::size_t(n);
   }
