@@ -389,6 +389,8 @@ TEST(ImportOracle, FastPathErrorsAreOneLineInputErrors) {
       {"header-only.ply", header},
       {"nan.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"},
+      {"no-corners.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                         "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0\n"},
   };
   for (const Case& c : plyCases) {
     SCOPED_TRACE(c.name);
