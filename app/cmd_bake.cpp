@@ -7,22 +7,15 @@
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
-#include "glint/core/text.h"
 #include "glint/image/image.h"
 #include "glint/mesh/mesh.h"
 
 #include <fmt/format.h>
-#include <sys/resource.h>
-#include <tbb/global_control.h>
 
-#include <atomic>
 #include <cctype>
-#include <chrono>
 #include <cmath>
-#include <csignal>
-#include <cstdio>
-#include <filesystem>
 #include <exception>
+#include <filesystem>
 #include <future>
 #include <memory>
 #include <optional>
@@ -35,24 +28,11 @@ namespace {
 struct BakeArgs {
   std::string low, high, output, size = "1024x1024", space = "tangent", worldMatrix;
   std::string maxFront = "5%", maxRear = "5%", aoDistance = "10%";
-  std::string cage, detail, ao, height, missMask, json;
-  int samples = 1, padding = 16, bits = 0, aoSamples = 16, threads = 0;
+  std::string cage, detail, ao, height, missMask;
+  int samples = 1, padding = 16, bits = 0, aoSamples = 16;
   float detailScale = 8.0f;
-  bool directX = false, frontFirst = false, fillAll = false, quiet = false;
-};
-
-std::atomic<bool> g_interrupted{false};
-
-/// SIGINT sets a flag the baker polls between tiles; nothing is written after it.
-class InterruptGuard {
-public:
-  InterruptGuard() { m_previous = std::signal(SIGINT, [](int) { g_interrupted = true; }); }
-  ~InterruptGuard() { std::signal(SIGINT, m_previous); }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
-private:
-  void (*m_previous)(int) = SIG_DFL;
+  bool directX = false, frontFirst = false, fillAll = false;
+  ToolSettings tool;
 };
 
 /// "5%" → 5 % of the low poly's diagonal; "0.2" → 0.2 scene units.
@@ -92,14 +72,6 @@ mat4 parseMatrix(const std::string& text) {
   return m;
 }
 
-double peakMemoryMiB() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return double(usage.ru_maxrss) / 1024.0;  // kilobytes on Linux
-}
-
-std::string jsonString(const std::string& s) { return "\"" + escapeJson(s) + "\""; }
-
 constexpr const char* kFooter = R"(Examples:
   glint bake car_low.obj car_high.ply -o car_normal.png
   glint bake head_low.fbx head_high.fbx -o head.png --size 2048x2048 --samples 36 \
@@ -130,7 +102,7 @@ writable, 130 interrupted (Ctrl-C; no partial file is left).)";
 
 }  // namespace
 
-Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
+Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
   auto a = std::make_shared<BakeArgs>();
   auto* cmd = app.add_subcommand("bake", "Bake a high-poly mesh's detail into a normal map for a low-poly mesh");
   cmd->footer(kFooter);
@@ -166,22 +138,11 @@ Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--height", a->height, "Also bake height/displacement (signed ray distance) to this file; 8/16-bit "
                   "files map ±max(--max-front, --max-rear) to 0..1, EXR keeps distances");
   cmd->add_option("--miss-mask", a->missMask, "Also write the fraction of each texel's rays that found nothing (debug)");
-  cmd->add_option("--json", a->json, "Write a JSON report (texels, rays, hit ratio, misses, phase times, peak "
-                  "memory) to this file, '-' for stdout");
-  cmd->add_option("--threads", a->threads, "Worker threads (default: all cores); the output does not depend on it");
-  cmd->add_flag("-q,--quiet", a->quiet, "No progress bar or info messages, only warnings and errors");
+  addToolOptions(*cmd, a->tool, "texels, rays, hit ratio, misses, BVH size");
 
-  return [a, &global] {
+  return Command{.run = [a, &global] {
     (void)global;
-    using Clock = std::chrono::steady_clock;
-    const auto started = Clock::now();
-    const auto seconds = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-    if (a->quiet) log::setLevel(log::Level::Warn);
-    g_interrupted = false;
-    InterruptGuard guard;
-    std::unique_ptr<tbb::global_control> threads;
-    if (a->threads < 0) fail(ErrorKind::Usage, "--threads must be positive, got {}", a->threads);
-    if (a->threads > 0) threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(a->threads));
+    ToolRun run("bake", a->tool);
 
     // Options and outputs first: fail in a millisecond, not after the bake.
     bake::BakeOptions options;
@@ -189,9 +150,9 @@ Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
     options.width = size.x;
     options.height = size.y;
     options.samples = a->samples;
-    options.space = a->space == "object" ? bake::NormalSpace::Object
-                  : a->space == "world"  ? bake::NormalSpace::World
-                                         : bake::NormalSpace::Tangent;
+    options.space = a->space == "object" ? NormalSpace::Object
+                  : a->space == "world"  ? NormalSpace::World
+                                         : NormalSpace::Tangent;
     if (!a->worldMatrix.empty()) options.objectToWorld = parseMatrix(a->worldMatrix);
     options.directX = a->directX;
     options.maxFront = parseDistance(a->maxFront, "--max-front");
@@ -205,8 +166,8 @@ Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
     options.aoDistance = parseDistance(a->aoDistance, "--ao-distance");
     options.heightMap = !a->height.empty();
     options.missMask = !a->missMask.empty();
-    options.progress = !a->quiet;
-    options.cancel = &g_interrupted;
+    options.progress = run.showProgress();
+    options.cancel = &run.cancelFlag();
     bake::validateOptions(options);
     const PixelType normalType = bake::outputType(a->output, a->bits);
     std::vector<std::string> outputs{a->output};
@@ -215,12 +176,12 @@ Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
       bake::outputType(*extra, a->bits);  // --bits applies to every map: check them all now
       outputs.push_back(*extra);
     }
-    if (!a->json.empty() && a->json != "-") outputs.push_back(a->json);
+    if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
     for (const auto& path : outputs) checkWritable(path);
     // OpenImageIO is needed for a detail map and for outputs other than PNG (libspng).
     bool needsImageIo = !a->detail.empty();
     for (std::size_t i = 0; i < outputs.size(); ++i) {
-      const bool json = !a->json.empty() && a->json != "-" && i + 1 == outputs.size();
+      const bool json = !a->tool.json.empty() && a->tool.json != "-" && i + 1 == outputs.size();
       std::string ext = std::filesystem::path(outputs[i]).extension().string();
       for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
       if (!json && ext != ".png") needsImageIo = true;
@@ -233,7 +194,7 @@ Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
     // Inputs (never modified: loaded into memory, prepared there).
     // The high poly (the big file) is parsed here while a second thread reads the rest;
     // errors are reported in argument order: low, high, cage, detail.
-    auto t = Clock::now();
+    std::optional<ToolRun::Phase> loading(std::in_place, run, "load");
     auto others = std::async(std::launch::async, [&] {
       Mesh low = loadMesh(a->low);
       if (!a->cage.empty()) options.cage = loadMesh(a->cage);
@@ -250,11 +211,15 @@ Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
     }
     const Mesh low = others.get();
     if (highError) std::rethrow_exception(highError);
-    const double loadSeconds = seconds(t);
-    if (g_interrupted) fail(ErrorKind::Interrupted, "bake interrupted");
+    loading.reset();
+    run.throwIfInterrupted();
     const bake::BakeResult result = bake::bake(low, *high, options);
+    const bake::BakeStats& s = result.stats;
+    run.addSeconds("prepare", s.prepareSeconds);
+    run.addSeconds("trace", s.traceSeconds);
+    run.addSeconds("dilate", s.dilateSeconds);
 
-    t = Clock::now();
+    std::optional<ToolRun::Phase> writing(std::in_place, run, "write");
     saveImage(bake::forOutput(result.normal, normalType), a->output);
     if (!a->ao.empty()) saveImage(bake::forOutput(result.ao, bake::outputType(a->ao, a->bits)), a->ao);
     if (!a->height.empty()) {
@@ -262,41 +227,44 @@ Runner addBakeCommand(CLI::App& app, const GlobalOptions& global) {
       saveImage(bake::heightForOutput(result.height, bake::outputType(a->height, a->bits), range), a->height);
     }
     if (!a->missMask.empty()) saveImage(bake::forOutput(result.missMask, bake::outputType(a->missMask, a->bits)), a->missMask);
-    const double writeSeconds = seconds(t);
-    const double total = seconds(started);
-    const bake::BakeStats& s = result.stats;
+    writing.reset();
     log::info("bake: {} ({} triangles) → {} ({}x{}, {} per texel): {} texels baked, {} padded; {} rays, hit ratio "
               "{:.4f}; {:.2f} s", a->high, high->triangleCount(), a->output, options.width, options.height,
-              options.samples, s.coveredTexels, s.paddedTexels, s.rays, s.hitRatio(), total);
+              options.samples, s.coveredTexels, s.paddedTexels, s.rays, s.hitRatio(), run.elapsed());
 
-    if (!a->json.empty()) {
-      std::string warnings;
-      for (const auto& w : result.warnings) warnings += (warnings.empty() ? "" : ", ") + jsonString(w);
-      const std::string json = fmt::format(
-          R"({{
-  "low": {}, "high": {}, "output": {},
-  "width": {}, "height": {}, "samples_per_texel": {}, "space": {}, "directx": {},
-  "low_triangles": {}, "high_triangles": {},
-  "texels": {}, "covered_texels": {}, "conservative_texels": {}, "padded_texels": {},
-  "samples": {}, "rays": {}, "ao_rays": {}, "hits": {}, "misses": {}, "hit_ratio": {:.6f},
-  "max_front": {:.6g}, "max_rear": {:.6g},
-  "seconds": {{"load": {:.4f}, "prepare": {:.4f}, "trace": {:.4f}, "dilate": {:.4f}, "write": {:.4f}, "total": {:.4f}}},
-  "rays_per_second": {:.0f},
-  "peak_memory_mib": {:.1f}, "bvh_mib": {:.1f},
-  "warnings": [{}]
-}}
-)",
-          jsonString(a->low), jsonString(a->high), jsonString(a->output), options.width, options.height, options.samples,
-          jsonString(a->space), options.directX, low.triangleCount(), high->triangleCount(), s.texels, s.coveredTexels,
-          s.conservativeTexels, s.paddedTexels, s.samples, s.rays, s.aoRays, s.hits, s.misses, s.hitRatio(),
-          s.frontDistance, s.rearDistance, loadSeconds, s.prepareSeconds, s.traceSeconds, s.dilateSeconds,
-          writeSeconds, total, s.traceSeconds > 0 ? double(s.rays + s.aoRays) / s.traceSeconds : 0.0, peakMemoryMiB(),
-          double(s.bvhBytes) / (1024.0 * 1024.0), warnings);
-      if (a->json == "-") std::fputs(json.c_str(), stdout);
-      else writeTextAtomically(a->json, json);
-    }
+    auto& report = run.report();
+    report["low"] = a->low;
+    report["high"] = a->high;
+    report["output"] = a->output;
+    report["width"] = options.width;
+    report["height"] = options.height;
+    report["samples_per_texel"] = options.samples;
+    report["space"] = a->space;
+    report["directx"] = options.directX;
+    report["low_triangles"] = low.triangleCount();
+    report["high_triangles"] = high->triangleCount();
+    report["texels"] = s.texels;
+    report["covered_texels"] = s.coveredTexels;
+    report["conservative_texels"] = s.conservativeTexels;
+    report["padded_texels"] = s.paddedTexels;
+    report["samples"] = s.samples;
+    report["rays"] = s.rays;
+    report["ao_rays"] = s.aoRays;
+    report["hits"] = s.hits;
+    report["misses"] = s.misses;
+    report["hit_ratio"] = s.hitRatio();
+    report["max_front"] = s.frontDistance;
+    report["max_rear"] = s.rearDistance;
+    report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays) / s.traceSeconds : 0.0;
+    report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
+    for (const auto& w : result.warnings) run.recordWarning(w);
+    run.finish();
     return 0;
-  };
+  },
+  // The OpenImageIO module is started by the command itself, only when it reads an image
+  // or writes another format than PNG (libspng): its 0.3 s of dynamic linking would take
+  // the second core from the mesh parser.
+  .readsImages = false};
 }
 
 }  // namespace glint::app

@@ -20,7 +20,7 @@ struct BenchArgs {
 };
 }  // namespace
 
-Runner addBenchCommand(CLI::App& app, const GlobalOptions& global) {
+Command benchCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<BenchArgs>();
   auto* cmd = app.add_subcommand("bench", "Run benchmarks: each reports ratios against a peer measured in the same run");
   std::string names;
@@ -28,7 +28,7 @@ Runner addBenchCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->footer("Suites:" + (names.empty() ? std::string("\n  (none yet)") : names));
   cmd->add_option("suites", args->suites, "Suites to run (default: all)");
   cmd->add_option("--json", args->json, "Also write the results as JSON to this file");
-  return [args, &global] {
+  return Command{.run = [args, &global] {
     const auto& all = bench::Suites::builtin().all();
     std::vector<const bench::Suite*> chosen;
     for (const auto& name : args->suites) {
@@ -42,17 +42,17 @@ Runner addBenchCommand(CLI::App& app, const GlobalOptions& global) {
     if (!args->json.empty()) checkWritable(args->json);
     scenes::ContextPool contexts(global.glDebug);
     contexts.use(gl::Profile::Core);
-    std::string json = "[";
+    nlohmann::ordered_json json = nlohmann::ordered_json::array();
     for (const auto* suite : chosen) {
       log::info("bench {}: {}", suite->name, suite->description);
       bench::Recorder recorder;
       suite->run(recorder);
       fmt::print("{}\n", bench::formatTable(suite->name, recorder));
-      json += (json.size() > 1 ? ",\n" : "\n") + bench::formatJson(suite->name, recorder);
+      json.push_back(bench::toJson(suite->name, recorder));
     }
-    if (!args->json.empty()) writeTextAtomically(args->json, json + "\n]\n");
+    if (!args->json.empty()) writeTextAtomically(args->json, json.dump(2) + "\n");
     return 0;
-  };
+  }};
 }
 
 }  // namespace glint::app

@@ -10,6 +10,7 @@
 #include "glint/scenes/runner.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <filesystem>
@@ -95,21 +96,21 @@ GPU time from GL_TIME_ELAPSED queries, CPU time including glFinish.{}</p>
 }
 
 std::string json(const std::vector<Entry>& entries, const gl::ContextInfo& info) {
-  std::string out = fmt::format("{{\n  \"renderer\": \"{}\",\n  \"version\": \"{}\",\n  \"variants\": [\n",
-                                escapeJson(info.renderer), escapeJson(info.version));
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    const auto& e = entries[i];
-    out += fmt::format(
-        "    {{\"name\": \"{}\", \"image\": \"{}\", \"skipped\": \"{}\", \"gpu_ms\": {:.4f}, \"cpu_ms\": {:.4f}, "
-        "\"notes\": \"{}\"}}{}\n",
-        escapeJson(e.ref.fullName()), escapeJson(e.image), escapeJson(e.skipped), e.result.gpuMs, e.result.cpuMs,
-        escapeJson(e.result.notes), i + 1 < entries.size() ? "," : "");
+  nlohmann::ordered_json variants = nlohmann::ordered_json::array();
+  for (const auto& e : entries) {
+    variants.push_back({{"name", e.ref.fullName()},
+                        {"image", e.image},
+                        {"skipped", e.skipped},
+                        {"gpu_ms", e.result.gpuMs},
+                        {"cpu_ms", e.result.cpuMs},
+                        {"notes", e.result.notes}});
   }
-  return out + "  ]\n}\n";
+  const nlohmann::ordered_json out{{"renderer", info.renderer}, {"version", info.version}, {"variants", variants}};
+  return out.dump(2) + "\n";
 }
 }  // namespace
 
-Runner addGalleryCommand(CLI::App& app, const GlobalOptions& global) {
+Command galleryCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<GalleryArgs>();
   auto* cmd = app.add_subcommand("gallery", "Render every variant and write an HTML page of pictures and frame times");
   cmd->footer("Writes DIR/index.html, DIR/gallery.json and DIR/<scene>/<variant>.png.\n"
@@ -120,7 +121,7 @@ Runner addGalleryCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--repeats", args->repeats, "Frames timed per variant (0: no timing)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
-  return [args, &global] {
+  return Command{.run = [args, &global] {
     const auto variants = scenes::Registry::builtin().match(args->filter);
     if (variants.empty()) fail(ErrorKind::Usage, "no variant matches '{}' (`glint list` shows them)", args->filter);
     const fs::path dir = args->output;
@@ -161,7 +162,7 @@ Runner addGalleryCommand(CLI::App& app, const GlobalOptions& global) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log::info("gallery: {} variants in {:.1f} s → {}", entries.size(), seconds, (dir / "index.html").string());
     return 0;
-  };
+  }};
 }
 
 }  // namespace glint::app

@@ -7,9 +7,9 @@
 
 namespace glint::app {
 
-Runner addInfoCommand(CLI::App& app, const GlobalOptions& global) {
+Command infoCommand(CLI::App& app, const GlobalOptions& global) {
   app.add_subcommand("info", "Show the OpenGL vendor, renderer, version and the limits glint uses");
-  return [&global] {
+  return Command{.run = [&global] {
     scenes::ContextPool contexts(global.glDebug);
     contexts.use(gl::Profile::Core);
     const auto info = gl::queryContextInfo();
@@ -28,7 +28,7 @@ Runner addInfoCommand(CLI::App& app, const GlobalOptions& global) {
                compat ? "yes (classic fixed-function variants run)"
                       : "no — " + contexts.unavailableReason(gl::Profile::Compatibility));
     return 0;
-  };
+  }, .readsImages = false};
 }
 
 }  // namespace glint::app

@@ -7,13 +7,13 @@
 
 namespace glint::app {
 
-Runner addListCommand(CLI::App& app, const GlobalOptions&) {
+Command listCommand(CLI::App& app, const GlobalOptions&) {
   auto* cmd = app.add_subcommand("list", "List every scene and variant with what it shows");
   auto names = std::make_shared<bool>(false);
   auto filter = std::make_shared<std::string>();
   cmd->add_flag("--names", *names, "Only the full names (scene/variant), one per line, for scripts");
   cmd->add_option("filter", *filter, "Show only variants whose name contains this text");
-  return [names, filter] {
+  return Command{.run = [names, filter] {
     const auto& registry = scenes::Registry::builtin();
     if (*names) {
       for (const auto& ref : registry.match(*filter)) fmt::print("{}\n", ref.fullName());
@@ -34,7 +34,7 @@ Runner addListCommand(CLI::App& app, const GlobalOptions&) {
       }
     }
     return 0;
-  };
+  }, .readsImages = false};
 }
 
 }  // namespace glint::app

@@ -26,12 +26,12 @@ const char* kindName(EdgeKind kind) {
 }
 }  // namespace
 
-Runner addMeshInfoCommand(CLI::App& app, const GlobalOptions&) {
+Command meshInfoCommand(CLI::App& app, const GlobalOptions&) {
   auto args = std::make_shared<MeshInfoArgs>();
   auto* cmd = app.add_subcommand("mesh-info", "Show a mesh's size, bounds and edge topology (open and non-manifold edges)");
   cmd->add_option("file", args->file, "Mesh file (any format Assimp reads: OBJ, PLY, glTF, STL, ...)")->required();
   cmd->add_option("--limit", args->limit, "Problem edges listed per kind (0: none, -1: all)")->capture_default_str();
-  return [args] {
+  return Command{.run = [args] {
     const Mesh mesh = loadMesh(args->file);
     const EdgeMap map = EdgeMap::build(mesh);
     const Bounds b = mesh.bounds();
@@ -66,7 +66,7 @@ Runner addMeshInfoCommand(CLI::App& app, const GlobalOptions&) {
       }
     }
     return 0;
-  };
+  }, .readsImages = false};
 }
 
 }  // namespace glint::app

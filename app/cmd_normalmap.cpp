@@ -45,7 +45,7 @@ bool looksLikeNormalMap(const Image& image) {
 }
 }  // namespace
 
-Runner addNormalMapCommand(CLI::App& app, const GlobalOptions& global) {
+Command normalmapCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<NormalMapArgs>();
   auto* cmd = app.add_subcommand("normalmap", "Make a tangent-space normal map from a height map (seed 002)");
   cmd->footer(
@@ -69,7 +69,7 @@ Runner addNormalMapCommand(CLI::App& app, const GlobalOptions& global) {
                 "Instead: check that the input is a usable normal map (encoding, unit length, orientation) and "
                 "report; exit 3 with the reason when it is not");
   cmd->add_flag("--object-space", args->objectSpace, "With --check: the map is object-space (any direction is fine)");
-  return [args, &global] {
+  return Command{.run = [args, &global] {
     if (args->check) {
       const Image map = loadImage(args->input);
       NormalMapReport report;
@@ -109,7 +109,7 @@ Runner addNormalMapCommand(CLI::App& app, const GlobalOptions& global) {
               pixelTypeName(input.type()), args->output, args->gpu ? "GPU" : "CPU", args->scale,
               args->wrap ? ", wrapped" : "");
     return 0;
-  };
+  }};
 }
 
 }  // namespace glint::app

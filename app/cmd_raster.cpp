@@ -127,7 +127,7 @@ Frame meshFrame(const Mesh& mesh, ivec2 size, vec3 camera, bool cull) {
                                  .stencilTest = true,  // counts depth-test passes: how often each pixel was overwritten
                                  .stencilFront = {.dppass = raster::StencilOp::Incr},
                                  .stencilBack = {.dppass = raster::StencilOp::Incr},
-                                 .cullFace = cull},
+                                 .cull = cull},
           .indices = mesh.indices};
   job.vertices.reserve(mesh.vertexCount());
   for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {
@@ -314,7 +314,7 @@ void printLecture(const Frame& f) {
 
 }  // namespace
 
-Runner addRasterCommand(CLI::App& app, const GlobalOptions&) {
+Command rasterCommand(CLI::App& app, const GlobalOptions&) {
   auto args = std::make_shared<RasterArgs>();
   auto* cmd = app.add_subcommand("raster", "Run geometry through glint::raster, the reference CPU pipeline, and picture "
                                            "its steps (colour, depth, edge functions, overdraw, stencil)");
@@ -355,7 +355,7 @@ Runner addRasterCommand(CLI::App& app, const GlobalOptions&) {
   scene->add_option("name", args->scene, "basics/reference/VARIANT")->required();
   addCommon(scene, "500x500");
 
-  return [args, lecture, mesh] {
+  return Command{.run = [args, lecture, mesh] {
     // Validate everything before writing anything.
     const ivec2 size = args->size.empty() ? (mesh->parsed() ? ivec2(640, 480) : ivec2(500, 500)) : parseSize(args->size);
     Frame frame;
@@ -379,7 +379,7 @@ Runner addRasterCommand(CLI::App& app, const GlobalOptions&) {
     printEdges(chosen);
     writeOutputs(r, chosen, args->output);
     return 0;
-  };
+  }};
 }
 
 }  // namespace glint::app

@@ -20,7 +20,7 @@ struct RenderArgs {
 };
 }  // namespace
 
-Runner addRenderCommand(CLI::App& app, const GlobalOptions& global) {
+Command renderCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<RenderArgs>();
   auto* cmd = app.add_subcommand("render", "Render one scene variant headless to an image (PNG, EXR, TGA, JPEG, ...)");
   cmd->footer("Examples:\n  glint render basics/triangle/depth -o depth.png\n"
@@ -32,7 +32,7 @@ Runner addRenderCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--time", args->time, "Scene time in seconds for animated scenes (default: the scene's own)")
       ->each([args](const std::string&) { args->timeSet = true; });
   cmd->add_option("--set", args->options, "Scene option as name=value (repeatable; the viewer lists them)");
-  return [args, &global] {
+  return Command{.run = [args, &global] {
     const auto ref = scenes::Registry::builtin().resolve(args->name);
     std::string output = args->output;
     if (output.empty()) {
@@ -51,7 +51,7 @@ Runner addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     log::info("{} → {} ({}x{})", ref.fullName(), output, result.image.width(), result.image.height());
     if (!result.notes.empty()) log::info("{}", result.notes);
     return 0;
-  };
+  }};
 }
 
 }  // namespace glint::app

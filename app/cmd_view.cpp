@@ -183,8 +183,7 @@ private:
         m_timer.end();
       } else {
         target.bind();
-        glClearColor(0.3f, 0.1f, 0.1f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
+        render::clear(GL_COLOR_BUFFER_BIT, vec4(0.3f, 0.1f, 0.1f, 1.0f));  // no scene: a dim red backdrop
       }
     }
     m_frameMs = 0.9 * m_frameMs + 0.1 * dt * 1000.0;
@@ -262,7 +261,7 @@ private:
 };
 }  // namespace
 
-Runner addViewCommand(CLI::App& app, const GlobalOptions& global) {
+Command viewCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<ViewArgs>();
   auto* cmd = app.add_subcommand("view", "Open the interactive viewer (a window with a panel of variants and options)");
   cmd->footer("Keys: left/right variant, up/down scene, space pause, R reload shaders, Tab panel, Esc quit.\n"
@@ -273,7 +272,7 @@ Runner addViewCommand(CLI::App& app, const GlobalOptions& global) {
                   "Directory to hot-reload shaders from (default: the source tree's shaders/ when it exists)");
   cmd->add_option("--screenshot", args->screenshot, "Save the window (scene + panel) to this image after --frames frames and exit");
   cmd->add_option("--frames", args->frames, "Frames to draw before --screenshot (default 2)");
-  return [args, &global] {
+  return Command{.run = [args, &global] {
     if (!args->scene.empty()) scenes::Registry::builtin().resolve(args->scene);  // fail fast on a typo
     fs::path dir = args->shaderDir.empty() ? fs::path(GLINT_SOURCE_SHADER_DIR) : fs::path(args->shaderDir);
     std::error_code ec;
@@ -284,7 +283,7 @@ Runner addViewCommand(CLI::App& app, const GlobalOptions& global) {
     }
     Viewer viewer(*args, global);
     return viewer.run();
-  };
+  }};
 }
 
 }  // namespace glint::app

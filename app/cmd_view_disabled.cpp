@@ -5,10 +5,10 @@
 
 namespace glint::app {
 
-Runner addViewCommand(CLI::App& app, const GlobalOptions&) {
+Command viewCommand(CLI::App& app, const GlobalOptions&) {
   app.add_subcommand("view", "Interactive viewer (not built: configure with -DGLINT_BUILD_VIEWER=ON)")
       ->allow_extras();
-  return [] () -> int { fail(ErrorKind::Usage, "this glint was built without the viewer (GLINT_BUILD_VIEWER=OFF)"); };
+  return Command{.run = [] () -> int { fail(ErrorKind::Usage, "this glint was built without the viewer (GLINT_BUILD_VIEWER=OFF)"); }};
 }
 
 }  // namespace glint::app

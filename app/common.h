@@ -1,9 +1,18 @@
 #pragma once
-// Shared pieces of the glint subcommands.
+// What the glint subcommands share: global options, the Command each one returns, the
+// options every offline tool takes, and small parsers.
+//
+// Adding a subcommand: write app/cmd_<name>.cpp defining
+//   Command <name>Command(CLI::App& app, const GlobalOptions& global);
+// (it adds its CLI11 subcommand to `app` and returns what runs it), and add <name> to
+// GLINT_COMMANDS in app/CMakeLists.txt. main.cpp declares and registers every command from
+// that one list (the generated commands.inc); nothing else changes.
 #include "glint/core/math.h"
+#include "glint/core/tool.h"
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <string>
 
 namespace glint::app {
@@ -14,20 +23,18 @@ struct GlobalOptions {
   bool verbose = false;
 };
 
+/// A subcommand, as its file's <name>Command() returns it.
+struct Command {
+  std::function<int()> run;  ///< runs the command after parsing; returns the exit status
+  bool readsImages = true;   ///< start loading the image I/O module in the background at once
+};
+
+/// Binds the options every offline tool takes to `settings`: --threads, -q/--quiet and
+/// --json FILE ('-' for stdout). `reportContents` completes the --json help text ("texels,
+/// rays, hit ratio"); the common fields (phase times, peak memory, ...) are listed for it.
+void addToolOptions(CLI::App& command, ToolSettings& settings, const std::string& reportContents);
+
 /// "640x360" → {640, 360}; Error(Usage) for anything else or sizes outside 1..16384.
 ivec2 parseSize(const std::string& text);
-
-// Each subcommand adds itself to the app and returns the function that runs it.
-using Runner = std::function<int()>;
-Runner addListCommand(CLI::App& app, const GlobalOptions& global);
-Runner addRenderCommand(CLI::App& app, const GlobalOptions& global);
-Runner addGalleryCommand(CLI::App& app, const GlobalOptions& global);
-Runner addInfoCommand(CLI::App& app, const GlobalOptions& global);
-Runner addViewCommand(CLI::App& app, const GlobalOptions& global);
-Runner addBenchCommand(CLI::App& app, const GlobalOptions& global);
-Runner addMeshInfoCommand(CLI::App& app, const GlobalOptions& global);
-Runner addRasterCommand(CLI::App& app, const GlobalOptions& global);
-Runner addBakeCommand(CLI::App& app, const GlobalOptions& global);
-Runner addNormalMapCommand(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace glint::app

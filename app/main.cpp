@@ -6,13 +6,17 @@
 #include "glint/core/log.h"
 #include "glint/image/image.h"
 
-#include <csignal>
 #include <cstdio>
 #include <map>
-#include <set>
 #include <string>
+#include <vector>
 
 namespace glint::app {
+
+// Every subcommand's function, declared from the one list in app/CMakeLists.txt.
+#define GLINT_COMMAND(name) Command name##Command(CLI::App& app, const GlobalOptions& global);
+#include "commands.inc"
+#undef GLINT_COMMAND
 
 ivec2 parseSize(const std::string& text) {
   int w = 0, h = 0;
@@ -24,6 +28,15 @@ ivec2 parseSize(const std::string& text) {
     fail(ErrorKind::Usage, "size {}x{} is out of range (1..16384 per side)", w, h);
   }
   return {w, h};
+}
+
+void addToolOptions(CLI::App& command, ToolSettings& settings, const std::string& reportContents) {
+  command.add_option("--threads", settings.threads, "Worker threads (default: all cores); the output does not depend on it")
+      ->check(CLI::NonNegativeNumber);
+  command.add_flag("-q,--quiet", settings.quiet, "No progress bar or info messages, only warnings and errors");
+  command.add_option("--json", settings.json,
+                     "Write a JSON report (" + reportContents + "; phase times, peak memory, threads, warnings) to "
+                     "this file, '-' for stdout");
 }
 
 }  // namespace glint::app
@@ -42,23 +55,20 @@ int main(int argc, char** argv) {
   cli.add_flag("-q,--quiet", global.quiet, "Only warnings and errors");
   cli.add_flag("-v,--verbose", global.verbose, "Debug messages too");
 
-  std::map<CLI::App*, app::Runner> runners;
-  auto add = [&](app::Runner (*fn)(CLI::App&, const app::GlobalOptions&)) {
-    const auto before = cli.get_subcommands({});
-    app::Runner r = fn(cli, global);
-    for (CLI::App* sub : cli.get_subcommands({}))
-      if (std::find(before.begin(), before.end(), sub) == before.end()) runners[sub] = r;
+  // Each command adds its CLI11 subcommand; remember which Command runs which.
+  using AddCommand = app::Command (*)(CLI::App&, const app::GlobalOptions&);
+  const std::vector<AddCommand> commands{
+#define GLINT_COMMAND(name) &app::name##Command,
+#include "commands.inc"
+#undef GLINT_COMMAND
   };
-  add(app::addListCommand);
-  add(app::addRenderCommand);
-  add(app::addGalleryCommand);
-  add(app::addViewCommand);
-  add(app::addInfoCommand);
-  add(app::addBenchCommand);
-  add(app::addMeshInfoCommand);
-  add(app::addRasterCommand);
-  add(app::addBakeCommand);
-  add(app::addNormalMapCommand);
+  std::map<CLI::App*, app::Command> byName;
+  for (AddCommand add : commands) {
+    const auto before = cli.get_subcommands({});
+    app::Command command = add(cli, global);
+    for (CLI::App* sub : cli.get_subcommands({}))
+      if (std::find(before.begin(), before.end(), sub) == before.end()) byName[sub] = command;
+  }
 
   try {
     cli.parse(argc, argv);
@@ -74,15 +84,14 @@ int main(int argc, char** argv) {
     return exitCode(ErrorKind::Usage);
   }
   log::setLevel(global.verbose ? log::Level::Debug : global.quiet ? log::Level::Warn : log::Level::Info);
-  // OpenImageIO is a module of ~260 libraries (~0.3 s to load): commands that touch
-  // images load it on the second core while they parse meshes or set up GL.
-  // (`bake` starts it itself, only when it reads an image or writes one that is not PNG:
-  // PNG goes through libspng, and the load would take the second core from the mesh parser.)
-  static const std::set<std::string> kNoImages{"list", "info", "mesh-info", "bake"};
-  for (CLI::App* sub : cli.get_subcommands())
-    if (!kNoImages.contains(sub->get_name())) preloadImageIo();
   try {
-    for (CLI::App* sub : cli.get_subcommands()) return runners.at(sub)();
+    for (CLI::App* sub : cli.get_subcommands()) {
+      const app::Command& command = byName.at(sub);
+      // OpenImageIO is a module of ~260 libraries (~0.3 s to load): commands that touch
+      // images load it on the second core while they parse meshes or set up GL.
+      if (command.readsImages) preloadImageIo();
+      return command.run();
+    }
   } catch (const Error& e) {
     std::fprintf(stderr, "glint: %s\n", e.what());
     return exitCode(e.kind());

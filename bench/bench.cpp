@@ -1,6 +1,5 @@
 #include "glint/bench/bench.h"
 
-#include "glint/core/text.h"
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
@@ -73,19 +72,19 @@ std::string formatTable(const std::string& suite, const Recorder& rec) {
   return out;
 }
 
-std::string formatJson(const std::string& suite, const Recorder& rec) {
-  auto esc = [](const std::string& s) { return escapeJson(s); };
-  std::string out = fmt::format("{{\"suite\": \"{}\", \"rows\": [", esc(suite));
-  bool first = true;
+nlohmann::ordered_json toJson(const std::string& suite, const Recorder& rec) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const auto& m : rec.measurements()) {
-    const double ratio = ratioOf(rec, m);
-    out += fmt::format("{}\n  {{\"group\": \"{}\", \"name\": \"{}\", \"value\": {}, \"unit\": \"{}\", \"ratio_to\": \"{}\", "
-                       "\"ratio\": {}, \"note\": \"{}\"}}",
-                       first ? "" : ",", esc(m.group), esc(m.name), std::isfinite(m.value) ? fmt::format("{}", m.value) : "null",
-                       esc(m.unit), esc(m.ratioTo), std::isnan(ratio) ? "null" : fmt::format("{}", ratio), esc(m.note));
-    first = false;
+    rows.push_back({{"group", m.group},
+                    {"name", m.name},
+                    {"value", number(m.value)},
+                    {"unit", m.unit},
+                    {"ratio_to", m.ratioTo},
+                    {"ratio", number(ratioOf(rec, m))},
+                    {"note", m.note}});
   }
-  return out + "\n]}";
+  return {{"suite", suite}, {"rows", rows}};
 }
 
 }  // namespace glint::bench

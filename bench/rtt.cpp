@@ -4,7 +4,7 @@
 #include "glint/bench/bench.h"
 #include "glint/gl/render_target.h"
 #include "glint/gl/timer.h"
-#include "glint/render/rtt.h"
+#include "glint/render/rtt/rtt.h"
 
 #include <fmt/format.h>
 

@@ -44,8 +44,10 @@ void runShadows(Recorder& recorder) {
                      .value = wallMs(
                          [&] {
                            target.target().bind();
-                           render::PipelineState{}.apply();
-                           glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+                           render::PipelineState{.depthTest = true}.apply();
+                           // The techniques' clear (render/shadows/*): same buffers, same colour.
+                           render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT,
+                                         vec4(0.52f, 0.6f, 0.7f, 1.0f));
                            plain.draw(world, camera, sh::LightTerms::Full);
                          },
                          repeats),

@@ -6,7 +6,7 @@
 #include "glint/image/normalmap.h"
 #include "glint/render/bump/height_to_normal.h"
 #include "glint/render/water/wave_simulation.h"
-#include "glint/sim/wave.h"
+#include "glint/sim/water.h"
 
 #include <fmt/format.h>
 

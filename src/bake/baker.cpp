@@ -236,18 +236,6 @@ Image channelImage(const Context& ctx, int first, int count, bool flipRows, cons
 
 }  // namespace
 
-vec3 encodeNormalMap(const vec3& unit, bool directX) {
-  const vec3 v = directX ? vec3(unit.x, -unit.y, unit.z) : unit;
-  return v * 0.5f + 0.5f;
-}
-
-vec3 decodeNormalMap(const vec3& rgb, bool directX) {
-  vec3 v = rgb * 2.0f - 1.0f;
-  if (directX) v.y = -v.y;
-  const float len = glm::length(v);
-  return len > 0.0f ? v / len : vec3(0.0f, 0.0f, 1.0f);
-}
-
 BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   BakeResult result;
   BakeStats& stats = result.stats;
@@ -386,7 +374,7 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   std::vector<std::uint8_t> islands = ctx.covered;
   ctx.covered = filled;
   result.normal = channelImage(ctx, 0, 3, true, [&](const float* in, float* out, bool has) {
-    const vec3 rgb = has ? encodeNormalMap(vec3(in[0], in[1], in[2]), options.directX) : background * 0.5f + 0.5f;
+    const vec3 rgb = has ? encodeNormal(vec3(in[0], in[1], in[2]), options.directX) : background * 0.5f + 0.5f;
     out[0] = rgb.x;
     out[1] = rgb.y;
     out[2] = rgb.z;

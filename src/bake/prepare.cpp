@@ -119,7 +119,7 @@ Prepared prepareInputs(const Mesh& low, const Mesh& high, const BakeOptions& opt
   }
 
   // Unit vertex normals: the renderer normalizes them per vertex before interpolating
-  // (render/normal_mapping.h), so the baker's frame must start from the same vectors.
+  // (render/bump/normal_mapping.h), so the baker's frame must start from the same vectors.
   for (vec3& n : p.low.normals) {
     const float len = glm::length(n);
     n = len > 0.0f ? n / len : vec3(0.0f, 0.0f, 1.0f);

@@ -6,7 +6,30 @@ namespace glint::gl {
 
 void Target::bind() const {
   framebuffer->bind();
-  glViewport(0, 0, size.x, size.y);
+  glViewport(origin.x, origin.y, size.x, size.y);
+  if (clipped) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(origin.x, origin.y, size.x, size.y);
+  } else {
+    glDisable(GL_SCISSOR_TEST);
+  }
+}
+
+Target Target::region(ivec2 corner, ivec2 extent) const {
+  const ivec2 lo = glm::clamp(corner, ivec2(0), size);
+  const ivec2 hi = glm::clamp(corner + extent, lo, size);
+  return {.framebuffer = framebuffer, .size = hi - lo, .origin = origin + lo, .clipped = true};
+}
+
+Target Target::column(int i, int n) const {
+  const int left = size.x * i / n, right = size.x * (i + 1) / n;
+  return region({left, 0}, {right - left, size.y});
+}
+
+Target Target::cell(int column, int row, int columns, int rows, int gap) const {
+  const int left = size.x * column / columns, right = size.x * (column + 1) / columns;
+  const int top = size.y - size.y * row / rows, bottom = size.y - size.y * (row + 1) / rows;
+  return region({left + gap, bottom + gap}, {right - left - 2 * gap, top - bottom - 2 * gap});
 }
 
 RenderTarget::RenderTarget(ivec2 size, GLenum colorFormat, std::string_view name) : m_size(size) {

@@ -187,6 +187,7 @@ Program Program::fromFiles(const std::vector<std::string>& files, const std::vec
       fail(ErrorKind::Internal, "linking {}: {}", names, firstErrorLine(logText.c_str()));
     }
     result.label(names);
+    result.cacheActiveUniforms();
     return result;
   } catch (...) {
     cleanup();
@@ -194,9 +195,26 @@ Program Program::fromFiles(const std::vector<std::string>& files, const std::vec
   }
 }
 
+void Program::cacheActiveUniforms() {
+  GLint count = 0, longest = 0;
+  glGetProgramInterfaceiv(m_id, GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+  glGetProgramInterfaceiv(m_id, GL_UNIFORM, GL_MAX_NAME_LENGTH, &longest);
+  std::string name(std::size_t(std::max(longest, 1)), '\0');
+  for (GLint i = 0; i < count; ++i) {
+    GLsizei length = 0;
+    glGetProgramResourceName(m_id, GL_UNIFORM, GLuint(i), GLsizei(name.size()), &length, name.data());
+    const std::string uniform(name.data(), std::size_t(length));
+    const GLint location = glGetProgramResourceLocation(m_id, GL_UNIFORM, uniform.c_str());
+    if (location < 0) continue;  // in a uniform block: no location
+    m_locations.emplace(uniform, location);
+    // An array is listed as "a[0]"; GLSL also accepts plain "a" for its first element.
+    if (uniform.ends_with("[0]")) m_locations.emplace(uniform.substr(0, uniform.size() - 3), location);
+  }
+}
+
 GLint Program::uniformLocation(std::string_view name) const {
+  if (auto it = m_locations.find(name); it != m_locations.end()) return it->second;
   const std::string key(name);
-  if (auto it = m_locations.find(key); it != m_locations.end()) return it->second;
   const GLint location = glGetUniformLocation(m_id, key.c_str());
   m_locations.emplace(key, location);
   return location;

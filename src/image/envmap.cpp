@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace glint::env {
+namespace glint {
 
 const char* cubeFaceName(int face) {
   static constexpr const char* kNames[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
@@ -196,4 +196,4 @@ void validateCubeFaces(std::span<const Image> faces, std::span<const std::string
   }
 }
 
-}  // namespace glint::env
+}  // namespace glint

@@ -8,6 +8,7 @@
 #include "glint/core/file.h"
 #include "glint/image/image.h"
 
+#include "oiio_locate.h"
 #include "oiio_module.h"
 
 #include <dlfcn.h>
@@ -32,10 +33,6 @@
 #include <thread>
 #include <vector>
 
-#ifndef GLINT_OIIO_MODULE
-#error "GLINT_OIIO_MODULE (the build tree's path of the glint_oiio module) must be defined"
-#endif
-
 namespace glint {
 namespace fs = std::filesystem;
 
@@ -47,21 +44,6 @@ struct OiioApi {
   GlintOiioReadFn read = nullptr;
   GlintOiioWriteFn write = nullptr;
 };
-
-// Where to look: next to the running executable (an installed or copied glint), then
-// the build tree's module (tests under build/tests/** and build/app/glint).
-std::vector<fs::path> moduleCandidates() {
-  std::vector<fs::path> candidates;
-  const fs::path built = GLINT_OIIO_MODULE;
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path beside = exe.parent_path() / built.filename();
-    if (fs::exists(beside, ec) && beside != built) candidates.push_back(beside);
-  }
-  candidates.push_back(built);
-  return candidates;
-}
 
 // dlerror()'s message without the module's path, which the caller's message names.
 std::string dlReason(const fs::path& path, const std::string& fallback) {
@@ -98,10 +80,15 @@ std::optional<OiioApi> openModule(const fs::path& path, std::string& reason) {
   return api;
 }
 
-// Tries every candidate; the first failure's message when none loads.
+// Tries every candidate (oiio_locate.h); the first failure's message when none loads.
 std::optional<OiioApi> loadModule(std::string& error) {
   error.clear();
-  for (const fs::path& path : moduleCandidates()) {
+  const std::vector<fs::path> candidates = oiio::moduleCandidates();
+  if (candidates.empty()) {
+    error = fmt::format("cannot load the image I/O module '{}': not found ({})", oiio::moduleFileName(),
+                        oiio::moduleSearchDescription());
+  }
+  for (const fs::path& path : candidates) {
     std::string reason;
     if (auto api = openModule(path, reason)) return api;
     if (error.empty()) error = fmt::format("cannot load the image I/O module '{}': {}", path.string(), reason);
@@ -252,11 +239,11 @@ void preloadImageIo() { theModule().preload(); }
 
 void requireImageIo() {
   std::error_code ec;
-  for (const fs::path& path : moduleCandidates()) {
+  for (const fs::path& path : oiio::moduleCandidates()) {
     if (fs::exists(path, ec)) return;
   }
-  fail(ErrorKind::Internal, "cannot load the image I/O module '{}': no such file (glint looks beside its executable, then in its build tree)",
-       fs::path(GLINT_OIIO_MODULE).filename().string());
+  fail(ErrorKind::Internal, "cannot load the image I/O module '{}': not found ({})", oiio::moduleFileName(),
+       oiio::moduleSearchDescription());
 }
 
 Image loadImage(const fs::path& path) {

@@ -151,8 +151,8 @@ std::int64_t polygonArea2(const std::vector<WindowVertex>& polygon) {
 }
 
 bool isCulled(const State& state, bool frontFacing) {
-  if (!state.cullFace) return false;
-  switch (state.cullMode) {
+  if (!state.cull) return false;
+  switch (state.cullFace) {
     case Face::Front: return frontFacing;
     case Face::Back: return !frontFacing;
     case Face::FrontAndBack: return true;

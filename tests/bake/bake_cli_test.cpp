@@ -7,6 +7,7 @@
 #include "support/cli.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -26,6 +27,7 @@ using Run = glint::testing::CliRun;
 using glint::testing::fileCount;
 using glint::testing::oneLine;
 using glint::testing::runGlint;
+using glint::testing::runShell;
 
 
 fs::path dir(const char* name) { return glint::testing::freshDir("bake-cli", name); }
@@ -74,11 +76,20 @@ TEST(BakeCli, WritesTheMapAndTheReportAndNothingElse) {
   EXPECT_EQ(loadImage(out / "h.exr").type(), PixelType::F32);
   EXPECT_EQ(fileCount(out), 5u);  // no temporaries
   std::ifstream in(out / "report.json");
-  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const char* key : {"\"texels\": 6144", "\"rays\":", "\"hit_ratio\": 1.0", "\"misses\": 0", "\"seconds\":",
-                          "\"trace\":", "\"peak_memory_mib\":", "\"samples_per_texel\": 4"}) {
-    EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
+  const auto report = nlohmann::json::parse(in);  // throws (fails the test) on malformed JSON
+  EXPECT_EQ(report["tool"], "bake");
+  EXPECT_EQ(report["texels"], 6144);
+  EXPECT_EQ(report["samples_per_texel"], 4);
+  EXPECT_EQ(report["hit_ratio"], 1.0);
+  EXPECT_EQ(report["misses"], 0);
+  EXPECT_GT(report["rays"].get<double>(), 0.0);
+  EXPECT_GE(report["threads"].get<int>(), 1);
+  for (const char* phase : {"load", "prepare", "trace", "dilate", "write"}) {
+    EXPECT_GE(report["seconds"][phase].get<double>(), 0.0) << phase;
+    EXPECT_LE(report["seconds"][phase].get<double>(), report["seconds"]["total"].get<double>()) << phase;
   }
+  EXPECT_GT(report["peak_memory_mib"].get<double>(), 1.0);
+  EXPECT_TRUE(report["warnings"].is_array());
 }
 
 TEST(BakeCli, FormatsAndDepths) {
@@ -199,7 +210,31 @@ TEST(BakeCli, WarningsStillBake) {
   }
 }
 
-TEST(BakeCli, CtrlCLeavesNoPartialFile) {
+TEST(BakeCli, ProgressBarOnATerminalSilenceWithQuiet) {
+  // The shared tool plumbing (core/tool.h): a progress bar when stderr is a terminal (a
+  // pseudo-terminal from util-linux's `script` here), nothing at all with -q.
+  const auto d = dir("progress");
+  writeSpheres(d);
+  const std::string bake = std::string(GLINT_EXE) + " bake " + q(d / "low.obj") + " " + q(d / "high.obj") +
+                           " --size 128x128 -o ";
+  const auto onTerminal = [&](const std::string& args) {
+    return runShell("script -qec " + q(bake + args) + " /dev/null");
+  };
+  const auto loud = onTerminal(q(d / "loud.png"));
+  ASSERT_EQ(loud.status, 0) << loud.output;
+  EXPECT_NE(loud.output.find("bake ["), std::string::npos) << loud.output;
+  EXPECT_NE(loud.output.find("texels baked"), std::string::npos) << loud.output;
+  const auto quiet = onTerminal(q(d / "quiet.png") + " -q");
+  ASSERT_EQ(quiet.status, 0) << quiet.output;
+  EXPECT_EQ(quiet.output, "");
+  // Not a terminal (a pipe, as in CI logs): no bar, just the summary line.
+  const auto piped = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " --size 128x128 -o " +
+                              q(d / "piped.png"));
+  ASSERT_EQ(piped.status, 0) << piped.output;
+  EXPECT_EQ(piped.output.find("bake ["), std::string::npos) << piped.output;
+}
+
+TEST(BakeCli, CtrlCOrSigtermLeavesNoPartialFile) {
   const auto d = dir("interrupt");
   writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
   writeObj(makeUvSphere(1.0f, 128, 64), d / "high.obj");
@@ -207,18 +242,21 @@ TEST(BakeCli, CtrlCLeavesNoPartialFile) {
   fs::create_directories(out);
   const std::string lowPath = (d / "low.obj").string(), highPath = (d / "high.obj").string(),
                     outPath = (out / "n.png").string();
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    execl(GLINT_EXE, GLINT_EXE, "-q", "bake", lowPath.c_str(), highPath.c_str(), "-o", outPath.c_str(), "--size",
-          "2048x2048", "--samples", "64", static_cast<char*>(nullptr));
-    _exit(127);
+  // Ctrl-C (SIGINT) and a scheduler cancelling the job (SIGTERM) are handled alike.
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      execl(GLINT_EXE, GLINT_EXE, "-q", "bake", lowPath.c_str(), highPath.c_str(), "-o", outPath.c_str(), "--size",
+            "2048x2048", "--samples", "64", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // loading done, tracing
+    kill(pid, signal);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << "signal " << signal;
+    EXPECT_EQ(WEXITSTATUS(status), 130) << "signal " << signal;
+    EXPECT_EQ(fileCount(out), 0u) << "signal " << signal;
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // loading done, tracing
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
-  EXPECT_EQ(fileCount(out), 0u);
 }

@@ -176,9 +176,9 @@ TEST(BakeMaps, ObjectWorldAndDirectXEncodings) {
     }
 
   options.directX = false;
-  options.space = bake::NormalSpace::Object;
+  options.space = NormalSpace::Object;
   const auto object = bake::bake(low, high, options);
-  options.space = bake::NormalSpace::World;
+  options.space = NormalSpace::World;
   const mat4 rotation = glm::rotate(mat4(1.0f), 0.7f, vec3(0.3f, 1.0f, 0.2f));
   options.objectToWorld = glm::scale(rotation, vec3(2.0f));
   const auto world = bake::bake(low, high, options);
@@ -210,7 +210,7 @@ TEST(BakeMaps, HitSelectionClosestOrFrontFirst) {
     high.append(below);
     bake::BakeOptions options;
     options.width = options.height = 16;
-    options.space = bake::NormalSpace::Object;
+    options.space = NormalSpace::Object;
     options.maxFront = options.maxRear = {0.5f, false};
     options.heightMap = true;
     const auto closest = bake::bake(low, high, options);
@@ -244,7 +244,7 @@ TEST(BakeMaps, CageGivesTheSameAnswerOnConvexShapes) {
   for (std::size_t i = 0; i < cage.vertexCount(); ++i) cage.positions[i] += 0.1f * cage.normals[i];
   bake::BakeOptions options;
   options.width = options.height = 64;
-  options.space = bake::NormalSpace::Object;
+  options.space = NormalSpace::Object;
   const auto plain = bake::bake(low, high, options);
   options.cage = cage;
   const auto caged = bake::bake(low, high, options);

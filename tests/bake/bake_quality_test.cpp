@@ -41,7 +41,7 @@ struct ErrorStats {
 };
 
 /// Angular error of every texel whose centre lies in a UV triangle.
-ErrorStats measure(const Analytic& a, const bake::BakeResult& r, bake::NormalSpace space) {
+ErrorStats measure(const Analytic& a, const bake::BakeResult& r, NormalSpace space) {
   std::vector<double> errors;
   const int w = r.normal.width(), h = r.normal.height();
   for (int row = 0; row < h; ++row) {
@@ -53,7 +53,7 @@ ErrorStats measure(const Analytic& a, const bake::BakeResult& r, bake::NormalSpa
       if (!t) continue;
       const glm::dvec3 exact = a.normal(glm::dvec3(s->position) + *t * dir);
       const vec3 rgb = texel(r.normal, x, row);
-      const vec3 baked = space == bake::NormalSpace::Tangent ? decodeTangentSpace(rgb, *s) : rgb * 2.0f - 1.0f;
+      const vec3 baked = space == NormalSpace::Tangent ? decodeTangentSpace(rgb, *s) : rgb * 2.0f - 1.0f;
       errors.push_back(angleDeg(glm::dvec3(baked), exact));
     }
   }
@@ -72,14 +72,14 @@ ErrorStats measure(const Analytic& a, const bake::BakeResult& r, bake::NormalSpa
 TEST(BakeQuality, AnalyticNormalsWithinOneDegree) {
   log::setLevel(log::Level::Error);
   for (const Analytic& a : cases()) {
-    for (const auto space : {bake::NormalSpace::Tangent, bake::NormalSpace::Object}) {
+    for (const auto space : {NormalSpace::Tangent, NormalSpace::Object}) {
       bake::BakeOptions options;
       options.width = options.height = 160;
       options.space = space;
       const auto result = bake::bake(a.low, a.high, options);
       const ErrorStats e = measure(a, result, space);
       std::printf("%s %s: %zu texels, mean %.3f°, p99 %.3f°, max %.3f°, hit ratio %.4f\n", a.name,
-                  space == bake::NormalSpace::Tangent ? "tangent" : "object", e.count, e.mean, e.p99, e.max,
+                  space == NormalSpace::Tangent ? "tangent" : "object", e.count, e.mean, e.p99, e.max,
                   result.stats.hitRatio());
       EXPECT_GT(e.count, 5000u) << a.name;
       EXPECT_LE(e.mean, 1.0) << a.name;

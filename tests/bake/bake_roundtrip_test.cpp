@@ -1,5 +1,5 @@
 // One tangent space, proven (issue 6, item 6). A high poly is baked onto a low poly;
-// the low poly is rendered with the baked map through render::NormalMapping, the high
+// the low poly is rendered with the baked map through render::bump::NormalMapping, the high
 // poly with its own vertex normals, from the same views and lights; away from
 // silhouettes the shading normals and the lit colours must agree.
 //
@@ -21,7 +21,7 @@
 #include "glint/core/log.h"
 #include "glint/gl/render_target.h"
 #include "glint/render/bump/textures.h"
-#include "glint/render/normal_mapping.h"
+#include "glint/render/bump/normal_mapping.h"
 
 #include <gtest/gtest.h>
 
@@ -46,21 +46,21 @@ struct Frame {
   Image lit;      // RGBA F32
 };
 
-Frame renderFrame(const render::GpuMesh& mesh, const render::Camera& camera, render::ShadingNormal source,
+Frame renderFrame(const render::GpuMesh& mesh, const render::Camera& camera, render::bump::ShadingNormal source,
                   const gl::Texture* map) {
-  static const render::DirectionalLight lights[] = {
+  static const render::bump::DirectionalLight lights[] = {
       {.direction = {0.6f, 0.8f, 0.3f}, .color = vec3(0.8f)},
       {.direction = {-0.7f, 0.2f, 0.5f}, .color = vec3(0.35f, 0.3f, 0.25f)},
   };
   Frame frame;
-  for (const auto output : {render::NormalMappingOutput::WorldNormal, render::NormalMappingOutput::Lit}) {
-    const render::NormalMapping technique({.normal = source, .output = output});
+  for (const auto output : {render::bump::NormalMappingOutput::WorldNormal, render::bump::NormalMappingOutput::Lit}) {
+    const render::bump::NormalMapping technique({.normal = source, .output = output});
     gl::RenderTarget target({kSize, kSize}, GL_RGBA32F, "roundtrip");
     target.target().bind();
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     technique.draw(mesh, mat4(1.0f), camera, lights, {.specular = 0.3f}, map);
-    (output == render::NormalMappingOutput::Lit ? frame.lit : frame.normals) =
+    (output == render::bump::NormalMappingOutput::Lit ? frame.lit : frame.normals) =
         gl::readTexture(target.color(), 0, 0, 4, PixelType::F32);
   }
   return frame;
@@ -108,8 +108,8 @@ Agreement roundTrip(const Mesh& low, const Mesh& high, const bake::BakeOptions& 
   Agreement worst;
   for (float azimuth : {0.3f, 2.4f, 4.4f}) {
     const auto camera = render::Camera::orbit(vec3(0.0f), 3.2f, azimuth, 0.6f, 40.0f, 1.0f);
-    const Frame withMap = renderFrame(lowMesh, camera, render::ShadingNormal::TangentMap, &map);
-    const Frame reference = renderFrame(highMesh, camera, render::ShadingNormal::Vertex, nullptr);
+    const Frame withMap = renderFrame(lowMesh, camera, render::bump::ShadingNormal::TangentMap, &map);
+    const Frame reference = renderFrame(highMesh, camera, render::bump::ShadingNormal::Vertex, nullptr);
     const Agreement a = compare(withMap, reference, 2, glm::normalize(camera.position), minFacing);
     // For eyes: low poly with the map | high poly, lit (test-output/bake-roundtrip/).
     const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "bake-roundtrip";

@@ -98,7 +98,56 @@ TEST(ReadTextFile, MissingFileIsAnInputError) {
 
 #include "glint/core/text.h"
 
-TEST(Text, EscapesJsonAndHtml) {
-  EXPECT_EQ(escapeJson("a\"b\\c\nd\x01"), "a\\\"b\\\\c\\nd\\u0001");
+TEST(Text, EscapesHtml) {
   EXPECT_EQ(escapeHtml("<a href=\"x\">&</a>"), "&lt;a href=&quot;x&quot;&gt;&amp;&lt;/a&gt;");
+}
+
+#include "glint/core/locations.h"
+
+#include <cstdlib>
+
+namespace {
+// Sets GLINT_DATA_DIR for one scope (each ctest test runs in its own process, but the
+// variable is restored anyway).
+class DataDirOverride {
+public:
+  explicit DataDirOverride(const fs::path& dir) { setenv("GLINT_DATA_DIR", dir.c_str(), 1); }
+  ~DataDirOverride() { unsetenv("GLINT_DATA_DIR"); }
+};
+}  // namespace
+
+TEST(Locations, GlintDataDirIsTheOnlyPlaceWhenSet) {
+  const fs::path dir = freshDir("data-override");
+  fs::create_directories(dir / "env");
+  writeTextAtomically(dir / "env" / "x.exr", "not really an EXR");
+  DataDirOverride override(dir);
+  ASSERT_EQ(dataDirectories(), std::vector<fs::path>{dir});
+  EXPECT_EQ(findDataFile("env/x.exr", "environment 'x'"), dir / "env" / "x.exr");
+  try {
+    findDataFile("bunny/bunny.ply", "the Stanford bunny");  // exists in glint's data, not here
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("the Stanford bunny not found: no bunny/bunny.ply in GLINT_DATA_DIR=" + dir.string()),
+              std::string::npos) << e.what();
+  }
+}
+
+TEST(Locations, AnInstalledLayoutBesideTheExecutableComesFirstAndErrorsListEveryPlace) {
+  unsetenv("GLINT_DATA_DIR");
+  const std::vector<fs::path> dirs = dataDirectories();
+  ASSERT_GE(dirs.size(), 2u);
+  // The tests run from build/tests/core: <exe>/../share/glint is where an installed
+  // glint command keeps its data (GNUInstallDirs' default layout).
+  EXPECT_EQ(dirs[0], (executablePath().parent_path() / ".." / "share" / "glint").lexically_normal());
+  try {
+    findDataFile("env/no-such-file.exr", "environment 'no-such-file'");
+    FAIL();
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    for (const fs::path& dir : dirs) EXPECT_NE(message.find(dir.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("scripts/setup"), std::string::npos) << message;
+  }
 }

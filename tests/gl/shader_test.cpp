@@ -83,6 +83,24 @@ TEST_F(GlTest, DefinesSelectCodeAndUniformsAreSet) {
   EXPECT_EQ(plain.uniformLocation("uValue"), -1);
 }
 
+TEST_F(GlTest, CachedUniformLocationsAreGlsOwn) {
+  ShaderDir dir("locations");
+  dir.write("v.vert", "#version 450 core\nvoid main() { gl_Position = vec4(0); }\n");
+  dir.write("f.frag", "#version 450 core\nstruct Light { vec3 position; float power; };\n"
+                      "uniform Light uLights[2];\nuniform float uWeights[3];\nuniform mat4 uMatrix;\nout vec4 c;\n"
+                      "void main() { c = vec4(uLights[0].position * uLights[1].power, uWeights[0] + uWeights[2]) "
+                      "* uMatrix; }\n");
+  const auto program = gl::Program::fromFiles({"v.vert", "f.frag"});
+  // The locations read once after linking, and those asked on demand, are GL's own.
+  for (const char* name : {"uLights[0].position", "uLights[1].power", "uWeights", "uWeights[0]", "uWeights[2]",
+                           "uMatrix", "uMissing"}) {
+    EXPECT_EQ(program.uniformLocation(name), glGetUniformLocation(program.id(), name)) << name;
+    EXPECT_EQ(program.uniformLocation(name), glGetUniformLocation(program.id(), name)) << name << " (cached)";
+  }
+  EXPECT_GE(program.uniformLocation("uWeights[2]"), 0);
+  EXPECT_EQ(program.uniformLocation("uMissing"), -1);
+}
+
 TEST_F(GlTest, MissingShaderAndUnknownStageAreErrors) {
   allowGlErrors();
   EXPECT_THROW(gl::Program::fromFiles({"does/not/exist.vert"}), Error);

@@ -361,11 +361,11 @@ TEST(RasterCulling, FacingFollowsWindowWindingAndFrontFace) {
   };
   const Case cases[] = {
       {State{}, true, true},
-      {State{.cullFace = true}, true, false},  // cull back faces (CW)
-      {State{.cullFace = true, .cullMode = Face::Front}, false, true},
-      {State{.cullFace = true, .frontFace = Winding::Cw}, false, true},
-      {State{.cullFace = true, .cullMode = Face::FrontAndBack}, false, false},
-      {State{.cullFace = false, .cullMode = Face::FrontAndBack}, true, true},
+      {State{.cull = true}, true, false},  // cull back faces (CW)
+      {State{.cull = true, .cullFace = Face::Front}, false, true},
+      {State{.cull = true, .frontFace = Winding::Cw}, false, true},
+      {State{.cull = true, .cullFace = Face::FrontAndBack}, false, false},
+      {State{.cull = false, .cullFace = Face::FrontAndBack}, true, true},
   };
   for (const Case& c : cases) {
     Framebuffer fb(8, 4);

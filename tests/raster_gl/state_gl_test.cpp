@@ -110,7 +110,7 @@ TEST_F(GlTest, TwoSidedStencilDepthBlendAndCullingMatch) {
         .stencilBack = {.func = variant == 1 ? CompareFunc::Less : CompareFunc::Always, .ref = 2, .valueMask = 0x3,
                         .writeMask = 0xF7, .sfail = StencilOp::Invert, .dpfail = StencilOp::IncrWrap,
                         .dppass = StencilOp::Replace},
-        .cullFace = variant == 1,
+        .cull = variant == 1,
         .frontFace = variant == 1 ? raster::Winding::Cw : raster::Winding::Ccw,
         .blend = raster::BlendState::func(raster::BlendFactor::SrcAlpha, raster::BlendFactor::OneMinusSrcAlpha),
     };

@@ -15,16 +15,21 @@ struct CliRun {
   std::string output;  ///< stdout + stderr
 };
 
-/// Runs `env glint args` through the shell; env is a prefix such as "VAR=1" or "xvfb-run -a".
-inline CliRun runGlint(const std::string& args, const std::string& env = "") {
+/// Runs a shell command line, capturing stdout and stderr together.
+inline CliRun runShell(const std::string& commandLine) {
   CliRun r;
-  const std::string command = env + " " GLINT_EXE " " + args + " 2>&1";
+  const std::string command = commandLine + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   char buffer[4096];
   while (pipe && fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
   const int raw = pipe ? pclose(pipe) : -1;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return r;
+}
+
+/// Runs `env glint args` through the shell; env is a prefix such as "VAR=1" or "xvfb-run -a".
+inline CliRun runGlint(const std::string& args, const std::string& env = "") {
+  return runShell(env + " " GLINT_EXE " " + args);
 }
 
 inline std::size_t fileCount(const std::filesystem::path& dir) {

@@ -3,12 +3,12 @@
 // low-poly mesh (ATI's "normal mapper" tool, WWDC 2003, rebuilt on Embree).
 //
 // Contents
-//   NormalSpace, HitSelection, Distance    how rays are cast and what is stored
+//   HitSelection, Distance                how rays are cast (NormalSpace, the space normals
+//                                         are stored in, is image/normalmap.h's)
 //   HeightDetail                          painted micro detail combined with the bake
 //   BakeOptions                           everything bake() can be told (defaults are good)
 //   BakeStats, BakeResult                 the maps, and what it took to make them
 //   bake                                  the whole pipeline, GL-free, deterministic
-//   encodeNormalMap                       unit vectors → RGB texture values
 //
 // How it works
 //   For every texel of the output, N stratified sample points (a √N × √N grid) are
@@ -38,6 +38,7 @@
 
 #include "glint/core/math.h"
 #include "glint/image/image.h"
+#include "glint/image/normalmap.h"
 #include "glint/mesh/mesh.h"
 
 #include <atomic>
@@ -52,12 +53,6 @@ struct Ray;
 }
 
 namespace glint::bake {
-
-enum class NormalSpace {
-  Tangent,  ///< relative to the low poly's MikkTSpace frame (the default; survives animation)
-  Object,   ///< the meshes' own coordinates
-  World     ///< object space transformed by BakeOptions::objectToWorld
-};
 
 enum class HitSelection {
   Closest,    ///< the hit with the smallest |t|, in front or behind (default)
@@ -137,7 +132,7 @@ struct BakeStats {
 };
 
 struct BakeResult {
-  Image normal;     ///< RGB F32, encoded 0..1 (encodeNormalMap), green flipped if directX
+  Image normal;     ///< RGB F32, encoded 0..1 (encodeNormal, image/normalmap.h), green flipped if directX
   Image ao;         ///< R F32 0..1 (1 = unoccluded), when asked
   Image height;     ///< R F32 signed distance in scene units, when asked
   Image missMask;   ///< R F32 0..1 fraction of missed samples, when asked (not dilated)
@@ -157,10 +152,5 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options = 
 /// Error(Usage) naming the first bad option (size, samples, AO samples, distances). bake()
 /// calls it too; front ends call it before loading anything.
 void validateOptions(const BakeOptions& options);
-
-/// Unit vector → texture value: (v + 1) / 2 per channel, green negated first if directX.
-vec3 encodeNormalMap(const vec3& unit, bool directX);
-/// Texture value → unit vector (the inverse, normalized).
-vec3 decodeNormalMap(const vec3& rgb, bool directX);
 
 }  // namespace glint::bake

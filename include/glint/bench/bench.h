@@ -7,7 +7,8 @@
 // across machines. Results go to a table on stdout and to JSON.
 //
 // Adding a suite: write bench/<name>.cpp with a register function that calls
-// suites.add({...}), and list it in bench/suites.cpp.
+// suites.add({...}); declare and call it in Suites::builtin() (bench/bench.cpp) and add
+// the file to bench/CMakeLists.txt.
 //
 //   suites.add({.name = "rtt", .description = "render-to-texture: copy vs FBO",
 //               .run = [](bench::Recorder& r) {
@@ -16,6 +17,8 @@
 //                 r.record({.group = "512x512", .name = "fbo", .value = fboMs, .unit = "ms",
 //                           .ratioTo = "copy"});
 //               }});
+
+#include <nlohmann/json.hpp>
 
 #include <functional>
 #include <string>
@@ -68,7 +71,8 @@ double wallMs(const std::function<void()>& work, int repeats);
 
 /// Formats a recorder's rows as an aligned text table (ratios computed).
 std::string formatTable(const std::string& suite, const Recorder& recorder);
-/// JSON object {"suite": ..., "rows": [...]} with ratios computed.
-std::string formatJson(const std::string& suite, const Recorder& recorder);
+/// {"suite": ..., "rows": [{"group", "name", "value", "unit", "ratio_to", "ratio", "note"}, ...]}
+/// with ratios computed; non-finite values are null.
+nlohmann::ordered_json toJson(const std::string& suite, const Recorder& recorder);
 
 }  // namespace glint::bench

@@ -1,13 +1,11 @@
 #pragma once
-// glint/core/text.h — escaping for the small JSON and HTML reports glint writes.
+// glint/core/text.h — escaping for the HTML pages glint writes (JSON goes through nlohmann-json).
 
 #include <string>
 #include <string_view>
 
 namespace glint {
 
-/// Escapes a string for a JSON string literal (quotes, backslashes, control characters).
-std::string escapeJson(std::string_view text);
 /// Escapes &, <, >, " for HTML text and attribute values.
 std::string escapeHtml(std::string_view text);
 

@@ -2,7 +2,7 @@
 // glint/gl/objects.h — move-only RAII owners for every OpenGL object glint uses.
 //
 // Contents
-//   Object<Kind>     the common owner: id(), label(), release(), wrap()
+//   Object<Kind>     the common owner: id(), label(), release(), reset()
 //   Buffer           immutable storage (glNamedBufferStorage), updates, binding
 //   VertexArray      attribute formats and buffer bindings (DSA)
 //   Texture          2D, cube, 2D array, 3D: immutable storage, uploads, mipmaps, parameters

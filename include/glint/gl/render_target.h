@@ -2,7 +2,8 @@
 // glint/gl/render_target.h — where a frame is drawn, and reading it back.
 //
 // Contents
-//   Target           what a scene draws into: a framebuffer (maybe the window's) and its size
+//   Target           what a scene draws into: a framebuffer (maybe the window's) and its size,
+//                    or a rectangle of one (split-screen panels: region(), column())
 //   RenderTarget     an owned offscreen framebuffer: RGBA8 colour texture + depth24/stencil8
 //   readColor        colour attachment → Image (RGBA8, top row first)
 //   readDepth        depth → float Image (window z, 0 near .. 1 far)
@@ -18,10 +19,34 @@ namespace glint::gl {
 
 /// A framebuffer to draw into and its size. Scenes receive one per frame; they must
 /// bind `framebuffer` themselves when they return to it after rendering elsewhere.
+///
+/// A Target can also be a rectangle of a framebuffer (a panel of a split screen): bind()
+/// then sets the viewport to the rectangle and scissors to it, so draws *and clears* stay
+/// inside; binding a whole target turns the scissor test off again.
+///
+///   const gl::Target left = frame.target.column(0, 2), right = frame.target.column(1, 2);
+///   left.bind();  drawWith(cubeMap);     // viewport + scissor: the left half
+///   right.bind(); drawWith(sphereMap);
+///   frame.target.bind();                 // the whole frame, scissor off
 struct Target {
   const Framebuffer* framebuffer = nullptr;  ///< never null in a frame
-  ivec2 size{0};
-  void bind() const;  ///< binds the framebuffer and sets the viewport to the full size
+  ivec2 size{0};    ///< the size of what is drawn: the whole framebuffer, or the rectangle
+  ivec2 origin{0};  ///< the rectangle's lower-left corner in the framebuffer (GL's origin)
+  bool clipped = false;  ///< a rectangle of a larger framebuffer: bind() scissors to it
+
+  /// Binds the framebuffer, sets the viewport to this target and the scissor test to
+  /// match (on for a rectangle, off for a whole framebuffer).
+  void bind() const;
+  /// The rectangle at `corner` (lower left, relative to this target) of `extent` pixels,
+  /// clamped to this target.
+  Target region(ivec2 corner, ivec2 extent) const;
+  /// Column `i` of `n` equal columns, left to right (the last takes the rounding remainder).
+  Target column(int i, int n) const;
+  /// Cell (`column`, `row`) of a grid of `columns` × `rows` equal cells, row 0 at the TOP
+  /// (reading order), each inset by `gap` pixels on every side.
+  Target cell(int column, int row, int columns, int rows, int gap = 0) const;
+  /// Width / height, for a camera's aspect ratio.
+  float aspect() const { return size.y > 0 ? float(size.x) / float(size.y) : 1.0f; }
 };
 
 class RenderTarget {

@@ -73,6 +73,9 @@ public:
 
   void use() const { glUseProgram(m_id); }
   /// -1 when the uniform does not exist (or was optimised away); setters ignore -1 like GL.
+  /// Every active uniform's location is read once after linking, so a lookup on the hot
+  /// path is one hash of the name: no allocation, no GL call (names GL does not list,
+  /// such as "a[2]" of an array listed as "a[0]", are asked once and remembered).
   GLint uniformLocation(std::string_view name) const;
 
   void set(std::string_view name, int v) const { glProgramUniform1i(m_id, uniformLocation(name), v); }
@@ -91,7 +94,14 @@ public:
 
 private:
   explicit Program(GLuint id) : Object(id) {}
-  mutable std::unordered_map<std::string, GLint> m_locations;
+  void cacheActiveUniforms();
+
+  // Transparent hashing: find() takes the string_view without building a std::string.
+  struct NameHash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+  };
+  mutable std::unordered_map<std::string, GLint, NameHash, std::equal_to<>> m_locations;
 };
 
 /// Shader stage for a file extension (GL_VERTEX_SHADER for ".vert", ...); 0 if unknown.

@@ -27,7 +27,7 @@
 #include <span>
 #include <string>
 
-namespace glint::env {
+namespace glint {
 
 // ---------------------------------------------------------------------------
 // Cube map faces
@@ -121,4 +121,4 @@ void validateEquirect(const Image& image, const std::string& name);
 /// height must be identical"); `names` are used in messages (file names).
 void validateCubeFaces(std::span<const Image> faces, std::span<const std::string> names);
 
-}  // namespace glint::env
+}  // namespace glint

@@ -8,7 +8,9 @@
 //   heightToNormalMap    a whole height map → RGBA8 normal map (the CPU reference of the
 //                        GPU pass in render/bump/height_to_normal.h; they agree within 1/255)
 //   heightFromImage      any image → one-channel height (luminance when it has colour)
-//   encodeNormal / decodeNormal   n ↔ (n + 1) / 2, the unsigned encoding of seed 000
+//   encodeNormal / decodeNormal   n ↔ (n + 1) / 2, the unsigned encoding of seed 000 (and
+//                        DirectX's green-down variant); the one encoding baker and renderer use
+//   NormalSpace          the frame a map's normals are in: tangent, object or world
 //   prepareNormalMap     validate a normal map read from a file, with a clear message when
 //                        its encoding is not what a renderer expects
 //
@@ -59,10 +61,19 @@ struct NormalMapOptions {
 /// neighbours. Identical arithmetic to shaders/bump/height_to_normal.frag.
 vec3 heightNormal(float north, float south, float east, float west, const NormalMapOptions& options = {});
 
-/// A unit vector (or any vector in [−1, 1]³) → colour in [0, 1]³: (n + 1) / 2.
-inline vec3 encodeNormal(vec3 n) { return n * 0.5f + 0.5f; }
-/// Colour in [0, 1]³ → vector in [−1, 1]³ (not normalized): 2c − 1.
-inline vec3 decodeNormal(vec3 c) { return c * 2.0f - 1.0f; }
+/// A unit vector (or any vector in [−1, 1]³) → colour in [0, 1]³: (n + 1) / 2, green (y)
+/// negated first for a DirectX-style map (green down, the Unreal convention).
+inline vec3 encodeNormal(vec3 n, bool directX = false) {
+  if (directX) n.y = -n.y;
+  return n * 0.5f + 0.5f;
+}
+/// Colour in [0, 1]³ → vector in [−1, 1]³ (not normalized): 2c − 1, green negated for a
+/// DirectX-style map. The exact inverse of encodeNormal.
+inline vec3 decodeNormal(vec3 c, bool directX = false) {
+  vec3 n = c * 2.0f - 1.0f;
+  if (directX) n.y = -n.y;
+  return n;
+}
 
 /// One-channel height from any image: channel 0 of a one- or two-channel image, Rec.709
 /// luminance of an RGB(A) one. Sets *usedLuminance (when given) to whether colour was
@@ -74,9 +85,12 @@ Image heightFromImage(const Image& image, bool* usedLuminance = nullptr);
 /// heightFromImage first. Rows as in the input (row 0 at the top).
 Image heightToNormalMap(const Image& height, const NormalMapOptions& options = {});
 
+/// The frame a normal map's vectors are expressed in.
 enum class NormalSpace {
-  Tangent,  ///< normals relative to the surface: z (blue) points out, mostly > 0.5
-  Object    ///< normals in the object's frame: any direction
+  Tangent,  ///< relative to the surface's MikkTSpace frame: z (blue) points out, mostly > 0.5;
+            ///< survives animation (the baker's default)
+  Object,   ///< the mesh's own coordinates: any direction
+  World     ///< object space transformed by a model matrix (bake::BakeOptions::objectToWorld)
 };
 
 /// What prepareNormalMap found and did.

@@ -23,8 +23,8 @@
 //   glStencilFuncSeparate           stencilFront/Back.{func, ref, valueMask}
 //   glStencilMaskSeparate           stencilFront/Back.writeMask
 //   glStencilOpSeparate             stencilFront/Back.{sfail, dpfail, dppass}
-//   glEnable(GL_CULL_FACE)          cullFace
-//   glCullFace / glFrontFace        cullMode / frontFace
+//   glEnable(GL_CULL_FACE)          cull               (the names and defaults of render::PipelineState)
+//   glCullFace / glFrontFace        cullFace / frontFace
 //   glColorMask                     colorMask
 //   glEnable(GL_BLEND)              blend.enabled
 //   glBlendFuncSeparate             blend.{srcRgb, dstRgb, srcAlpha, dstAlpha}
@@ -164,8 +164,8 @@ struct State {
   StencilFace stencilFront;                ///< used by front-facing polygons
   StencilFace stencilBack;                 ///< used by back-facing polygons
 
-  bool cullFace = false;                   ///< GL_CULL_FACE
-  Face cullMode = Face::Back;
+  bool cull = false;                       ///< GL_CULL_FACE
+  Face cullFace = Face::Back;              ///< glCullFace: which faces are culled
   Winding frontFace = Winding::Ccw;
 
   glm::bvec4 colorMask{true};              ///< glColorMask(r, g, b, a)

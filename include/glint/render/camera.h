@@ -29,6 +29,23 @@ struct Camera {
     return {glm::lookAt(eye, target, up), glm::perspective(glm::radians(fovYDegrees), aspect, nearPlane, farPlane), eye};
   }
 
+  /// The part of this camera's picture that falls into a rectangle of the frame (`corner`
+  /// = its lower-left pixel, `extent` its size, in a frame of `frameSize` pixels): drawn into
+  /// that rectangle (gl::Target::region), rectangles drawn this way tile the same picture
+  /// the whole camera draws into the whole frame — a split screen of one view.
+  Camera cropped(ivec2 frameSize, ivec2 corner, ivec2 extent) const {
+    // Region NDC x' = a·x + b, with a = W/w and b = (W − 2·x0 − w)/w (likewise y); applied
+    // in clip space, the offset scales with w_clip.
+    const vec2 full(frameSize), size(extent), lo(corner);
+    const vec2 a = full / size, b = (full - 2.0f * lo - size) / size;
+    mat4 pick(1.0f);
+    pick[0][0] = a.x;
+    pick[1][1] = a.y;
+    pick[3][0] = b.x;
+    pick[3][1] = b.y;
+    return {view, pick * projection, position};
+  }
+
   /// Circles `target` at `distance`: azimuth 0 puts the eye on the +Z side looking along −Z,
   /// positive azimuth moves it towards +X; elevation (radians) lifts it above the XZ plane.
   static Camera orbit(vec3 target, float distance, float azimuth, float elevation, float fovYDegrees, float aspect,

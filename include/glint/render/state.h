@@ -2,12 +2,14 @@
 // glint/render/state.h — fixed-function state a pass needs, set all at once.
 //
 // Techniques never rely on what a previous pass left behind: each pass describes
-// the state it draws with in a PipelineState and calls apply(). A zero/default
-// PipelineState is OpenGL's initial state except that the depth test is on
-// (every 3D pass wants it); designated initialisers read like documentation:
+// the state it draws with in a PipelineState and calls apply(). A default
+// PipelineState is exactly OpenGL's initial state (depth test off, no culling, ...), the
+// same defaults and field names as raster::State, the reference pipeline's description of
+// the same state; a 3D pass says that it tests depth. Designated initialisers read like
+// documentation:
 //
-//   render::PipelineState{.depthFunc = GL_LEQUAL, .cull = true}.apply();
-//   render::PipelineState{.depthWrite = false, .colorMask = {false, false, false, false},
+//   render::PipelineState{.depthTest = true, .depthFunc = GL_LEQUAL, .cull = true}.apply();
+//   render::PipelineState{.depthTest = true, .depthWrite = false, .colorMask = {false, false, false, false},
 //                         .stencil = {.enabled = true, .front = {.dppass = GL_INVERT}}}.apply();
 
 #include "glint/core/math.h"
@@ -46,13 +48,13 @@ struct BlendState {
 };
 
 struct PipelineState {
-  bool depthTest = true;
+  bool depthTest = false;  ///< GL_DEPTH_TEST
   GLenum depthFunc = GL_LESS;
   bool depthWrite = true;
   bool depthClamp = false;
   std::array<bool, 4> colorMask{true, true, true, true};
-  bool cull = false;
-  GLenum cullFace = GL_BACK;
+  bool cull = false;          ///< GL_CULL_FACE
+  GLenum cullFace = GL_BACK;  ///< glCullFace: which faces are culled
   GLenum frontFace = GL_CCW;
   bool polygonOffset = false;
   float offsetFactor = 0.0f;

@@ -2,7 +2,7 @@
 // glint/scenes/runner.h — rendering registry variants headless: the one code path
 // behind `glint render`, `glint gallery`, the reference-image tests and benchmarks.
 //
-//   scenes::ContextPool contexts({.debug = true});
+//   scenes::ContextPool contexts(/*debug=*/true);   // GL errors logged and counted
 //   auto ref = scenes::Registry::builtin().resolve("basics/triangle/depth");
 //   contexts.use(ref.scene->profile);
 //   auto result = scenes::renderVariant(ref, {.size = {500, 500}});

@@ -12,7 +12,10 @@
 //   2. Describe it with a SceneDesc (name, one-line summary, variants each with a
 //      line on what it shows) and add it in that file's register function, listed in
 //      src/scenes/registry.cpp.
-//   3. Render it, look at it, and accept its reference images (README, "Tests").
+//   3. Add the .cpp to glint_scenes in src/scenes/CMakeLists.txt (sources are listed
+//      explicitly); its shaders under shaders/<technique>/ are embedded automatically.
+//   4. Render it (`glint render group/name/variant -o x.png`), look at it, and accept
+//      its reference images (README, "Tests"): every variant gets a golden test.
 //
 // Rules for scenes
 //   - Deterministic: everything animated is a function of FrameInput::time, never

@@ -67,7 +67,7 @@ void Dot3Classic::draw(const Dot3Polygon& polygon, std::span<const u8vec3> color
   if (colors.size() != polygon.positions().size()) fail(ErrorKind::Internal, "one light colour per vertex expected");
   glUseProgram(0);
   glBindVertexArray(0);
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   glShadeModel(GL_SMOOTH);
   loadMatrix(GL_PROJECTION, camera.projection);
   loadMatrix(GL_MODELVIEW, camera.view * polygon.model());
@@ -177,7 +177,7 @@ void Dot3Shader::draw(std::span<const u8vec3> colors, const mat4& model, const C
   base.bind(1);
   gl::Sampler::unbind(0);
   gl::Sampler::unbind(1);
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   program.use();
   m_vao.bind();
   glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);

@@ -14,7 +14,7 @@ void LightMarker::draw(const Camera& camera, vec3 position, vec3 color, float pi
   m_program.set("uColor", color);
   m_program.set("uPixels", pixels);
   // Soft edge blended over the picture; depth-tested so the polygon can hide the light.
-  PipelineState{.depthWrite = false,
+  PipelineState{.depthTest = true, .depthWrite = false,
                 .blend = {.enabled = true, .src = GL_SRC_ALPHA, .dst = GL_ONE_MINUS_SRC_ALPHA}}.apply();
   glEnable(GL_PROGRAM_POINT_SIZE);
   m_program.use();
@@ -22,7 +22,7 @@ void LightMarker::draw(const Camera& camera, vec3 position, vec3 color, float pi
   glDrawArrays(GL_POINTS, 0, 1);
   glBindVertexArray(0);
   glDisable(GL_PROGRAM_POINT_SIZE);
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
 }
 
 }  // namespace glint::render::bump

@@ -32,7 +32,7 @@ void resetFixedFunction() {
 
 void beginMirror(const mat4& model, const Camera& camera, vec3 tint) {
   glUseProgram(0);  // fixed function: no program bound
-  PipelineState{.cull = true}.apply();
+  PipelineState{.depthTest = true, .cull = true}.apply();
   loadMatrix(GL_PROJECTION, camera.projection);
   loadMatrix(GL_MODELVIEW, camera.view * model);
   glEnable(GL_NORMALIZE);  // texgen needs unit eye-space normals, whatever the model scale

@@ -1,37 +1,22 @@
 #include "glint/render/env/environment.h"
 
 #include "glint/core/error.h"
+#include "glint/core/locations.h"
 #include "glint/image/envmap.h"
 #include "glint/render/gpu_mesh.h"
 
 #include <cmath>
-#include <cstdlib>
-
-#ifndef GLINT_DATA_DIR
-#define GLINT_DATA_DIR "data"
-#endif
 
 namespace glint::render::env {
 namespace fs = std::filesystem;
 
-fs::path dataDirectory() {
-  if (const char* dir = std::getenv("GLINT_DATA_DIR"); dir && *dir) return dir;
-  return GLINT_DATA_DIR;
-}
-
 fs::path findEnvironment(std::string_view name) {
-  const fs::path path = dataDirectory() / "env" / (std::string(name) + ".exr");
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    fail(ErrorKind::Input, "environment '{}' not found at {} (run scripts/setup to extract it, or set GLINT_DATA_DIR)",
-         name, path.string());
-  }
-  return path;
+  return findDataFile(fs::path("env") / (std::string(name) + ".exr"), fmt::format("environment '{}'", name));
 }
 
 Image loadEquirect(const fs::path& path) {
   Image image = loadImage(path);  // Error(Input) for missing or corrupt files
-  glint::env::validateEquirect(image, path.filename().string());
+  glint::validateEquirect(image, path.filename().string());
   return image;
 }
 
@@ -49,7 +34,7 @@ GLenum formatFor(int channels) { return channels == 4 ? GL_RGBA : GL_RGB; }
 }  // namespace
 
 gl::Texture cubeFromEquirect(const Image& equirect, const CubeFromEquirectOptions& options) {
-  glint::env::validateEquirect(equirect, "equirect");
+  glint::validateEquirect(equirect, "equirect");
   if (options.faceSize <= 0) fail(ErrorKind::Usage, "cube face size must be positive, got {}", options.faceSize);
   const Image hdr = linearFloat(equirect);
   gl::Texture source(GL_TEXTURE_2D, "equirect");
@@ -68,7 +53,7 @@ gl::Texture cubeFromEquirect(const Image& equirect, const CubeFromEquirectOption
   pass.program().set("uExposure", options.exposure);
   auto fb = gl::Framebuffer::create("equirect-to-cube");
   source.bind(0);
-  for (int face = 0; face < glint::env::kCubeFaces; ++face) {
+  for (int face = 0; face < glint::kCubeFaces; ++face) {
     // The face is the colour attachment: the render writes straight into the cube map.
     fb.attachLayer(GL_COLOR_ATTACHMENT0, cube, face, 0);
     if (face == 0) fb.checkComplete();
@@ -84,18 +69,18 @@ gl::Texture cubeFromEquirect(const Image& equirect, const CubeFromEquirectOption
 }
 
 gl::Texture cubeFromFaces(std::span<const Image> faces, std::span<const std::string> names, float exposure) {
-  glint::env::validateCubeFaces(faces, names);
+  glint::validateCubeFaces(faces, names);
   const int size = faces[0].width();
   gl::Texture cube(GL_TEXTURE_CUBE_MAP, "cube-faces");
   cube.storage(GL_RGBA8, size, size, 1, 0);
   cube.filtering(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
-  for (int face = 0; face < glint::env::kCubeFaces; ++face) {
+  for (int face = 0; face < glint::kCubeFaces; ++face) {
     const Image& f = faces[std::size_t(face)];
     Image rgba(size, size, 4);
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {
         vec3 c(f.at(x, y, 0), f.at(x, y, 1), f.at(x, y, 2));
-        if (f.type() == PixelType::F32) c = glint::env::displayEncode(c, exposure);
+        if (f.type() == PixelType::F32) c = glint::displayEncode(c, exposure);
         for (int k = 0; k < 3; ++k) rgba.set(x, y, k, c[k]);
         rgba.set(x, y, 3, 1.0f);
       }
@@ -106,7 +91,7 @@ gl::Texture cubeFromFaces(std::span<const Image> faces, std::span<const std::str
 }
 
 gl::Texture loadCubeFaces(std::span<const fs::path> paths, float exposure) {
-  if (paths.size() != std::size_t(glint::env::kCubeFaces)) {
+  if (paths.size() != std::size_t(glint::kCubeFaces)) {
     fail(ErrorKind::Input, "a cube map needs 6 face images (+X -X +Y -Y +Z -Z), got {}", paths.size());
   }
   std::vector<Image> faces;

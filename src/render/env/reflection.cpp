@@ -41,7 +41,7 @@ void Reflector::draw(const GpuMesh& mesh, const mat4& model, const Camera& camer
   m_program.set("uProj", camera.projection);
   m_program.set("uEyeToEnv", eyeToEnv);
   m_program.set("uTint", tint);
-  PipelineState{.cull = true}.apply();
+  PipelineState{.depthTest = true, .cull = true}.apply();
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   environment.bind(0);
   m_program.use();
@@ -64,7 +64,7 @@ void Bubble::draw(const GpuMesh& sphere, const mat4& model, const Camera& camera
   m_program.set("uF0", m_options.f0);
   // Premultiplied "over": the film adds F·reflection and lets (1 − F) of the background
   // through. Depth is tested but not written, so nothing behind is lost.
-  PipelineState{.depthWrite = false,
+  PipelineState{.depthTest = true, .depthWrite = false,
                 .cull = true,
                 .blend = {.enabled = true, .src = GL_ONE, .dst = GL_ONE_MINUS_SRC_ALPHA}}
       .apply();
@@ -73,7 +73,7 @@ void Bubble::draw(const GpuMesh& sphere, const mat4& model, const Camera& camera
   m_program.use();
   sphere.draw();
   glBindTextureUnit(0, 0);
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
 }
 
 CubeCrossView::CubeCrossView() : m_pass("env/faces_cross.frag") {}

@@ -1,4 +1,4 @@
-#include "glint/render/filtering.h"
+#include "glint/render/filtering/filtering.h"
 
 #include "glint/core/error.h"
 #include "glint/gl/context.h"
@@ -142,7 +142,7 @@ float GroundPlane::horizonRow(ivec2 size) {
 
 void GroundPlane::draw(const Camera& camera, const FilterMode& mode) const {
   applyFilterMode(m_sampler, mode);
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(kSky.r, kSky.g, kSky.b, 1.0f));
   m_program.set("uViewProj", camera.viewProjection());
   m_program.set("uMeanColor", m_meanColor);

@@ -1,4 +1,4 @@
-#include "glint/render/rtt.h"
+#include "glint/render/rtt/rtt.h"
 
 #include "glint/core/error.h"
 #include "glint/render/camera.h"
@@ -71,7 +71,7 @@ RttContent::RttContent()
 
 void RttContent::draw(ivec2 size, float time) const {
   const Camera camera = Camera::orbit(vec3(0.0f, -0.2f, 0.0f), 3.6f, 0.4f, 0.45f, 45.0f, float(size.x) / float(size.y));
-  PipelineState{.cull = true}.apply();
+  PipelineState{.depthTest = true, .cull = true}.apply();
   m_program.use();
   m_program.set("uViewProj", camera.viewProjection());
   m_program.set("uFloor", true);

@@ -67,7 +67,7 @@ void PlanarShadow::renderTexture(const World& world) {
 void PlanarShadow::render(const World& world, const Camera& camera, const gl::Target& target) {
   renderTexture(world);
   target.bind();
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.52f, 0.6f, 0.7f, 1.0f));
   m_texture.bind(m_options.view == PlanarView::Texture ? 0 : 1);
   m_sampler.bind(m_options.view == PlanarView::Texture ? 0 : 1);
@@ -80,7 +80,7 @@ void PlanarShadow::render(const World& world, const Camera& camera, const gl::Ta
   }
   gl::Sampler::unbind(0);
   gl::Sampler::unbind(1);
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
 }
 
 std::string PlanarShadow::describe() const {

@@ -55,7 +55,7 @@ void ShadowMap::renderMap(const World& world) {
   m_light = lightCamera(world, m_focus);
   m_fbo.bind();
   glViewport(0, 0, m_options.size, m_options.size);
-  PipelineState{.colorMask = {false, false, false, false},
+  PipelineState{.depthTest = true, .colorMask = {false, false, false, false},
                 .polygonOffset = m_options.offsetFactor != 0.0f || m_options.offsetUnits != 0.0f,
                 .offsetFactor = m_options.offsetFactor,
                 .offsetUnits = m_options.offsetUnits}
@@ -67,7 +67,7 @@ void ShadowMap::renderMap(const World& world) {
 void ShadowMap::render(const World& world, const Camera& camera, const gl::Target& target) {
   renderMap(world);
   target.bind();
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.52f, 0.6f, 0.7f, 1.0f));
   const float aspect = float(target.size.x) / float(target.size.y);
   switch (m_options.view) {
@@ -93,6 +93,7 @@ void ShadowMap::render(const World& world, const Camera& camera, const gl::Targe
       const gl::Program& program = projected ? m_projectedProgram : m_shadowedProgram;
       program.set("uLightViewProj", m_light.viewProjection());
       program.set("uPcfRadius", m_options.pcfRadius);
+      program.set("uReceiverPlane", m_options.receiverPlaneBias);
       program.set("uLightNearFar", vec2(m_lightNear, m_lightFar));
       m_depth.bind(0);
       m_compare.bind(0);
@@ -105,15 +106,16 @@ void ShadowMap::render(const World& world, const Camera& camera, const gl::Targe
       break;
     }
   }
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
 }
 
 std::string ShadowMap::describe() const {
   const int taps = (2 * m_options.pcfRadius + 1) * (2 * m_options.pcfRadius + 1);
   return fmt::format("shadow map {0}x{0} (DEPTH_COMPONENT24), {1} tap{2} of {3} comparison, bias: slope factor {4}, "
-                     "units {5}; light frustum near {6:.2f}, far {7:.2f}",
+                     "units {5}{6}; light frustum near {7:.2f}, far {8:.2f}",
                      m_options.size, taps, taps > 1 ? "s" : "", m_options.hardwareFilter ? "2×2 linear" : "nearest",
-                     m_options.offsetFactor, m_options.offsetUnits, m_lightNear, m_lightFar);
+                     m_options.offsetFactor, m_options.offsetUnits,
+                     taps > 1 && m_options.receiverPlaneBias ? ", receiver plane per tap" : "", m_lightNear, m_lightFar);
 }
 
 }  // namespace glint::render::shadows

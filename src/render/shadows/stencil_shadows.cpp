@@ -115,7 +115,7 @@ void StencilShadows::update(const World& world) {
 }
 
 void StencilShadows::drawScene(const World& world, const Camera& camera, LightTerms terms) const {
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.52f, 0.6f, 0.7f, 1.0f));
   m_scene.draw(world, camera, terms);
 }
@@ -142,7 +142,7 @@ void StencilShadows::drawVolumes(const World& world, const Camera& camera, bool 
 }
 
 void StencilShadows::countVolumes(const World& world, const Camera& camera) const {
-  PipelineState state{.depthWrite = false,
+  PipelineState state{.depthTest = true, .depthWrite = false,
                       .depthClamp = isZFail(m_options.counting) && m_options.depthClamp,
                       .colorMask = {false, false, false, false},
                       .polygonOffset = true,
@@ -193,7 +193,7 @@ void StencilShadows::composite(const World& world, const Camera& camera) const {
   switch (m_options.composite) {
     case ShadowComposite::MultiPass:
       // Same program, same vertices as the ambient pass: GL_EQUAL finds exactly the visible surfaces.
-      PipelineState{.depthFunc = GL_EQUAL,
+      PipelineState{.depthTest = true, .depthFunc = GL_EQUAL,
                     .depthWrite = false,
                     .stencil = {.enabled = true, .front = {.func = GL_EQUAL, .ref = 0, .writeMask = 0}},
                     .blend = {.enabled = true, .src = GL_ONE, .dst = GL_ONE}}
@@ -213,7 +213,7 @@ void StencilShadows::composite(const World& world, const Camera& camera) const {
                     .blend = alpha}
           .apply();
       const gl::Program& p = m_options.construction == VolumeConstruction::Gpu ? m_extrudeProgram : m_volumeProgram;
-      p.set("uColor", vec4(0.0f, 0.0f, 0.0f, 1.0f - m_options.volumeKeep));
+      p.set("uColor", vec4(0.0f, 0.0f, 0.0f, m_options.volumeOpacity));
       drawVolumes(world, camera, true);
       break;
     }
@@ -252,7 +252,7 @@ void StencilShadows::composite(const World& world, const Camera& camera) const {
 
 void StencilShadows::drawView(const World& world, const Camera& camera) const {
   if (m_options.view == VolumeView::None) return;
-  PipelineState state{.depthWrite = false,
+  PipelineState state{.depthTest = true, .depthWrite = false,
                       .depthClamp = isZFail(m_options.counting) && m_options.depthClamp,
                       .polygonOffset = true,
                       .offsetFactor = m_options.offsetFactor,
@@ -282,7 +282,7 @@ void StencilShadows::drawView(const World& world, const Camera& camera) const {
       state.apply();
       p.set("uColor", vec4(1.0f, 0.85f, 0.2f, 1.0f));
       drawVolumes(world, camera, true);
-      PipelineState{}.apply();  // back to GL_FILL
+      PipelineState{.depthTest = true}.apply();  // back to GL_FILL
       break;
     case VolumeView::None: break;
   }
@@ -298,7 +298,7 @@ std::uint64_t StencilShadows::measureFill(const World& world, const Camera& came
   query.begin();
   drawVolumes(world, camera, usesCaps());
   query.end();
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   return query.result();
 }
 
@@ -312,7 +312,7 @@ void StencilShadows::render(const World& world, const Camera& camera, const gl::
   countVolumes(world, camera);
   composite(world, camera);
   drawView(world, camera);
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
 }
 
 std::string StencilShadows::describe() const {

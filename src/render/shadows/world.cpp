@@ -3,15 +3,12 @@
 #include "glint/render/shadows/world.h"
 
 #include "glint/core/error.h"
+#include "glint/core/locations.h"
 #include "glint/core/log.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-
-#ifndef GLINT_DATA_DIR
-#define GLINT_DATA_DIR "data"
-#endif
 
 namespace glint::render::shadows {
 
@@ -144,16 +141,21 @@ World makeBenchWorld(std::size_t triangles) {
   return w;
 }
 
-std::filesystem::path bunnyPath() {
-  const char* dir = std::getenv("GLINT_DATA_DIR");
-  return std::filesystem::path(dir && *dir ? dir : GLINT_DATA_DIR) / "bunny" / "bunny.ply";
+Camera sceneCamera(SceneView view, float aspect) {
+  switch (view) {
+    case SceneView::Demo: return Camera::lookAt({2.2f, 3.4f, 5.6f}, {0.9f, 0.8f, -0.4f}, {0, 1, 0}, 45.0f, aspect, 0.5f, 60.0f);
+    case SceneView::Inside:
+      return Camera::lookAt({-0.1f, 0.9f, -0.2f}, {2.6f, 0.2f, 1.6f}, {0, 1, 0}, 70.0f, aspect, 0.05f, 60.0f);
+    case SceneView::Bunny:
+      return Camera::lookAt({0.9f, 1.5f, 2.7f}, {-0.35f, 0.25f, 0.1f}, {0, 1, 0}, 45.0f, aspect, 0.3f, 40.0f);
+  }
+  return {};
 }
+
+std::filesystem::path bunnyPath() { return findDataFile("bunny/bunny.ply", "the Stanford bunny"); }
 
 Mesh loadBunny() {
   const auto path = bunnyPath();
-  if (!std::filesystem::exists(path))
-    fail(ErrorKind::Input, "the Stanford bunny is not at {} (run scripts/setup to fetch it, or set GLINT_DATA_DIR)",
-         path.string());
   const log::Level saved = log::level();
   log::setLevel(std::max(saved, log::Level::Error));  // "no normals; generating" is expected for the PLY
   Mesh mesh;

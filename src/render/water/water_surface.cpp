@@ -33,7 +33,7 @@ void WaterSurface::draw(const Camera& camera, const gl::Texture& waveState, cons
   environment.bind(2);
   poolFloor.bind(3);
   for (GLuint unit = 0; unit < 4; ++unit) gl::Sampler::unbind(unit);
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   m_program.use();
   m_grid.draw();
@@ -70,11 +70,11 @@ SkyEnvironment skyEnvironment(const char* name, int faceSize) {
   // lands where a lookup by direction finds it.
   const vec3 sun = WaterSurfaceOptions{}.sunDirection;
   std::vector<Image> faces;
-  for (int face = 0; face < glint::env::kCubeFaces; ++face) {
+  for (int face = 0; face < glint::kCubeFaces; ++face) {
     Image img(faceSize, faceSize, 4);
     for (int y = 0; y < faceSize; ++y)
       for (int x = 0; x < faceSize; ++x) {
-        const vec3 c = proceduralSky(glint::env::cubeTexelDirection(face, x, y, faceSize), sun);
+        const vec3 c = proceduralSky(glint::cubeTexelDirection(face, x, y, faceSize), sun);
         for (int k = 0; k < 3; ++k) img.set(x, y, k, c[k]);
         img.set(x, y, 3, 1.0f);
       }

@@ -52,7 +52,7 @@ void WaveSimulation::addDrop(const sim::Drop& drop) {
   m_emptyVao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 6);
   glBindVertexArray(0);
-  PipelineState{}.apply();
+  PipelineState{.depthTest = true}.apply();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

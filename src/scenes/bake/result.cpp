@@ -1,7 +1,7 @@
 // bake/result — the normal mapper's result (seed 001, ATI's car-paint demo split screen):
 // a studded torus of 262k triangles baked onto a 1,152-triangle torus. Four panels:
 //   top left      the low poly with its own vertex normals
-//   top right     the low poly with the baked tangent-space map (render::NormalMapping)
+//   top right     the low poly with the baked tangent-space map (render::bump::NormalMapping)
 //   bottom left   the high poly, its own normals
 //   bottom right  the baked map itself
 // The map is baked on the CPU (glint_bake, Embree) when the scene is created, so what is
@@ -10,7 +10,7 @@
 #include "glint/bake/samples.h"
 #include "glint/render/bump/textures.h"
 #include "glint/render/camera.h"
-#include "glint/render/normal_mapping.h"
+#include "glint/render/bump/normal_mapping.h"
 #include "glint/render/state.h"
 #include "glint/scenes/scene.h"
 
@@ -27,8 +27,8 @@ const vec4 kBackground{0.16f, 0.17f, 0.2f, 1.0f};
 class BakeResultScene final : public Scene {
 public:
   explicit BakeResultScene(bool detail)
-      : m_vertexNormals({.normal = render::ShadingNormal::Vertex}),
-        m_mapped({.normal = render::ShadingNormal::TangentMap}) {
+      : m_vertexNormals({.normal = render::bump::ShadingNormal::Vertex}),
+        m_mapped({.normal = render::bump::ShadingNormal::TangentMap}) {
     const Mesh low = makeTorus(1.0f, 0.35f, 48, 12);
     const Mesh high = bake::makeStuddedTorus({.segments = 512, .sides = 256});
     bake::BakeOptions options;
@@ -56,44 +56,39 @@ public:
 
   void render(const FrameInput& frame) override {
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.05f, 0.05f, 0.06f, 1.0f));
-    const ivec2 size = frame.target.size;
-    const ivec2 cell(size.x / 2, size.y / 2);
-    const int gap = std::max(1, size.x / 320);
-    const auto camera = render::Camera::orbit(vec3(0.0f), 3.1f, 0.0f, m_elevation, 38.0f, float(cell.x) / float(cell.y));
+    const int gap = std::max(1, frame.target.size.x / 320);
+    // Four panels in reading order: low poly, low poly + map / high poly, the map.
+    const auto panel = [&](int column, int row) {
+      const gl::Target cell = frame.target.cell(column, row, 2, 2, gap);
+      cell.bind();
+      render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, kBackground);
+      return cell;
+    };
+    const auto camera = render::Camera::orbit(vec3(0.0f), 3.1f, 0.0f, m_elevation, 38.0f, frame.target.cell(0, 0, 2, 2, gap).aspect());
     const float angle = float(frame.time) * m_spin / 60.0f * 2.0f * kPi + 0.4f;
     const mat4 model = glm::rotate(glm::rotate(mat4(1.0f), 0.35f, vec3(1, 0, 0)), angle, vec3(0, 1, 0));
-    const render::DirectionalLight lights[] = {{.direction = {0.5f, 0.8f, 0.6f}, .color = vec3(0.9f, 0.88f, 0.82f)},
+    const render::bump::DirectionalLight lights[] = {{.direction = {0.5f, 0.8f, 0.6f}, .color = vec3(0.9f, 0.88f, 0.82f)},
                                                {.direction = {-0.8f, 0.1f, -0.3f}, .color = vec3(0.15f, 0.2f, 0.3f)}};
-    const render::NormalMappingMaterial material{.albedo = vec3(0.75f, 0.72f, 0.68f), .specular = 0.35f, .shininess = 40.0f};
+    const render::bump::NormalMappingMaterial material{.albedo = vec3(0.75f, 0.72f, 0.68f), .specular = 0.35f, .shininess = 40.0f};
 
-    // Panels, GL origin at the lower left: (0, 1) top left ... (1, 0) bottom right.
-    const auto panel = [&](int column, int row) {
-      const ivec2 origin(column * cell.x + gap, row * cell.y + gap);
-      const ivec2 extent = cell - 2 * gap;
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(origin.x, origin.y, extent.x, extent.y);
-      glViewport(origin.x, origin.y, extent.x, extent.y);
-      render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, kBackground);
-    };
-    panel(0, 1);
-    m_vertexNormals.draw(m_low, model, camera, lights, material);
-    panel(1, 1);
-    m_mapped.draw(m_low, model, camera, lights, material, &m_map);
     panel(0, 0);
-    m_vertexNormals.draw(m_high, model, camera, lights, material);
+    m_vertexNormals.draw(m_low, model, camera, lights, material);
     panel(1, 0);
+    m_mapped.draw(m_low, model, camera, lights, material, &m_map);
+    panel(0, 1);
+    m_vertexNormals.draw(m_high, model, camera, lights, material);
+    panel(1, 1);
     m_view.draw(m_map);
-    glDisable(GL_SCISSOR_TEST);
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
   }
 
 private:
-  render::NormalMapping m_vertexNormals;
-  render::NormalMapping m_mapped;
-  render::NormalMapView m_view;
+  render::bump::NormalMapping m_vertexNormals;
+  render::bump::NormalMapping m_mapped;
+  render::bump::NormalMapView m_view;
   render::GpuMesh m_low;
   render::GpuMesh m_high;
   gl::Texture m_map;

@@ -59,9 +59,9 @@ public:
     frame.target.bind();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, &kClearColor.r, kClearDepth);
     m_program.use();
-    render::PipelineState{.depthFunc = m_variant.func, .depthWrite = m_variant.maskFirst}.apply();
+    render::PipelineState{.depthTest = true, .depthFunc = m_variant.func, .depthWrite = m_variant.maskFirst}.apply();
     m_first.draw();
-    render::PipelineState{.depthFunc = m_variant.func}.apply();
+    render::PipelineState{.depthTest = true, .depthFunc = m_variant.func}.apply();
     m_second.draw();
   }
 

@@ -239,7 +239,7 @@ private:
       m_solid.program().set("uColor", countColor(k, maxCount));
       m_solid.drawWithCurrentState();
     }
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
   }
 
   /// Reads GL's buffers back once and measures the differences for notes().

@@ -10,7 +10,7 @@
 
 #include <cmath>
 
-namespace glint::scenes::bumpscene {
+namespace glint::scenes::bump {
 
 constexpr int kTextureSize = 256;
 constexpr float kBrickBumpiness = 10.0f;  // NormalMapOptions::scale: bricks stand out clearly
@@ -58,4 +58,4 @@ inline render::Camera dot3Camera(ivec2 size, float distance = 2.9f) {
                                 float(size.x) / float(size.y));
 }
 
-}  // namespace glint::scenes::bumpscene
+}  // namespace glint::scenes::bump

@@ -18,7 +18,7 @@
 
 namespace glint::scenes {
 namespace {
-using namespace bumpscene;
+using namespace bump;
 using render::bump::Dot3Stage;
 
 enum class Normalization {
@@ -65,7 +65,7 @@ public:
   void render(const FrameInput& frame) override {
     rebuildIfNeeded();
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.05f, 0.06f, 0.08f, 1.0f));
     const bool twoUp = m_variant.normalization == Normalization::SideBySide;
     const render::Camera camera = dot3Camera(frame.target.size, twoUp ? 4.4f : 2.9f);

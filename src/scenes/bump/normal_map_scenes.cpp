@@ -4,7 +4,7 @@
 // `glint normalmap` from a height field, one baked by `glint bake` from a high-poly mesh —
 // and the object-space alternative.
 //
-// The technique is render::NormalMapping (render/normal_mapping.h), shared with the baker's
+// The technique is render::bump::NormalMapping (render/bump/normal_mapping.h), shared with the baker's
 // scenes; tangents come from mesh/tangents.h's generateTangents.
 #include "bump_common.h"
 
@@ -13,7 +13,7 @@
 #include "glint/mesh/tangents.h"
 #include "glint/render/bump/light_marker.h"
 #include "glint/render/gpu_mesh.h"
-#include "glint/render/normal_mapping.h"
+#include "glint/render/bump/normal_mapping.h"
 #include "glint/render/state.h"
 #include "glint/scenes/scene.h"
 
@@ -26,7 +26,7 @@
 
 namespace glint::scenes {
 namespace {
-using namespace bumpscene;
+using namespace bump;
 
 enum class Model {
   Bricks,         ///< a torus with the brick normal map of `glint normalmap` and a brick albedo
@@ -39,12 +39,12 @@ struct NormalMapVariant {
   const char* name;
   const char* description;
   Model model;
-  render::ShadingNormal normal = render::ShadingNormal::TangentMap;
+  render::bump::ShadingNormal normal = render::bump::ShadingNormal::TangentMap;
 };
 
 // The baker's demo pair (as in bake/result, smaller map): bakes once per process and space.
-const bake::BakeResult& bakedTorus(bake::NormalSpace space) {
-  static std::map<bake::NormalSpace, bake::BakeResult> cache;
+const bake::BakeResult& bakedTorus(NormalSpace space) {
+  static std::map<NormalSpace, bake::BakeResult> cache;
   auto it = cache.find(space);
   if (it == cache.end()) {
     bake::BakeOptions options;
@@ -74,7 +74,7 @@ class NormalMapScene final : public Scene {
 public:
   explicit NormalMapScene(const NormalMapVariant& v)
       : m_variant(v),
-        m_shader({.normal = v.model == Model::VertexNormals ? render::ShadingNormal::Vertex : v.normal}) {
+        m_shader({.normal = v.model == Model::VertexNormals ? render::bump::ShadingNormal::Vertex : v.normal}) {
     if (v.model == Model::Bricks) {
       m_mesh = render::GpuMesh(brickTorus(), {}, "brick-torus");
       m_map = render::bump::uploadImage(heightToNormalMap(makeBrickHeight(512), {.scale = kBrickBumpiness, .wrap = true}),
@@ -83,13 +83,13 @@ public:
       m_source = "normal map made by image/normalmap.h (as `glint normalmap bricks.png --scale 10 --wrap`) from a "
                  "procedural brick height field, 512²; torus of " + std::to_string(m_mesh.triangleCount()) + " triangles";
     } else {
-      const bool object = v.normal == render::ShadingNormal::ObjectMap;
-      const bake::BakeResult& baked = bakedTorus(object ? bake::NormalSpace::Object : bake::NormalSpace::Tangent);
+      const bool object = v.normal == render::bump::ShadingNormal::ObjectMap;
+      const bake::BakeResult& baked = bakedTorus(object ? NormalSpace::Object : NormalSpace::Tangent);
       m_mesh = render::GpuMesh(baked.low, {}, "baked-low");
       m_map = render::bump::uploadImage(baked.normal, {.label = "baked-normal-map"});
       if (v.model == Model::Maps) {
-        m_otherMap = render::bump::uploadImage(bakedTorus(bake::NormalSpace::Object).normal, {.label = "object-map"});
-        m_map = render::bump::uploadImage(bakedTorus(bake::NormalSpace::Tangent).normal, {.label = "tangent-map"});
+        m_otherMap = render::bump::uploadImage(bakedTorus(NormalSpace::Object).normal, {.label = "object-map"});
+        m_map = render::bump::uploadImage(bakedTorus(NormalSpace::Tangent).normal, {.label = "tangent-map"});
       }
       m_source = fmt::format("{} map baked by glint's baker (`glint bake`) from the studded torus onto a {}-triangle "
                              "torus, 512×256", object ? "object-space" : "tangent-space", baked.low.triangleCount());
@@ -106,30 +106,30 @@ public:
 
   void render(const FrameInput& frame) override {
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.05f, 0.06f, 0.08f, 1.0f));
     const ivec2 size = frame.target.size;
     if (m_variant.model == Model::Maps) {
       // Left: tangent space (mostly blue: normals near the surface's own); right: object
       // space (the colour follows the direction the surface faces).
-      glViewport(0, 0, size.x / 2, size.y);
+      frame.target.column(0, 2).bind();
       m_view.draw(m_map);
-      glViewport(size.x / 2, 0, size.x - size.x / 2, size.y);
+      frame.target.column(1, 2).bind();
       m_view.draw(*m_otherMap);
-      glViewport(0, 0, size.x, size.y);
+      frame.target.bind();
       return;
     }
     const auto camera = render::Camera::orbit({0.0f, 0.0f, 0.0f}, 3.3f, 0.0f, 0.55f, 40.0f, float(size.x) / float(size.y));
     const float turn = 2.0f * kPi / 60.0f * m_spin * float(frame.time);
     const mat4 model = glm::rotate(glm::rotate(mat4(1.0f), turn, vec3(0, 1, 0)), glm::radians(25.0f), vec3(1, 0, 0));
-    std::array<render::PointLight, 2> lights;
+    std::array<render::bump::PointLight, 2> lights;
     for (std::size_t i = 0; i < lights.size(); ++i) {
       const float a = m_lightSpeed * float(frame.time) + float(i) * kPi;
       lights[i] = {.position = {2.0f * std::cos(a), i == 0 ? 1.3f : -0.4f, 2.0f * std::sin(a)},
                    .color = kLightColors[i] * (i == 0 ? 1.1f : 0.7f),
                    .range = 3.0f};
     }
-    const render::NormalMappingMaterial material{
+    const render::bump::NormalMappingMaterial material{
         .albedo = m_albedo ? vec3(1.0f) : vec3(0.78f, 0.74f, 0.7f),
         .albedoMap = m_albedo ? &m_albedo : nullptr,
         .ambient = vec3(0.05f),
@@ -142,7 +142,7 @@ public:
 
   std::string notes() const override {
     const char* how = m_variant.model == Model::VertexNormals ? "Vertex normals only (no map)"
-                      : m_variant.normal == render::ShadingNormal::ObjectMap
+                      : m_variant.normal == render::bump::ShadingNormal::ObjectMap
                           ? "Object-space normal map: n = normalize(normalMatrix · texel), no tangents needed"
                           : "Tangent-space normal map, MikkTSpace frame per pixel";
     return fmt::format("{}; {}. Two point lights (warm, cool), Lambert + Blinn-Phong.", how, m_source);
@@ -150,12 +150,12 @@ public:
 
 private:
   NormalMapVariant m_variant;
-  render::NormalMapping m_shader;
+  render::bump::NormalMapping m_shader;
   render::GpuMesh m_mesh;
   gl::Texture m_map;
   gl::Texture m_albedo;
   std::optional<gl::Texture> m_otherMap;
-  render::NormalMapView m_view;
+  render::bump::NormalMapView m_view;
   render::bump::LightMarker m_marker;
   std::string m_source;
   float m_lightSpeed = 0.6f, m_specular = 0.35f, m_shininess = 40.0f, m_spin = 0.0f;
@@ -173,7 +173,7 @@ const NormalMapVariant kTangent[] = {
 };
 const NormalMapVariant kObject[] = {
     {"baked", "the studded torus baked into an object-space map: the same picture as bump/normal-map/baked, no tangents",
-     Model::Baked, render::ShadingNormal::ObjectMap},
+     Model::Baked, render::bump::ShadingNormal::ObjectMap},
     {"maps", "the two baked maps: tangent space (left, mostly blue) and object space (right, colour = facing)",
      Model::Maps},
 };

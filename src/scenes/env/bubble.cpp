@@ -16,7 +16,7 @@
 
 namespace glint::scenes {
 namespace {
-using namespace envscene;
+using namespace env;
 
 constexpr int kDynamicSize = 128;  // per face: the bubble is small on screen
 constexpr float kBubbleRadius = 1.0f;
@@ -64,7 +64,7 @@ public:
     m_local.render(vec3(0.0f), [&](const render::Camera& face) { drawSurroundings(face, t); });
     // 2. The frame: the same surroundings, then the bubble reflecting them.
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
     if (m_show == Show::Faces) {
       m_cross.draw(m_local.texture(), frame.target.size);
@@ -92,7 +92,7 @@ public:
 private:
   void drawSurroundings(const render::Camera& camera, float t) {
     m_sky.draw(m_environment, camera);
-    render::PipelineState{.cull = true}.apply();
+    render::PipelineState{.depthTest = true, .cull = true}.apply();
     m_program.use();
     m_program.set("uViewProj", camera.viewProjection());
     for (std::size_t i = 0; i < m_objects.size(); ++i) {

@@ -11,7 +11,7 @@
 
 namespace glint::scenes {
 namespace {
-using namespace envscene;
+using namespace env;
 
 struct ClassicVariant {
   const char* name;
@@ -43,7 +43,7 @@ public:
 
   void render(const FrameInput& frame) override {
     frame.target.bind();
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
     const render::Camera camera = viewCamera(m_variant.azimuth, frame.target.size);
     m_classic.drawSkybox(m_cube, camera);
@@ -55,7 +55,7 @@ public:
 
   std::string notes() const override {
     return "Fixed-function texgen in a compatibility-profile context: per-vertex coordinates, interpolated. "
-           "tests/render/classic_test compares it with the shader path.";
+           "tests/env/classic_test compares it with the shader path.";
   }
 
 private:

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace glint::scenes::envscene {
+namespace glint::scenes::env {
 
 constexpr const char* kEnvironment = "courtyard";  // data/env/courtyard.exr (scripts/setup)
 constexpr int kFaceSize = 256;                     // the equirect's 1024 texels / 4 faces around
@@ -56,18 +56,18 @@ inline std::vector<MirrorObject> mirrorBall() { return {{makeUvSphere(1.35f, 128
 
 /// The sphere map's figures (image/envmap.h) for the gallery text.
 inline std::string sphereMapFigures() {
-  const auto c = glint::env::sphereMapCoverage(kSphereMapSize);
-  const auto side = glint::env::sphereMapResolution(kSphereMapSize, kPi / 2);
-  const auto rear = glint::env::sphereMapResolution(kSphereMapSize, kPi * 150.0 / 180.0);
+  const auto c = glint::sphereMapCoverage(kSphereMapSize);
+  const auto side = glint::sphereMapResolution(kSphereMapSize, kPi / 2);
+  const auto rear = glint::sphereMapResolution(kSphereMapSize, kPi * 150.0 / 180.0);
   return fmt::format(
       "Sphere map {0}²: {1:.1f}% of texels wasted (seed: about 20%), {2:.1f}% show the front half, {3:.1f}% the back "
       "half. Effective resolution in texels/radian: {4:.0f} head-on, {5:.0f} at 90°, {6:.0f} at 150°, 0 straight back "
       "(the singularity); the {7}² cube map has ≥ {8:.0f} in every direction. Over the front half the sphere map "
       "equals a {9:.0f}² cube map; {10:.0f}k texels against the cube map's {11:.0f}k.",
       kSphereMapSize, 100 * c.wastedFraction, 100 * c.frontFraction, 100 * c.backFraction,
-      glint::env::sphereMapResolution(kSphereMapSize, 0).radial, side.radial, rear.radial, kFaceSize,
-      glint::env::cubeMapResolution(kFaceSize), glint::env::equivalentCubeFaceSize(kSphereMapSize, kPi / 2),
+      glint::sphereMapResolution(kSphereMapSize, 0).radial, side.radial, rear.radial, kFaceSize,
+      glint::cubeMapResolution(kFaceSize), glint::equivalentCubeFaceSize(kSphereMapSize, kPi / 2),
       kSphereMapSize * kSphereMapSize / 1000.0, 6.0 * kFaceSize * kFaceSize / 1000.0);
 }
 
-}  // namespace glint::scenes::envscene
+}  // namespace glint::scenes::env

@@ -17,7 +17,7 @@
 
 namespace glint::scenes {
 namespace {
-using namespace envscene;
+using namespace env;
 using render::env::Lookup;
 
 const View kViews[] = {
@@ -29,7 +29,7 @@ enum class Mode { Cube, Sphere, Compare };
 
 void clearTarget(const FrameInput& frame) {
   frame.target.bind();
-  render::PipelineState{}.apply();
+  render::PipelineState{.depthTest = true}.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
 }
 
@@ -57,15 +57,17 @@ public:
     const ivec2 size = frame.target.size;
     const render::Camera camera = viewCamera(m_view.azimuth + m_spin * float(frame.time), size);
     if (m_mode == Mode::Compare) {
-      // Split screen like the seed's demo: cube map on the left, sphere map on the right.
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(0, 0, size.x / 2, size.y);
-      drawHalf(camera, Lookup::CubeMap);
-      glScissor(size.x / 2, 0, size.x - size.x / 2, size.y);
-      drawHalf(camera, Lookup::SphereMap);
-      glScissor(size.x / 2 - 1, 0, 2, size.y);
+      // Split screen like the seed's demo: cube map on the left, sphere map on the right,
+      // one camera over the whole frame (each half shows its half of the same view), and
+      // a 2-pixel divider.
+      const gl::Target left = frame.target.column(0, 2), right = frame.target.column(1, 2);
+      left.bind();
+      drawHalf(camera.cropped(size, left.origin, left.size), Lookup::CubeMap);
+      right.bind();
+      drawHalf(camera.cropped(size, right.origin, right.size), Lookup::SphereMap);
+      frame.target.region({size.x / 2 - 1, 0}, {2, size.y}).bind();
       render::clear(GL_COLOR_BUFFER_BIT, vec4(0.9f, 0.9f, 0.9f, 1.0f));
-      glDisable(GL_SCISSOR_TEST);
+      frame.target.bind();
     } else {
       drawHalf(camera, m_mode == Mode::Cube ? Lookup::CubeMap : Lookup::SphereMap);
     }
@@ -97,7 +99,7 @@ private:
     const render::Camera camera = viewCamera(m_view.azimuth, kQualitySize);
     const auto ball = [&](Lookup lookup, const gl::Texture& environment) {
       target.target().bind();
-      render::PipelineState{}.apply();
+      render::PipelineState{.depthTest = true}.apply();
       render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 0.0f));
       reflector(lookup).draw(m_meshes[0], m_models[0], camera, environment, sphereMapFrame({1, 1}));
       return gl::readColor(target.framebuffer(), kQualitySize);

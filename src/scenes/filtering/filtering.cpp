@@ -4,7 +4,7 @@
 // supersampled ground truth; the numbers are in the notes (gallery text).
 #include "glint/gl/context.h"
 #include "glint/image/pattern.h"
-#include "glint/render/filtering.h"
+#include "glint/render/filtering/filtering.h"
 #include "glint/scenes/scene.h"
 
 #include <fmt/format.h>

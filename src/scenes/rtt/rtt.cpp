@@ -2,7 +2,7 @@
 // copy to a texture, (b) draw straight into the texture through a framebuffer object.
 // The texture then covers a spinning cube; both variants show the same picture.
 #include "glint/render/camera.h"
-#include "glint/render/rtt.h"
+#include "glint/render/rtt/rtt.h"
 #include "glint/render/state.h"
 #include "glint/scenes/scene.h"
 
@@ -43,7 +43,7 @@ public:
     }
     // The frame itself (for the copy method, the second clear of the window).
     frame.target.bind();
-    render::PipelineState{.cull = true}.apply();
+    render::PipelineState{.depthTest = true, .cull = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.32f, 0.34f, 0.38f, 1.0f));
     const ivec2 size = frame.target.size;
     const auto camera = render::Camera::orbit(vec3(0.0f), 3.0f, 0.0f, 0.35f, 45.0f, float(size.x) / float(size.y));

@@ -58,7 +58,7 @@ public:
   }
   void render(const FrameInput& frame) override {
     m_world.lightPosition = m_light.position;
-    render::Camera camera = makeCamera(View::Bunny, aspectOf(frame));
+    render::Camera camera = sh::sceneCamera(SceneView::Bunny, aspectOf(frame));
     if (m_map) {
       m_map->render(m_world, camera, frame.target);
       return;

@@ -26,7 +26,7 @@ public:
   void render(const FrameInput& frame) override {
     sh::animateDemoWorld(m_world, frame.time);
     m_world.lightPosition = m_light.position;
-    m_map.render(m_world, makeCamera(View::Demo, aspectOf(frame)), frame.target);
+    m_map.render(m_world, sh::sceneCamera(SceneView::Demo, aspectOf(frame)), frame.target);
   }
   std::vector<Option> options() override {
     std::vector<Option> out;
@@ -34,7 +34,10 @@ public:
     auto& o = m_map.options();
     out.push_back({"pcf-radius", "PCF taps: (2r+1)² hardware-filtered comparisons", &o.pcfRadius, 0.0f, 4.0f});
     out.push_back({"slope-bias", "slope-scaled depth bias (polygon offset factor) of the map pass", &o.offsetFactor, 0.0f, 8.0f});
-    out.push_back({"constant-bias", "constant depth bias (polygon offset units) of the map pass", &o.offsetUnits, 0.0f, 400000.0f});
+    out.push_back({"constant-bias", "constant depth bias (polygon offset units) of the map pass", &o.offsetUnits, 0.0f,
+                   2000000.0f});
+    out.push_back({"receiver-plane", "PCF taps compare with the receiver's plane at each tap (0: acne as the radius "
+                   "grows)", &o.receiverPlaneBias});
     return out;
   }
   std::string notes() const override { return m_map.describe(); }
@@ -60,7 +63,7 @@ public:
   void render(const FrameInput& frame) override {
     sh::animateDemoWorld(m_world, frame.time);
     m_world.lightPosition = m_light.position;
-    m_planar.render(m_world, makeCamera(View::Demo, aspectOf(frame)), frame.target);
+    m_planar.render(m_world, sh::sceneCamera(SceneView::Demo, aspectOf(frame)), frame.target);
   }
   std::vector<Option> options() override {
     std::vector<Option> out;
@@ -94,7 +97,7 @@ void registerShadowMaps(Registry& registry) {
                             "slide; where a surface is farther than its texel says, it is in shadow.",
                {.view = ShadowMapView::Projected}},
               {"with", "With shadows: each pixel's light-space depth compared with the map (sampler2DShadow, "
-                       "3×3 hardware-filtered PCF, slope-scaled bias).",
+                       "3×3 hardware-filtered PCF, slope-scaled and receiver-plane bias).",
                {.view = ShadowMapView::WithShadows}},
           });
   addMaps(registry, "shadows/map-pcf",
@@ -105,13 +108,16 @@ void registerShadowMaps(Registry& registry) {
                {.size = 512, .pcfRadius = 0, .hardwareFilter = false}},
               {"hardware", "One tap, GL_LINEAR comparison: the hardware blends 2×2 comparisons (bilinear PCF).",
                {.size = 512, .pcfRadius = 0}},
-              {"pcf5x5", "5×5 hardware-filtered taps: soft, smooth edges.", {.size = 512, .pcfRadius = 2}},
+              {"pcf5x5", "5×5 hardware-filtered taps, each compared with the receiver's plane where it reads "
+                         "(receiver-plane bias): soft, smooth edges and clean lit surfaces.",
+               {.size = 512, .pcfRadius = 2}},
               {"no-bias", "No bias: surfaces shadow themselves in moiré bands (shadow acne).",
                {.pcfRadius = 0, .offsetFactor = 0.0f, .offsetUnits = 0.0f}},
-              {"constant-bias", "A large constant bias only (polygon offset units 300000): the acne is gone, but every "
-                                "stored depth moves back alike, so shadows start late behind contact points "
-                                "(peter panning).",
-               {.pcfRadius = 0, .offsetFactor = 0.0f, .offsetUnits = 300000.0f}},
+              {"constant-bias", "A large constant bias only (polygon offset units 1,000,000: about 0.7 units along "
+                                "the light's rays at the sphere): the acne is gone, but every stored depth moves "
+                                "back alike, so the sphere's shadow shrinks to a spot detached from it (peter "
+                                "panning).",
+               {.pcfRadius = 0, .offsetFactor = 0.0f, .offsetUnits = 1000000.0f}},
               {"slope-bias", "Slope-scaled bias (glPolygonOffset factor 2, units 2): bias only where the surface is "
                              "steep to the light — no acne, shadows stay attached.",
                {.pcfRadius = 0}},

@@ -25,7 +25,7 @@ struct Variant {
   const char* name;
   const char* description;
   StencilShadowOptions options;
-  View view = View::Demo;
+  SceneView view = SceneView::Demo;
   bool sphereCasts = true;
   double time = 0.0;  // added to --time: variants that need the sphere elsewhere
 };
@@ -40,7 +40,7 @@ public:
   void render(const FrameInput& frame) override {
     sh::animateDemoWorld(m_world, frame.time + m_variant.time);
     m_world.lightPosition = m_light.position;
-    render::Camera camera = makeCamera(m_variant.view, aspectOf(frame));
+    render::Camera camera = sh::sceneCamera(m_variant.view, aspectOf(frame));
     if (sh::StencilShadows::needsInfiniteFar(m_shadows.options()))
       camera.projection = sh::infiniteFarProjection(camera.projection);
     m_shadows.render(m_world, camera, frame.target);
@@ -51,8 +51,8 @@ public:
     m_light.add(out);
     auto& o = m_shadows.options();
     out.push_back({"quad-alpha", "opacity of the shadow quad (composite quad)", &o.quadAlpha, 0.0f, 1.0f});
-    out.push_back({"volume-keep", "fraction of the lit colour the re-drawn volume keeps (seed: 0.85, 0.5)",
-                   &o.volumeKeep, 0.0f, 1.0f});
+    out.push_back({"volume-opacity", "opacity of the black re-drawn volume (composite volume; seed: 0.85, 0.5)",
+                   &o.volumeOpacity, 0.0f, 1.0f});
     out.push_back({"offset-factor", "polygon offset slope factor of the volume passes", &o.offsetFactor, 0.0f, 8.0f});
     out.push_back({"offset-units", "polygon offset units of the volume passes", &o.offsetUnits, 0.0f, 64.0f});
     return out;
@@ -74,9 +74,9 @@ void add(Registry& registry, const char* name, const char* summary, std::vector<
   registry.add(std::move(desc));
 }
 
-constexpr StencilShadowOptions invert(ShadowComposite composite, float keep = 0.85f) {
+constexpr StencilShadowOptions invert(ShadowComposite composite, float opacity = 0.85f) {
   return {.counting = StencilCounting::InvertZPass, .casters = CasterMode::Closed, .composite = composite,
-          .volumeKeep = keep};
+          .volumeOpacity = opacity};
 }
 
 }  // namespace
@@ -91,18 +91,20 @@ void registerShadowVolumes(Registry& registry) {
       {
           {"multipass", "(iii) the correct composite: ambient everywhere, then diffuse + specular added only where "
                         "the stencil is 0 (GL_EQUAL depth, additive blending).",
-           invert(ShadowComposite::MultiPass), View::Demo, false},
+           invert(ShadowComposite::MultiPass), SceneView::Demo, false},
           {"quad", "(i) a full-screen black quad, 55% opaque, alpha-blended where the stencil is set: simple, but "
                    "shadowed surfaces keep their diffuse and specular highlights under the tint.",
-           invert(ShadowComposite::ShadowQuad), View::Demo, false},
-          {"volume-85", "(ii) the volume drawn again into colour with alpha under the stencil test, keeping 85% of "
-                        "the lit colour: lighting still shows through (the seed's choice).",
-           invert(ShadowComposite::VolumeAlpha, 0.85f), View::Demo, false},
-          {"volume-50", "(ii) the same at 50%: the shadow is much more noticeable.",
-           invert(ShadowComposite::VolumeAlpha, 0.5f), View::Demo, false},
+           invert(ShadowComposite::ShadowQuad), SceneView::Demo, false},
+          {"volume-85", "(ii) the volume drawn again into colour under the stencil test, black and 85% opaque: "
+                        "shadows keep 15% of the lit colour, a trace of diffuse and specular still shows (the "
+                        "seed's choice, \"not too bad\").",
+           invert(ShadowComposite::VolumeAlpha, 0.85f), SceneView::Demo, false},
+          {"volume-50", "(ii) the same at 50% opacity: shadows keep half the lit colour, and the diffuse and "
+                        "specular light through them is much more noticeable.",
+           invert(ShadowComposite::VolumeAlpha, 0.5f), SceneView::Demo, false},
           {"overlap", "INVERT counts parity: with the sphere inside the slab's volume and casting too, its shadow "
                       "inside the slab's shadow is crossed twice and comes out lit — why counting replaced it.",
-           invert(ShadowComposite::MultiPass), View::Demo, true, 6.0},
+           invert(ShadowComposite::MultiPass), SceneView::Demo, true, 6.0},
       });
   add(registry, "shadows/zpass",
       "Z-pass counting: front faces INCR_WRAP, back faces DECR_WRAP where the depth test passes, so "
@@ -110,10 +112,10 @@ void registerShadowVolumes(Registry& registry) {
       {
           {"multipass", "Counted shadows with the multi-pass composite; the sphere's and the slab's shadows overlap "
                         "correctly when the sphere is inside.",
-           {.counting = StencilCounting::ZPass}, View::Demo, true, 6.0},
+           {.counting = StencilCounting::ZPass}, SceneView::Demo, true, 6.0},
           {"count", "The stencil counts as colours: 1 yellow, 2 orange, 3 red; the sphere inside the slab's volume "
                     "shows 2 where both shadows fall.",
-           {.counting = StencilCounting::ZPass, .composite = ShadowComposite::CountColors}, View::Demo, true, 6.0},
+           {.counting = StencilCounting::ZPass, .composite = ShadowComposite::CountColors}, SceneView::Demo, true, 6.0},
           {"dim-alpha", "seeds/001's composite: the scene writes a dim factor (ambient/full) into destination alpha "
                         "and one quad blended (ZERO, DST_ALPHA) under the stencil test multiplies it in.",
            {.counting = StencilCounting::ZPass, .composite = ShadowComposite::DimAlpha}},
@@ -127,7 +129,7 @@ void registerShadowVolumes(Registry& registry) {
           {"depth-clamp", "The camera keeps its far plane; GL_DEPTH_CLAMP stops the far caps being clipped.",
            {.counting = StencilCounting::ZFail, .depthClamp = true}},
           {"count", "The z-fail stencil counts as colours (same values as z-pass from outside the volumes).",
-           {.counting = StencilCounting::ZFail, .composite = ShadowComposite::CountColors}, View::Demo, true, 6.0},
+           {.counting = StencilCounting::ZFail, .composite = ShadowComposite::CountColors}, SceneView::Demo, true, 6.0},
       });
   add(registry, "shadows/two-sided",
       "Two-sided stencil: one draw with culling off, glStencilOpSeparate giving front and back faces their own "
@@ -156,14 +158,14 @@ void registerShadowVolumes(Registry& registry) {
       {
           {"back", "Back faces of the volume in green: they pass the depth test only in front of the ground.",
            {.counting = StencilCounting::InvertZPass, .casters = CasterMode::Closed,
-            .composite = ShadowComposite::None, .view = VolumeView::BackFaces}, View::Demo, false},
+            .composite = ShadowComposite::None, .view = VolumeView::BackFaces}, SceneView::Demo, false},
           {"front", "Front faces in blue.",
            {.counting = StencilCounting::InvertZPass, .casters = CasterMode::Closed,
-            .composite = ShadowComposite::None, .view = VolumeView::FrontFaces}, View::Demo, false},
+            .composite = ShadowComposite::None, .view = VolumeView::FrontFaces}, SceneView::Demo, false},
           {"both", "Both: cyan where back and front faces pass, blue where only the front face does — the blue "
                    "region is the shadow.",
            {.counting = StencilCounting::InvertZPass, .casters = CasterMode::Closed,
-            .composite = ShadowComposite::None, .view = VolumeView::BothFaces}, View::Demo, false},
+            .composite = ShadowComposite::None, .view = VolumeView::BothFaces}, SceneView::Demo, false},
           {"wireframe", "The volumes as wireframe over the shadowed scene.",
            {.counting = StencilCounting::ZFail, .view = VolumeView::Wireframe}},
       });
@@ -172,8 +174,9 @@ void registerShadowVolumes(Registry& registry) {
       "count is 1 and inverts the shadows; z-fail counts behind the surface and stays right.",
       {
           {"zpass", "Z-pass from inside the volume: lit and shadowed swap wherever the volume is seen.",
-           {.counting = StencilCounting::TwoSidedZPass}, View::Inside},
-          {"zfail", "Z-fail from the same place: correct.", {.counting = StencilCounting::TwoSidedZFail}, View::Inside},
+           {.counting = StencilCounting::TwoSidedZPass}, SceneView::Inside},
+          {"zfail", "Z-fail from the same place: correct.", {.counting = StencilCounting::TwoSidedZFail},
+           SceneView::Inside},
       });
 }
 

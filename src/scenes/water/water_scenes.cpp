@@ -87,7 +87,7 @@ public:
       else m_view->draw(m_normalMap, FieldKind::NormalMap, frame.target.size);
       return;
     }
-    render::PipelineState{}.apply();
+    render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
     const ivec2 size = frame.target.size;
     const auto camera = render::Camera::orbit(m_variant.lookAt, m_variant.cameraDistance, 0.35f + m_spin * float(frame.time),

@@ -16,9 +16,10 @@
 // then sample identical texels. Cube maps use GL_CLAMP_TO_EDGE; draw with
 // GL_TEXTURE_CUBE_MAP_SEAMLESS enabled (the drawing classes here do).
 //
-// Data directory: environments come from Debian's blender-data package (CC0 HDRIs by
-// Greg Zaal), extracted by scripts/setup into <source>/data/env. The environment
-// variable GLINT_DATA_DIR overrides the directory compiled in (CMake: GLINT_DATA_DIR).
+// Data: environments come from Debian's blender-data package (CC0 HDRIs by Greg Zaal),
+// extracted by scripts/setup into <source>/data/env and installed into
+// <prefix>/share/glint/env; core/locations.h says where they are looked up
+// (the environment variable GLINT_DATA_DIR overrides).
 //
 // Errors are glint::Error with one line: Input for a missing or corrupt file, a
 // non-2:1 equirect, non-square or unequal cube faces.
@@ -34,10 +35,8 @@
 
 namespace glint::render::env {
 
-/// The directory holding env/<name>.exr: $GLINT_DATA_DIR if set, else the build's default.
-std::filesystem::path dataDirectory();
-/// dataDirectory()/env/<name>.exr. Error(Input) naming the path and how to get it
-/// (scripts/setup) when it does not exist.
+/// env/<name>.exr in glint's data (core/locations.h's findDataFile). Error(Input) naming
+/// where it looked and how to get it (scripts/setup, GLINT_DATA_DIR) when it is missing.
 std::filesystem::path findEnvironment(std::string_view name);
 /// Loads an equirectangular image (any format image/image.h reads; HDR and EXR keep
 /// their range) and validates it. Error(Input), one line, when missing, corrupt or not 2:1.

@@ -5,7 +5,7 @@
 // Contents
 //   ShadowMapView      the lecture's set of pictures: without/with shadows, light's view,
 //                      light's view depth, projected shadow map; and a visibility mask
-//   ShadowMapOptions   map size, PCF, hardware comparison filter, slope-scaled bias
+//   ShadowMapOptions   map size, PCF, hardware comparison filter, polygon-offset and receiver-plane bias
 //   ShadowMap          the technique: depth from the light via an FBO, then the scene
 //
 // How it works: the scene's depth is drawn from the light into a depth texture (an
@@ -18,8 +18,12 @@
 // Bias: a surface compared against its own depth map is lit or shadowed by rounding
 // ("shadow acne"). glPolygonOffset while drawing the map pushes stored depths back by
 // offsetFactor × the surface's depth slope seen from the light (slope-scaled: grazing
-// surfaces need more) + offsetUnits × the smallest depth step. Too much detaches
-// shadows from their casters ("peter panning"); the map-pcf variants show both ends.
+// surfaces need more) + offsetUnits × the smallest depth step. That is sized for one
+// tap, whose 2×2 texels lie within a texel of the pixel; the PCF taps further out are
+// not biased more but compared with the receiver's own plane at each tap ("receiver
+// plane depth bias", shaders/shadows/shadow_map.glsl), so a wider kernel needs no more
+// offset and casts no more acne. Too much offset detaches shadows from their casters
+// ("peter panning"); the map-pcf variants show both ends.
 
 #include "glint/gl/objects.h"
 #include "glint/gl/render_target.h"
@@ -43,6 +47,8 @@ struct ShadowMapOptions {
   bool hardwareFilter = true;   ///< GL_LINEAR comparison (2×2 PCF per tap) vs GL_NEAREST
   float offsetFactor = 2.0f;    ///< slope-scaled bias (glPolygonOffset factor)
   float offsetUnits = 2.0f;     ///< constant bias in depth steps (glPolygonOffset units)
+  bool receiverPlaneBias = true;  ///< PCF taps compare with the receiver's plane at the tap (false: with
+                                  ///< the pixel's own depth, which shows acne as the radius grows)
   ShadowMapView view = ShadowMapView::WithShadows;
 };
 

@@ -57,7 +57,7 @@ enum class VolumeConstruction {
 enum class ShadowComposite {
   MultiPass,    ///< (iii) the correct one: ambient everywhere, diffuse + specular only where stencil = 0
   ShadowQuad,   ///< (i) a full-screen quad of the shadow colour, alpha-blended where stencil ≠ 0
-  VolumeAlpha,  ///< (ii) the volume drawn again into colour, alpha-blended where stencil ≠ 0
+  VolumeAlpha,  ///< (ii) the volume drawn again into colour, black at volumeOpacity, where stencil ≠ 0
   DimAlpha,     ///< seeds/001: a quad blended (ZERO, DST_ALPHA) where stencil ≠ 0; alpha holds the dim factor
   CountColors,  ///< the stencil count itself: 1 yellow, 2 orange, 3 red, ≥ 4 magenta, "negative" violet
   None          ///< the lit scene only (debug views draw their volumes over it)
@@ -77,9 +77,10 @@ struct StencilShadowOptions {
   CasterMode casters = CasterMode::Auto;
   ShadowComposite composite = ShadowComposite::MultiPass;
   VolumeView view = VolumeView::None;
-  bool depthClamp = false;   ///< z-fail: GL_DEPTH_CLAMP instead of an infinite-far camera
-  float quadAlpha = 0.55f;   ///< ShadowQuad: opacity of the black overlay
-  float volumeKeep = 0.85f;  ///< VolumeAlpha: fraction of the lit colour kept (seed: 85% or 50%)
+  bool depthClamp = false;      ///< z-fail: GL_DEPTH_CLAMP instead of an infinite-far camera
+  float quadAlpha = 0.55f;      ///< ShadowQuad: opacity of the black overlay
+  float volumeOpacity = 0.85f;  ///< VolumeAlpha: opacity of the black volume; a shadow keeps 1 − this of
+                                ///< the lit colour (seeds/000: "an 85% opaque alpha blend", or 50%)
   /// Polygon offset of the volume passes (pushes volumes away from the camera): slope
   /// factor for near caps seen at grazing angles, units for the rest.
   float offsetFactor = 1.0f;

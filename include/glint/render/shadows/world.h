@@ -9,14 +9,17 @@
 //   makeDemoWorld      seeds/000's demo: a slab casting a volume, a sphere moving in and out
 //   makeBunnyWorld     the Stanford bunny (closed, or with its base cut open) on a ground
 //   makeBenchWorld     a field of spheres with about N triangles in total
+//   SceneView, sceneCamera  where the shadow scenes look at these worlds from
 //   bunnyPath/loadBunny  where scripts/setup put the bunny, and loading it
 //
 // The same World feeds the GPU techniques (render/shadows/*) and the ray-traced
 // oracle in the tests (worldMesh() gives each object in world space), so both see
-// exactly the same triangles.
+// exactly the same triangles; sceneCamera() gives both the same viewpoints, so the
+// oracle tests check what the gallery shows.
 
 #include "glint/core/math.h"
 #include "glint/mesh/mesh.h"
+#include "glint/render/camera.h"
 
 #include <filesystem>
 #include <string>
@@ -63,10 +66,23 @@ World makeBunnyWorld(const Mesh& bunny, bool openBase);
 /// About `triangles` triangles: a grid of UV spheres (casters) over a ground, for benchmarks.
 World makeBenchWorld(std::size_t triangles);
 
-/// $GLINT_DATA_DIR/bunny/bunny.ply, else <source>/data/bunny/bunny.ply (from scripts/setup).
+/// Where a shadow scene looks from.
+enum class SceneView {
+  Demo,    ///< the demo world (makeDemoWorld) from the front and above
+  Inside,  ///< from inside the demo slab's shadow volume, looking out at the sphere
+  Bunny    ///< the bunny world (makeBunnyWorld): the bunny and the pinwheel
+};
+
+/// The camera of `view` at `aspect` (width / height), with the near and far planes the
+/// scenes draw with (z-fail scenes then move the far plane to infinity):
+///
+///   const Camera camera = sceneCamera(SceneView::Demo, 16.0f / 9.0f);
+Camera sceneCamera(SceneView view, float aspect);
+
+/// bunny/bunny.ply in glint's data (core/locations.h's findDataFile; scripts/setup fetches
+/// it). Error(Input) naming where it looked and `scripts/setup` when it is missing.
 std::filesystem::path bunnyPath();
-/// Loads the bunny from bunnyPath() with winding checked (outward). Error(Input) naming the
-/// path and `scripts/setup` when it is missing.
+/// Loads the bunny from bunnyPath() with winding checked (outward). Error(Input) as bunnyPath().
 Mesh loadBunny();
 
 }  // namespace glint::render::shadows

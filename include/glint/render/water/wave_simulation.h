@@ -3,8 +3,8 @@
 // spring-network height field stepped by a fragment shader between two framebuffer
 // textures (ping-pong), with drops drawn into it periodically.
 //
-// The physics, its parameters and their stable range are documented in sim/wave.h, whose
-// CPU WaveField is the reference this class is tested against (tests/bump/wave_gpu_test:
+// The physics, its parameters and their stable range are documented in sim/water.h, whose
+// CPU WaveField is the reference this class is tested against (tests/water/wave_gpu_test:
 // equal within float tolerance after 100 steps).
 //
 // State: two RG32F textures, R = height, G = velocity (the slide stores the height in RGB
@@ -24,7 +24,7 @@
 
 #include "glint/gl/objects.h"
 #include "glint/render/gpu_mesh.h"
-#include "glint/sim/wave.h"
+#include "glint/sim/water.h"
 
 #include <array>
 

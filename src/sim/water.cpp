@@ -1,4 +1,4 @@
-#include "glint/sim/wave.h"
+#include "glint/sim/water.h"
 
 #include "glint/core/error.h"
 #include "glint/core/hash.h"

@@ -10,7 +10,6 @@
 #include <random>
 
 using namespace glint;
-using namespace glint::env;
 
 namespace {
 void expectNear(vec3 a, vec3 b, float tol = 1e-5f) {

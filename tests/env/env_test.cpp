@@ -17,7 +17,6 @@
 #include <random>
 
 using namespace glint;
-namespace env = glint::env;
 namespace renv = glint::render::env;
 namespace fs = std::filesystem;
 
@@ -99,9 +98,9 @@ TEST_F(EnvGl, EquirectToCubeMatchesCpuSamplingOfTheEquirect) {
         for (int j = 0; j < samples; ++j)
           for (int i = 0; i < samples; ++i) {
             const vec2 st = (vec2(x, y) + (vec2(i, j) + 0.5f) / float(samples)) / float(size);
-            sum += env::sampleEquirect(equirect, env::cubeFaceDirection(f, st));
+            sum += sampleEquirect(equirect, cubeFaceDirection(f, st));
           }
-        const vec3 expected = env::displayEncode(sum / float(samples * samples), 0.8f);
+        const vec3 expected = displayEncode(sum / float(samples * samples), 0.8f);
         for (int c = 0; c < 3; ++c) worst = std::max(worst, double(std::abs(face.at(x, y, c) - expected[c])));
       }
   }
@@ -118,7 +117,7 @@ TEST_F(EnvGl, CubeFromFacesKeepsEachFaceWhereGlPutsIt) {
     Image img(size, size, 3);
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {
-        const vec3 c = encodeDirection(env::cubeTexelDirection(f, x, y, size));  // row 0 uploaded first = t ≈ 0
+        const vec3 c = encodeDirection(cubeTexelDirection(f, x, y, size));  // row 0 uploaded first = t ≈ 0
         for (int k = 0; k < 3; ++k) img.set(x, y, k, c[k]);
       }
     faces.push_back(img);
@@ -141,7 +140,7 @@ TEST_F(EnvGl, DynamicCubeFacesSeeTheirOwnDirections) {
     Image img(64, 64, 3);
     for (int y = 0; y < 64; ++y)
       for (int x = 0; x < 64; ++x) {
-        const vec3 c = encodeDirection(env::cubeTexelDirection(f, x, y, 64));
+        const vec3 c = encodeDirection(cubeTexelDirection(f, x, y, 64));
         for (int k = 0; k < 3; ++k) img.set(x, y, k, c[k]);
       }
     faces.push_back(img);
@@ -156,7 +155,7 @@ TEST_F(EnvGl, DynamicCubeFacesSeeTheirOwnDirections) {
     const Image face = readFace(dynamic.texture(), f);
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {
-        const vec3 expected = encodeDirection(env::cubeTexelDirection(f, x, y, size));
+        const vec3 expected = encodeDirection(cubeTexelDirection(f, x, y, size));
         for (int c = 0; c < 3; ++c) worst = std::max(worst, double(std::abs(face.at(x, y, c) - expected[c])));
       }
   }
@@ -179,7 +178,7 @@ ReflectionCheck checkMirrorBall(const renv::Reflector& mirror, const gl::Texture
   render::GpuMesh ball(makeUvSphere(1.0f, 128, 64));
   gl::RenderTarget target(size);
   target.target().bind();
-  render::PipelineState{}.apply();
+  render::PipelineState{.depthTest = true}.apply();
   glClearColor(0, 0, 0, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   mirror.draw(ball, mat4(1.0f), camera, environment, sphereFrame);
@@ -199,7 +198,7 @@ ReflectionCheck checkMirrorBall(const renv::Reflector& mirror, const gl::Texture
       if (edgeMargin(r) < 0.08f) continue;  // filtering blends faces near cube edges
       const vec3 towardsViewer = glm::transpose(sphereFrame) * vec3(0, 0, 1);
       if (std::acos(glm::clamp(glm::dot(r, towardsViewer), -1.0f, 1.0f)) > maxAngleFromViewer) continue;
-      const vec3 expected = kFaceColors[env::cubeLookup(r).face];
+      const vec3 expected = kFaceColors[cubeLookup(r).face];
       ++result.checked;
       bool same = true;
       for (int k = 0; k < 3; ++k) same = same && std::abs(image.at(x, y, k) - expected[k]) < 3.0f / 255.0f;
@@ -242,7 +241,7 @@ TEST_F(EnvGl, SphereMapWastesExactlyTheTexelsOutsideTheBall) {
     std::size_t wasted = 0;
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) wasted += texels.at(x, y, 3) < 0.5f;
-    const auto coverage = env::sphereMapCoverage(size);
+    const auto coverage = sphereMapCoverage(size);
     EXPECT_EQ(wasted, std::size_t(std::llround(coverage.wastedFraction * size * size))) << size;
     // The centre texel looks back at the viewer: +Z, the +Z face (blue).
     const int mid = size / 2;

@@ -1,10 +1,10 @@
-// Texture filtering (render/filtering.h) measured against a 16×16-supersampled truth:
+// Texture filtering (render/filtering/filtering.h) measured against a 16×16-supersampled truth:
 // the order seed 000 describes, and the anisotropy limit.
 #include "../support/gl_test.h"
 
 #include "glint/core/error.h"
 #include "glint/image/pattern.h"
-#include "glint/render/filtering.h"
+#include "glint/render/filtering/filtering.h"
 
 using namespace glint;
 namespace flt = glint::render::filtering;

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/filtering.h — texture filtering on a ground plane receding to the
+// glint/render/filtering/filtering.h — texture filtering on a ground plane receding to the
 // horizon, and how far each filter is from the truth (seed 000: "anisotropic filtering").
 //
 // Contents

@@ -1,4 +1,4 @@
-#include "glint/render/normal_mapping.h"
+#include "glint/render/bump/normal_mapping.h"
 
 #include "glint/core/error.h"
 #include "glint/render/state.h"
@@ -6,14 +6,14 @@
 #include <string>
 #include <vector>
 
-namespace glint::render {
+namespace glint::render::bump {
 
 NormalMapping::NormalMapping(const NormalMappingOptions& options) : m_options(options) {
   const int source = options.normal == ShadingNormal::TangentMap ? 1 : options.normal == ShadingNormal::ObjectMap ? 2 : 0;
   std::vector<std::string> defines{"NORMAL_SOURCE " + std::to_string(source)};
   if (options.directX) defines.emplace_back("DIRECTX");
   if (options.output == NormalMappingOutput::WorldNormal) defines.emplace_back("OUTPUT_NORMAL");
-  m_program = gl::Program::fromFiles({"normal_mapping/lit.vert", "normal_mapping/lit.frag"}, defines);
+  m_program = gl::Program::fromFiles({"bump/normal_map.vert", "bump/normal_map.frag"}, defines);
   m_program.label("normal-mapping");
 }
 
@@ -61,7 +61,7 @@ void NormalMapping::draw(const GpuMesh& mesh, const mat4& model, const Camera& c
   m_program.set("uSpecular", material.specular);
   m_program.set("uShininess", material.shininess);
 
-  PipelineState{.cull = true}.apply();
+  PipelineState{.depthTest = true, .cull = true}.apply();
   if (usesMap) {
     gl::Sampler::unbind(0);
     normalMap->bind(0);
@@ -72,7 +72,7 @@ void NormalMapping::draw(const GpuMesh& mesh, const mat4& model, const Camera& c
   if (material.albedoMap) glBindTextureUnit(1, 0);
 }
 
-NormalMapView::NormalMapView() : m_pass("normal_mapping/show_map.frag") {}
+NormalMapView::NormalMapView() : m_pass("bump/show_map.frag") {}
 
 void NormalMapView::draw(const gl::Texture& map) const {
   gl::Sampler::unbind(0);
@@ -81,4 +81,4 @@ void NormalMapView::draw(const gl::Texture& map) const {
   glBindTextureUnit(0, 0);
 }
 
-}  // namespace glint::render
+}  // namespace glint::render::bump

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/rtt.h — render to texture, both ways of seed 002.
+// glint/render/rtt/rtt.h — render to texture, both ways of seed 002.
 //
 // Contents
 //   CopyToTexture        (a) draw into the window's framebuffer, then glCopyTextureSubImage2D

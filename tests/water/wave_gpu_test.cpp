@@ -1,11 +1,11 @@
 // The GPU wave simulation (render/water/wave_simulation.h) against the CPU reference
-// (sim/wave.h): equal within float tolerance over 100 steps, energy decay, stability, and
+// (sim/water.h): equal within float tolerance over 100 steps, energy decay, stability, and
 // the deterministic time-driven stepping the scenes rely on.
 #include "support/gl_test.h"
 
 #include "glint/core/error.h"
 #include "glint/render/water/wave_simulation.h"
-#include "glint/sim/wave.h"
+#include "glint/sim/water.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
-// The spring-network wave model on the CPU (sim/wave.h): rest, energy, stability limit,
+// The spring-network wave model on the CPU (sim/water.h): rest, energy, stability limit,
 // the drop schedule. The GPU simulation is compared with this in wave_gpu_test.cpp.
 #include "glint/core/error.h"
-#include "glint/sim/wave.h"
+#include "glint/sim/water.h"
 
 #include <gtest/gtest.h>
 

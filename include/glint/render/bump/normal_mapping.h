@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/normal_mapping.h — per-pixel lighting with normal maps: the renderer side
+// glint/render/bump/normal_mapping.h — per-pixel lighting with normal maps: the renderer side
 // of the normal mapper (`glint bake`), and the technique bump mapping builds on.
 //
 // Contents
@@ -23,9 +23,9 @@
 // Rotations, uniform scales and mirrors in `model` are handled; non-uniform scale bends
 // the frame, as in every engine.
 //
-//   render::NormalMapping shader({.normal = render::ShadingNormal::TangentMap});
+//   render::bump::NormalMapping shader({.normal = render::bump::ShadingNormal::TangentMap});
 //   gl::Texture map = render::bump::uploadImage(baked.normal, {.label = "baked-normals"});
-//   render::DirectionalLight sun{.direction = glm::normalize(vec3(1, 2, 1))};
+//   render::bump::DirectionalLight sun{.direction = glm::normalize(vec3(1, 2, 1))};
 //   shader.draw(lowMesh, model, camera, {&sun, 1}, {}, &map);
 //
 // State: depth test on, back faces culled, texture units 0 (normal map) and 1 (albedo map)
@@ -38,7 +38,7 @@
 
 #include <span>
 
-namespace glint::render {
+namespace glint::render::bump {
 
 enum class ShadingNormal {
   Vertex,      ///< the interpolated vertex normal (a mesh as it is: the low poly unmapped, the high poly)
@@ -112,4 +112,4 @@ private:
   FullscreenPass m_pass;
 };
 
-}  // namespace glint::render
+}  // namespace glint::render::bump

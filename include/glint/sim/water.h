@@ -1,5 +1,5 @@
 #pragma once
-// glint/sim/wave.h — seed 002's wave simulation as a spring network, on the CPU: the
+// glint/sim/water.h — seed 002's wave simulation as a spring network, on the CPU: the
 // reference the GPU simulation (render/water/wave_simulation.h) is tested against, and
 // the place its physics is documented. No GL.
 //
@@ -34,7 +34,7 @@
 // scheme is stable (energy bounded, with damping ≥ 0) iff Δt² · ω² ≤ 4, i.e.
 //     Δt ≤ stabilityLimit(params) = 2 · sqrt(m / (8k + k_rest)).
 // Waves travel at sqrt(k/m) texels per second. The defaults: 60 texels/s, Δt = 1/120 s,
-// Δt·ω = 1.41 (limit 2). tests/bump/wave_test.cpp checks GPU = CPU, the energy decay, and
+// Δt·ω = 1.41 (limit 2). tests/water/wave_cpu_test.cpp and wave_gpu_test.cpp checks GPU = CPU, the energy decay, and
 // that steps just inside the limit stay bounded while steps just beyond it blow up.
 
 #include "glint/core/math.h"

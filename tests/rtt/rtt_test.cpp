@@ -1,11 +1,11 @@
-// Render to texture (render/rtt.h): the copy method and the framebuffer-object method
+// Render to texture (render/rtt/rtt.h): the copy method and the framebuffer-object method
 // give the same texels, at level 0 and through the mip chain; the copy method refuses a
 // window smaller than the texture instead of copying garbage.
 #include "../support/gl_test.h"
 
 #include "glint/core/error.h"
 #include "glint/gl/render_target.h"
-#include "glint/render/rtt.h"
+#include "glint/render/rtt/rtt.h"
 
 using namespace glint;
 namespace rtt = glint::render::rtt;

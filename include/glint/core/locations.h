@@ -1,0 +1,41 @@
+#pragma once
+// glint/core/locations.h — where glint finds the files it does not compile in: its
+// downloaded data (environment maps, the Stanford bunny) and the running executable
+// (image/image.h's I/O module is looked up beside it).
+//
+//   const fs::path exr = glint::findDataFile("env/courtyard.exr", "environment 'courtyard'");
+//
+// Data is what scripts/setup fetches into <source>/data; `cmake --install` copies it to
+// <prefix>/share/glint. findDataFile looks in these directories, first match wins:
+//
+//   $GLINT_DATA_DIR                when set, the only place: an explicit choice is not
+//                                  second-guessed by a fallback
+//   <exe>/../share/glint           beside an installed glint command, wherever its
+//                                  prefix was moved (relative to bin/, GNUInstallDirs)
+//   <source>/data                  the build's default (CMake: GLINT_DATA_DIR)
+//   <prefix>/share/glint           the prefix configured at build time, for other
+//                                  programs linked to an installed glint
+//
+// A program linked to an install that was moved elsewhere (cmake --install --prefix P
+// with P not the configured prefix) and built on another machine finds its data only
+// through GLINT_DATA_DIR=P/share/glint; findDataFile's error says so.
+
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+namespace glint {
+
+/// The running executable (/proc/self/exe); empty when it cannot be read.
+std::filesystem::path executablePath();
+
+/// The directories findDataFile searches, in order (see above); duplicates removed.
+/// Directories that do not exist are included: the list is where glint looks.
+std::vector<std::filesystem::path> dataDirectories();
+
+/// The first dataDirectories()/`relative` that is a regular file. Error(Input), one line,
+/// when there is none: `what` (e.g. "environment 'courtyard'"), every directory searched,
+/// and how to get the data (scripts/setup, GLINT_DATA_DIR).
+std::filesystem::path findDataFile(const std::filesystem::path& relative, std::string_view what);
+
+}  // namespace glint

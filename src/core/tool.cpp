@@ -1,0 +1,125 @@
+#include "glint/core/tool.h"
+
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+#include "glint/core/log.h"
+
+#include <sys/resource.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <csignal>
+#include <cstdio>
+
+#ifndef GLINT_VERSION
+#error "GLINT_VERSION must be defined by the build"
+#endif
+
+namespace glint {
+
+namespace {
+// The flag the handlers set. Signal handlers may only touch lock-free atomics.
+std::atomic<bool> g_cancel{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void onInterrupt(int signal) {
+  g_cancel.store(true);
+  // A second signal is the user insisting: the default action (terminate) at once.
+  std::signal(signal, SIG_DFL);
+}
+}  // namespace
+
+struct ToolRun::Impl {
+  void (*previousInt)(int) = SIG_DFL;
+  void (*previousTerm)(int) = SIG_DFL;
+  std::unique_ptr<tbb::global_control> threadLimit;
+  log::Level previousLevel = log::Level::Info;
+};
+
+ToolRun::ToolRun(std::string tool, const ToolSettings& settings)
+    : m_tool(std::move(tool)), m_settings(settings), m_impl(std::make_unique<Impl>()),
+      m_start(std::chrono::steady_clock::now()) {
+  if (settings.threads < 0) fail(ErrorKind::Usage, "--threads must be positive, got {}", settings.threads);
+  if (settings.threads > 0) {
+    m_impl->threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                                std::size_t(settings.threads));
+  }
+  m_impl->previousLevel = log::level();
+  if (settings.quiet && log::level() < log::Level::Warn) log::setLevel(log::Level::Warn);
+  g_cancel.store(false);
+  m_impl->previousInt = std::signal(SIGINT, onInterrupt);
+  m_impl->previousTerm = std::signal(SIGTERM, onInterrupt);
+}
+
+ToolRun::~ToolRun() {
+  std::signal(SIGINT, m_impl->previousInt);
+  std::signal(SIGTERM, m_impl->previousTerm);
+  log::setLevel(m_impl->previousLevel);
+}
+
+const std::atomic<bool>& ToolRun::cancelFlag() const { return g_cancel; }
+
+void ToolRun::throwIfInterrupted() const {
+  if (interrupted()) fail(ErrorKind::Interrupted, "{} interrupted; no output was written", m_tool);
+}
+
+int ToolRun::threads() const {
+  return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+}
+
+ToolRun::Phase::Phase(ToolRun& run, std::string name)
+    : m_run(run), m_name(std::move(name)), m_start(std::chrono::steady_clock::now()) {}
+
+ToolRun::Phase::~Phase() {
+  m_run.addSeconds(m_name, std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count());
+}
+
+void ToolRun::addSeconds(const std::string& name, double seconds) {
+  for (auto& [phase, total] : m_phases) {
+    if (phase == name) {
+      total += seconds;
+      return;
+    }
+  }
+  m_phases.emplace_back(name, seconds);
+}
+
+double ToolRun::elapsed() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+}
+
+void ToolRun::warn(const std::string& message) {
+  log::warn("{}", message);
+  m_warnings.push_back(message);
+}
+
+double ToolRun::peakMemoryMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+void ToolRun::finish() {
+  if (m_settings.json.empty()) return;
+  nlohmann::ordered_json out;
+  out["tool"] = m_tool;
+  out["version"] = GLINT_VERSION;
+  out["threads"] = threads();
+  for (auto& [key, value] : m_report.items()) out[key] = value;
+  nlohmann::ordered_json seconds = nlohmann::ordered_json::object();
+  for (const auto& [phase, total] : m_phases) seconds[phase] = total;
+  seconds["total"] = elapsed();
+  out["seconds"] = seconds;
+  out["peak_memory_mib"] = peakMemoryMiB();
+  out["warnings"] = m_warnings;
+  // Non-finite numbers have no JSON spelling: nlohmann writes them as null.
+  const std::string text = out.dump(2) + "\n";
+  if (m_settings.json == "-") {
+    std::fputs(text.c_str(), stdout);
+    std::fflush(stdout);
+  } else {
+    writeTextAtomically(m_settings.json, text);
+  }
+}
+
+}  // namespace glint
