@@ -12,8 +12,10 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 #include <exception>
+#include <filesystem>
 #include <future>
 #include <memory>
 #include <optional>
@@ -176,7 +178,18 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     }
     if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
     for (const auto& path : outputs) checkWritable(path);
-    requireImageIo();
+    // OpenImageIO is needed for a detail map and for outputs other than PNG (libspng).
+    bool needsImageIo = !a->detail.empty();
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+      const bool json = !a->tool.json.empty() && a->tool.json != "-" && i + 1 == outputs.size();
+      std::string ext = std::filesystem::path(outputs[i]).extension().string();
+      for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+      if (!json && ext != ".png") needsImageIo = true;
+    }
+    if (needsImageIo) {
+      requireImageIo();
+      preloadImageIo();
+    }
 
     // Inputs (never modified: loaded into memory, prepared there).
     // The high poly (the big file) is parsed here while a second thread reads the rest;
@@ -247,7 +260,11 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     for (const auto& w : result.warnings) run.recordWarning(w);
     run.finish();
     return 0;
-  }};
+  },
+  // The OpenImageIO module is started by the command itself, only when it reads an image
+  // or writes another format than PNG (libspng): its 0.3 s of dynamic linking would take
+  // the second core from the mesh parser.
+  .readsImages = false};
 }
 
 }  // namespace glint::app

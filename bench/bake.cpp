@@ -7,10 +7,13 @@
 //   (c) ray throughput of the bake vs plain Embree rtcIntersect1 on the very same rays,
 //       same BVH settings, same threads (target ≥ 70 %).
 //   (d) time and memory as the high poly grows 10k → 100k → 1M triangles.
+//   (e) mesh loading: MB/s for ~28 MB OBJ, PLY (binary) and glTF (GLB) files, glint's fast
+//       paths against Assimp (the peer) in the same run, alternating.
 #include "glint/bake/baker.h"
 #include "glint/bake/samples.h"
 #include "glint/bench/bench.h"
 #include "glint/core/error.h"
+#include "glint/core/file.h"
 #include "glint/core/log.h"
 #include "glint/raytrace/raytracer.h"
 
@@ -80,7 +83,7 @@ std::string shellQuote(const fs::path& p) {
   return out + "'";
 }
 
-constexpr int kWholeRunRepeats = 5, kPeerRepeats = 3, kThroughputRepeats = 3;
+constexpr int kWholeRunRepeats = 5, kPeerRepeats = 3, kThroughputRepeats = 3, kLoadRepeats = 3;
 
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -98,7 +101,23 @@ bool blenderAvailable() { return std::system("command -v blender >/dev/null 2>&1
 
 fs::path self() { return fs::read_symlink("/proc/self/exe"); }
 
-/// (a) the whole run, both tools from the same OBJ files.
+/// One number from `glint bake --json`'s "seconds" object, or NaN.
+double jsonSeconds(const std::string& json, const std::string& key) {
+  const std::size_t at = json.find("\"" + key + "\": ", json.find("\"seconds\""));
+  return at == std::string::npos ? std::nan("") : std::atof(json.c_str() + at + key.size() + 4);
+}
+
+std::string readText(const fs::path& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return {};
+  std::string text;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) text.append(buffer, n);
+  std::fclose(f);
+  return text;
+}
+
+/// (a) the whole run, both tools from the same OBJ files, runs alternating.
 void versusBlender(Recorder& r, const fs::path& dir) {
   const std::string group = "a: 1024² 1 ray";
   const Mesh low = lowPoly();
@@ -107,36 +126,144 @@ void versusBlender(Recorder& r, const fs::path& dir) {
   bake::writeObj(high, dir / "high.obj");
   const std::string args = fmt::format("{} {} --size 1024x1024 --samples 1 --max-front 0.06 --max-rear 0.06 -q",
                                        shellQuote(dir / "low.obj"), shellQuote(dir / "high.obj"));
-  // Medians of several runs: one run of either tool can be slowed by the machine's other load.
-  std::vector<double> glintRuns;
+  const bool blender = blenderAvailable();
+  const fs::path script = fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "blender_bake.py";
+  // Medians of alternating runs: one run of either tool can be slowed by the machine's other load.
+  std::vector<double> glintRuns, blenderRuns, load, bake, write;
+  bool blenderFailed = false;
   for (int i = 0; i < kWholeRunRepeats; ++i) {
-    glintRuns.push_back(timeCommand(fmt::format("{} bake {} -o {}", shellQuote(self()), args, shellQuote(dir / "glint.png"))));
+    glintRuns.push_back(timeCommand(fmt::format("{} bake {} -o {} --json {}", shellQuote(self()), args,
+                                                shellQuote(dir / "glint.png"), shellQuote(dir / "glint.json"))));
     if (glintRuns.back() < 0) fail(ErrorKind::Internal, "bench bake: `glint bake` failed");
+    const std::string json = readText(dir / "glint.json");
+    load.push_back(jsonSeconds(json, "load"));
+    bake.push_back(jsonSeconds(json, "prepare") + jsonSeconds(json, "trace") + jsonSeconds(json, "dilate"));
+    write.push_back(jsonSeconds(json, "write"));
+    if (blender && !blenderFailed && i < kPeerRepeats) {
+      blenderRuns.push_back(timeCommand(fmt::format("blender -b --factory-startup --python {} -- {} {} {} 1024 1 0.06 >/dev/null 2>&1",
+                                                    shellQuote(script), shellQuote(dir / "low.obj"),
+                                                    shellQuote(dir / "high.obj"), shellQuote(dir / "blender.png"))));
+      blenderFailed = blenderRuns.back() < 0;
+    }
   }
   const double glint = median(glintRuns);
   r.record({.group = group, .name = "glint bake (whole run)", .value = glint, .unit = "s",
             .note = fmt::format("median of {}; {} → {} triangles, OBJ load + bake + PNG", glintRuns.size(),
                                 high.triangleCount(), low.triangleCount())});
-  if (!blenderAvailable()) {
+  const double loadS = median(load), bakeS = median(bake), writeS = median(write);
+  r.record({.group = group, .name = "  load (both meshes)", .value = loadS, .unit = "s",
+            .note = fmt::format("{:.1f} MB of OBJ; medians of the runs' --json phases", double(fs::file_size(dir / "high.obj") + fs::file_size(dir / "low.obj")) / 1e6)});
+  r.record({.group = group, .name = "  trace (BVH + rays + dilate)", .value = bakeS, .unit = "s"});
+  r.record({.group = group, .name = "  write (PNG)", .value = writeS, .unit = "s"});
+  r.record({.group = group, .name = "  load + write vs trace (target < 1)", .value = (loadS + writeS) / bakeS, .unit = "×"});
+  if (!blender) {
     r.record({.group = group, .name = "blender cycles", .value = std::nan(""), .unit = "s",
               .note = "peer unavailable: `blender` is not installed (apt install blender)"});
     return;
   }
-  const fs::path script = fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "blender_bake.py";
-  std::vector<double> blenderRuns;
-  for (int i = 0; i < kPeerRepeats; ++i) {
-    blenderRuns.push_back(timeCommand(fmt::format("blender -b --factory-startup --python {} -- {} {} {} 1024 1 0.06 >/dev/null 2>&1",
-                                                  shellQuote(script), shellQuote(dir / "low.obj"),
-                                                  shellQuote(dir / "high.obj"), shellQuote(dir / "blender.png"))));
-    if (blenderRuns.back() < 0) {
-      r.record({.group = group, .name = "blender cycles", .value = std::nan(""), .unit = "s", .note = "peer failed"});
-      return;
+  if (blenderFailed) {
+    r.record({.group = group, .name = "blender cycles", .value = std::nan(""), .unit = "s", .note = "peer failed"});
+    return;
+  }
+  const double peer = median(blenderRuns);
+  r.record({.group = group, .name = "blender cycles", .value = peer, .unit = "s",
+            .note = fmt::format("median of {}, alternating with glint's; whole run, same files", blenderRuns.size())});
+  r.record({.group = group, .name = "speed-up (target ≥ 10)", .value = peer / glint, .unit = "×"});
+}
+
+/// A binary little-endian PLY with positions, normals and uvs.
+void writePly(const Mesh& mesh, const fs::path& path) {
+  std::string out = fmt::format("ply\nformat binary_little_endian 1.0\nelement vertex {}\n"
+                                "property float x\nproperty float y\nproperty float z\n"
+                                "property float nx\nproperty float ny\nproperty float nz\n"
+                                "property float s\nproperty float t\n"
+                                "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+                                mesh.vertexCount(), mesh.triangleCount());
+  const auto put = [&](const void* data, std::size_t n) { out.append(static_cast<const char*>(data), n); };
+  for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {
+    put(&mesh.positions[i], 12);
+    put(&mesh.normals[i], 12);
+    put(&mesh.uvs[i], 8);
+  }
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+    out.push_back(3);
+    put(&mesh.indices[3 * t], 12);
+  }
+  writeTextAtomically(path, out);
+}
+
+/// A GLB (binary glTF 2.0): one mesh, positions, normals, uvs and 32-bit indices.
+void writeGlb(const Mesh& mesh, const fs::path& path) {
+  const std::size_t n = mesh.vertexCount(), positions = n * 12, normals = n * 12, uvs = n * 8,
+                    indices = mesh.indices.size() * 4;
+  const Bounds b = mesh.bounds();
+  std::string json = fmt::format(
+      R"({{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],)"
+      R"("meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2}},"indices":3}}]}}],)"
+      R"("buffers":[{{"byteLength":{}}}],"bufferViews":[)"
+      R"({{"buffer":0,"byteOffset":0,"byteLength":{}}},{{"buffer":0,"byteOffset":{},"byteLength":{}}},)"
+      R"({{"buffer":0,"byteOffset":{},"byteLength":{}}},{{"buffer":0,"byteOffset":{},"byteLength":{}}}],"accessors":[)"
+      R"({{"bufferView":0,"componentType":5126,"count":{},"type":"VEC3","min":[{},{},{}],"max":[{},{},{}]}},)"
+      R"({{"bufferView":1,"componentType":5126,"count":{},"type":"VEC3"}},)"
+      R"({{"bufferView":2,"componentType":5126,"count":{},"type":"VEC2"}},)"
+      R"({{"bufferView":3,"componentType":5125,"count":{},"type":"SCALAR"}}]}})",
+      positions + normals + uvs + indices, positions, positions, normals, positions + normals, uvs,
+      positions + normals + uvs, indices, n, b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z, n, n,
+      mesh.indices.size());
+  while (json.size() % 4) json += ' ';
+  const std::uint32_t binSize = std::uint32_t(positions + normals + uvs + indices);
+  const std::uint32_t header[3] = {0x46546C67u, 2u, std::uint32_t(12 + 8 + json.size() + 8 + binSize)};
+  const std::uint32_t jsonChunk[2] = {std::uint32_t(json.size()), 0x4E4F534Au};
+  const std::uint32_t binChunk[2] = {binSize, 0x004E4942u};
+  std::string out;
+  const auto put = [&](const void* data, std::size_t size) { out.append(static_cast<const char*>(data), size); };
+  put(header, 12);
+  put(jsonChunk, 8);
+  out += json;
+  put(binChunk, 8);
+  put(mesh.positions.data(), positions);
+  put(mesh.normals.data(), normals);
+  put(mesh.uvs.data(), uvs);
+  put(mesh.indices.data(), indices);
+  writeTextAtomically(path, out);
+}
+
+/// (e) load speed per format: the fast path and Assimp on the same file, alternating.
+void loading(Recorder& r, const fs::path& dir) {
+  const Mesh obj = highPoly(262144);  // 28 MB of OBJ text
+  const Mesh big = highPoly(1 << 20);  // 29 MB as binary PLY, 28 MB as GLB
+  bake::writeObj(obj, dir / "load.obj");
+  writePly(big, dir / "load.ply");
+  writeGlb(big, dir / "load.glb");
+  struct Case {
+    std::string file;
+    bool join;
+    bool fast;  // has a fast path
+  };
+  for (const Case& c : {Case{"load.obj", true, true}, Case{"load.obj", false, true}, Case{"load.ply", true, true},
+                        Case{"load.glb", true, false}}) {
+    const fs::path path = dir / c.file;
+    const double mb = double(fs::file_size(path)) / 1e6;
+    const std::string group = fmt::format("e: load {} {:.0f} MB{}", path.extension().string().substr(1), mb,
+                                          c.join ? "" : ", not joined");
+    std::vector<double> fastRuns, assimpRuns;
+    std::size_t triangles = 0;
+    for (int i = 0; i < kLoadRepeats; ++i) {
+      for (MeshParser parser : {MeshParser::Auto, MeshParser::Assimp}) {
+        if (parser == MeshParser::Auto && !c.fast) continue;
+        const auto start = Clock::now();
+        const Mesh m = loadMesh(path, {.joinVertices = c.join, .parser = parser});
+        (parser == MeshParser::Assimp ? assimpRuns : fastRuns).push_back(since(start));
+        triangles = m.triangleCount();
+      }
+    }
+    const std::string note = fmt::format("{} triangles; median of {}, alternating", triangles, kLoadRepeats);
+    r.record({.group = group, .name = "Assimp", .value = mb / median(assimpRuns), .unit = "MB/s", .note = note});
+    if (c.fast) {
+      r.record({.group = group, .name = path.extension() == ".obj" ? "glint (tinyobjloader, parallel)" : "glint (Draco PLY reader)",
+                .value = mb / median(fastRuns), .unit = "MB/s", .ratioTo = "Assimp", .note = note});
     }
   }
-  const double blender = median(blenderRuns);
-  r.record({.group = group, .name = "blender cycles", .value = blender, .unit = "s",
-            .note = fmt::format("median of {}; whole run, same files", blenderRuns.size())});
-  r.record({.group = group, .name = "speed-up (target ≥ 5)", .value = blender / glint, .unit = "×"});
 }
 
 /// (b) the big bake, in process.
@@ -258,13 +385,14 @@ void scaling(Recorder& r) {
 
 void registerBakeSuite(Suites& suites) {
   suites.add({.name = "bake",
-              .description = "normal mapper: vs Blender Cycles, 2048² 36 spp on 1M triangles, vs plain Embree, scaling",
+              .description = "normal mapper: vs Blender Cycles, 2048² 36 spp on 1M triangles, vs plain Embree, scaling, mesh loading",
               .run = [](Recorder& r) {
                 const auto level = log::level();
                 log::setLevel(log::Level::Error);  // the bakes' own warnings are not the bench's output
                 const fs::path dir = fs::temp_directory_path() / fmt::format("glint-bench-bake-{}", getpid());
                 fs::create_directories(dir);
                 try {
+                  loading(r, dir);
                   scaling(r);
                   {
                     const Mesh low = lowPoly(), high = highPoly(1 << 20);

@@ -1,14 +1,21 @@
-// loadMesh: every triangle mesh in a file, flattened into one Mesh via Assimp.
+// loadMesh: every triangle mesh in a file, flattened into one Mesh: OBJ and PLY through the
+// fast paths (obj_import.cpp, ply_import.cpp), everything else through Assimp.
 #include "glint/core/error.h"
 #include "glint/core/log.h"
 #include "glint/mesh/mesh.h"
+
+#include "import_steps.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
+#include <cctype>
 #include <string>
 #include <system_error>
+#include <type_traits>
+#include <vector>
 
 namespace glint {
 namespace {
@@ -69,6 +76,46 @@ void checkFaces(const aiScene& scene, const std::string& name) {
   }
 }
 
+/// Gives every face corner of a mesh without normals its own vertex. Assimp's smooth
+/// normals take, per vertex, the normal of the last face using it and then average over
+/// vertices at the same position: right for OBJ (one vertex per corner), but on shared
+/// vertices (PLY, glTF) every vertex would get one face's normal. JoinIdenticalVertices
+/// shares them again afterwards.
+void expandForNormals(aiMesh& m) {
+  if (m.HasNormals() || m.mNumBones > 0 || m.mNumAnimMeshes > 0 || m.HasTangentsAndBitangents()) return;
+  std::vector<char> used(m.mNumVertices, 0);
+  bool shared = false;
+  unsigned corners = 0;
+  for (unsigned f = 0; f < m.mNumFaces; ++f) {
+    for (unsigned k = 0; k < m.mFaces[f].mNumIndices; ++k) {
+      char& u = used[m.mFaces[f].mIndices[k]];
+      shared = shared || u;
+      u = 1;
+    }
+    corners += m.mFaces[f].mNumIndices;
+  }
+  if (!shared && corners == m.mNumVertices) return;
+  const auto remap = [&](auto*& array) {
+    if (!array) return;
+    using T = std::remove_pointer_t<std::remove_reference_t<decltype(array)>>;
+    T* out = new T[corners];
+    unsigned c = 0;
+    for (unsigned f = 0; f < m.mNumFaces; ++f) {
+      for (unsigned k = 0; k < m.mFaces[f].mNumIndices; ++k) out[c++] = array[m.mFaces[f].mIndices[k]];
+    }
+    delete[] array;
+    array = out;
+  };
+  remap(m.mVertices);
+  for (auto& channel : m.mTextureCoords) remap(channel);
+  for (auto& channel : m.mColors) remap(channel);
+  unsigned c = 0;
+  for (unsigned f = 0; f < m.mNumFaces; ++f) {
+    for (unsigned k = 0; k < m.mFaces[f].mNumIndices; ++k) m.mFaces[f].mIndices[k] = c++;
+  }
+  m.mNumVertices = corners;
+}
+
 /// Appends every mesh instance under `node`, baked with its accumulated transform.
 /// This is what aiProcess_PreTransformVertices does, done here so that instanced
 /// meshes are copied per node and mirrored nodes keep counter-clockwise winding
@@ -84,14 +131,14 @@ void flatten(const aiScene& scene, const aiNode& node, const mat4& parent, Mesh&
   for (unsigned i = 0; i < node.mNumChildren; ++i) flatten(scene, *node.mChildren[i], world, result);
 }
 
-}  // namespace
+std::string lowerExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
 
-Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
+Mesh loadWithAssimp(const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", name);
-  if (!std::filesystem::is_regular_file(path, ec)) fail(ErrorKind::Input, "cannot read '{}': not a regular file", name);
-
   Assimp::Importer importer;
   // Read with validation only, then post-process in steps:
   //  - this Assimp build keeps its internal asserts, and some loaders accept
@@ -105,6 +152,7 @@ Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options)
     fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, firstLine(importer.GetErrorString()));
   }
   checkFaces(*scene, name);
+  for (unsigned i = 0; i < scene->mNumMeshes; ++i) expandForNormals(*scene->mMeshes[i]);
   scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType);
   if (!scene) fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, firstLine(importer.GetErrorString()));
 
@@ -116,10 +164,7 @@ Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options)
     if (!m.HasNormals()) ++missingNormals;
   }
   if (triangleMeshes == 0) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
-  if (missingNormals > 0) {
-    log::warn("'{}': {} of {} meshes have no normals; generating smooth normals", name, missingNormals,
-              triangleMeshes);
-  }
+  detail::warnMissingNormals(name, missingNormals, triangleMeshes);
   // GenSmoothNormals leaves meshes that already have normals alone, and Assimp
   // runs the requested steps in its own fixed order (normals before joining).
   unsigned steps = aiProcess_GenSmoothNormals;
@@ -131,6 +176,40 @@ Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options)
   flatten(*scene, *scene->mRootNode, mat4(1.0f), result);
   // Meshes that no node references would be lost by the walk; treat "nothing
   // drawable came out" the same as "no triangles".
+  if (result.indices.empty()) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
+  return result;
+}
+
+}  // namespace
+
+Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", name);
+  if (!std::filesystem::is_regular_file(path, ec)) fail(ErrorKind::Input, "cannot read '{}': not a regular file", name);
+
+  Mesh result;
+  bool done = false;
+  if (options.parser != MeshParser::Assimp) {
+    const std::string ext = lowerExtension(path);
+    try {
+      if (ext == ".obj") {
+        result = detail::loadObjFast(path, options);
+        done = true;
+      } else if (ext == ".ply") {
+        result = detail::loadPlyFast(path, options);
+        done = true;
+      } else if (options.parser == MeshParser::Fast) {
+        fail(ErrorKind::Input, "cannot read mesh '{}': no fast parser for '{}' files", name, ext);
+      }
+    } catch (const detail::Declined& declined) {
+      if (options.parser == MeshParser::Fast) {
+        fail(ErrorKind::Input, "cannot read mesh '{}' with the fast parser: {}", name, declined.what());
+      }
+      log::debug("'{}': read with Assimp ({})", name, declined.what());
+    }
+  }
+  if (!done) result = loadWithAssimp(path, options);
   if (result.indices.empty()) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
   result.validate(fmt::format("mesh '{}'", name));
   return result;

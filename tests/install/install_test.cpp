@@ -115,8 +115,9 @@ TEST(Install, AConsumerProjectBuildsAgainstTheInstalledTreeAndRendersTheTriangle
   ASSERT_EQ(compile.status, 0) << compile.output;
 
   // 3. Render. The OpenImageIO module must come from the prefix (the consumer's RUNPATH
-  //    from glint::image), not from this build tree, which is still there.
-  const fs::path png = work / "triangle.png";
+  //    from glint::image), not from this build tree, which is still there. (TGA: PNG is
+  //    written through libspng, without the module.)
+  const fs::path png = work / "triangle.tga";
   const auto render = run(fmt::format("{} {} basics/triangle/color {}", logLoading(work / "consumer-loader"),
                                       quote(build / "render_scene"), quote(png)));
   ASSERT_EQ(render.status, 0) << render.output;
@@ -156,23 +157,24 @@ TEST(Install, AConsumerProjectBuildsAgainstTheInstalledTreeAndRendersTheTriangle
 }
 
 // GLINT_OIIO_MODULE names the module explicitly: used when set, and the only candidate,
-// so a wrong value is reported rather than silently replaced by another module.
+// so a wrong value is reported rather than silently replaced by another module. (TGA
+// output needs the module; PNG is written through libspng without it.)
 TEST(Install, TheImageIoModuleCanBeNamedAndAWrongNameIsAOneLineError) {
   const fs::path work = freshDir("install", "module-override");
   const fs::path module = work / moduleName();
   fs::copy_file(fs::path(GLINT_BINARY_DIR) / "src/image" / moduleName(), module);
-  auto r = runGlint("render basics/triangle/color --size 32x32 -o " + quote(work / "t.png"),
+  auto r = runGlint("render basics/triangle/color --size 32x32 -o " + quote(work / "t.tga"),
                     logLoading(work / "loader") + " GLINT_OIIO_MODULE=" + quote(module));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(opened(loaderLog(work / "loader"), module)) << "GLINT_OIIO_MODULE was not used";
 
   const fs::path missing = work / "nowhere" / moduleName();
-  r = runGlint("render basics/triangle/color --size 32x32 -o " + quote(work / "u.png"),
+  r = runGlint("render basics/triangle/color --size 32x32 -o " + quote(work / "u.tga"),
                "GLINT_OIIO_MODULE=" + quote(missing));
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_TRUE(oneLine(r.output)) << r.output;
   EXPECT_NE(r.output.find("GLINT_OIIO_MODULE=" + missing.string()), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(work / "u.png"));
+  EXPECT_FALSE(fs::exists(work / "u.tga"));
 }
 
 // Data that is not where glint looks is an input error that says where it looked.

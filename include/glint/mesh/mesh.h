@@ -4,7 +4,8 @@
 // Contents
 //   Mesh             positions, normals, UVs, tangents, triangle indices (no GL inside)
 //   make*            procedural generators (plane, grid, cube, UV sphere, icosphere, torus)
-//   loadMesh         any format Assimp reads (OBJ, PLY, glTF/GLB, FBX, STL, ...)
+//   loadMesh         any format Assimp reads (OBJ, PLY, glTF/GLB, FBX, STL, ...); OBJ and PLY
+//                    through faster parsers that give the same Mesh
 //   computeNormals   area-weighted smooth vertex normals
 //
 // Conventions: right-handed, counter-clockwise front faces (OpenGL's default),
@@ -69,17 +70,34 @@ Mesh makeIcosphere(float radius = 1.0f, int subdivisions = 3);
 /// Torus around +Y: major radius R (centre to tube centre), minor radius r; UVs wrap once.
 Mesh makeTorus(float majorRadius = 1.0f, float minorRadius = 0.35f, int segments = 64, int sides = 32);
 
+/// Which parser reads a file.
+enum class MeshParser {
+  Auto,    ///< OBJ and PLY through the fast paths, anything else (and any file they decline) through Assimp
+  Assimp,  ///< always Assimp: the reference the fast paths are tested and benchmarked against
+  Fast,    ///< only the fast paths: Error(Input) for other formats and for files they decline
+};
+
 struct MeshLoadOptions {
   /// Join identical vertices into one indexed vertex (what a renderer wants). Files such
   /// as OBJ come in as one vertex per face corner; joining them costs about as much as
-  /// parsing (0.30 s for a 262k-triangle OBJ). A ray tracer does not need shared vertices:
-  /// `glint bake` loads its high poly without.
+  /// parsing. A ray tracer does not need shared vertices: `glint bake` loads its high
+  /// poly without.
   bool joinVertices = true;
+  /// The fast paths: OBJ through tinyobjloader on all cores (the file cut into chunks at
+  /// line starts, parsed in parallel), PLY through Draco's PLY reader (ASCII, binary
+  /// little endian). They give the Mesh Assimp gives (tests/mesh/import_oracle_test.cpp)
+  /// and hand files they do not reproduce Assimp's reading of to Assimp: big-endian PLY,
+  /// OBJ faces with uvs or normals on some corners only, points and lines, ...
+  MeshParser parser = MeshParser::Auto;
 };
 
 /// Loads every mesh in a file into one Mesh (node transforms applied, triangulated,
 /// identical vertices joined unless asked not to). Error(Input) when the file is missing,
-/// corrupt or has no triangles. Missing normals are generated (a warning is logged).
+/// corrupt or has no triangles. Missing normals are generated as smooth normals, the
+/// normalized sum of the unit normals of the faces at each position (a warning is logged).
+///
+///   Mesh high = loadMesh("statue.obj", {.joinVertices = false});
+///   Mesh reference = loadMesh("statue.obj", {.parser = MeshParser::Assimp});
 Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
 }  // namespace glint
