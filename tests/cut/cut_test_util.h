@@ -1,0 +1,118 @@
+#pragma once
+// What the cutter's tests share: small scenes and the independent checks (Embree shadow
+// rays, areas per input triangle, edge topology).
+#include "glint/cut/cutter.h"
+#include "glint/mesh/adjacency.h"
+#include "glint/mesh/mesh.h"
+#include "glint/raytrace/raytracer.h"
+
+#include <random>
+#include <vector>
+
+namespace glint::cut::testing {
+
+/// A closed box between lo and hi (12 triangles, outward, corners shared).
+inline Mesh makeBox(vec3 lo, vec3 hi) {
+  Mesh m;
+  for (int i = 0; i < 8; ++i) m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+  const std::uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) m.indices.insert(m.indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+  return m;
+}
+
+/// One triangle.
+inline Mesh makeTriangle(vec3 a, vec3 b, vec3 c) {
+  Mesh m;
+  m.positions = {a, b, c};
+  m.indices = {0, 1, 2};
+  return m;
+}
+
+struct OracleResult {
+  std::size_t samples = 0, agree = 0;
+  std::size_t skipped = 0;  ///< pieces too thin to sample inside
+  double agreement() const { return samples ? double(agree) / double(samples) : 1.0; }
+};
+
+/// Shadow rays (Embree, against the input scene) from random points inside every piece,
+/// pulled towards the piece's centre by `inset` of the way, to every light; compared
+/// with the piece's mask. Grazing pieces (the light in their plane) are skipped.
+inline OracleResult shadowOracle(const Mesh& scene, const CutMesh& mesh, const std::vector<Light>& lights,
+                                 int samplesPerPiece, std::uint32_t seed = 1, double inset = 1e-3) {
+  raytrace::Scene rt(scene);
+  const float sceneSize = scene.bounds().diagonal();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  std::vector<raytrace::Ray> rays;
+  std::vector<std::uint8_t> expected;
+  OracleResult r;
+  const Triangles tris = triangulate(mesh);
+  for (std::size_t p = 0; p < mesh.polygonCount(); ++p) {
+    const std::uint32_t s = mesh.polygonStart[p];
+    const std::size_t n = mesh.cornerCount(p);
+    dvec3 centre(0.0);
+    for (std::size_t i = 0; i < n; ++i) centre += mesh.precisePositions[mesh.corners[s + i]];
+    centre /= double(n);
+    const double area = polygonArea(mesh, p);
+    const dvec3 a = mesh.precisePositions[mesh.corners[s]];
+    dvec3 normal(0.0);
+    for (std::size_t i = 1; i + 1 < n; ++i)
+      normal += glm::cross(mesh.precisePositions[mesh.corners[s + i]] - a, mesh.precisePositions[mesh.corners[s + i + 1]] - a);
+    if (area <= 1e-14 * double(sceneSize) * double(sceneSize) || glm::length(normal) == 0.0) {
+      ++r.skipped;
+      continue;
+    }
+    normal = glm::normalize(normal);
+    for (int k = 0; k < samplesPerPiece; ++k) {
+      // A random point of a random fan triangle (area-weighted), pulled inwards.
+      double pick = u01(rng) * area * 2.0;
+      std::size_t t = 1;
+      for (; t + 2 < n; ++t) {
+        const double at = glm::length(glm::cross(mesh.precisePositions[mesh.corners[s + t]] - a,
+                                                 mesh.precisePositions[mesh.corners[s + t + 1]] - a));
+        if (pick < at) break;
+        pick -= at;
+      }
+      double x = u01(rng), y = u01(rng);
+      if (x + y > 1.0) {
+        x = 1.0 - x;
+        y = 1.0 - y;
+      }
+      const dvec3 b = mesh.precisePositions[mesh.corners[s + t]], c = mesh.precisePositions[mesh.corners[s + t + 1]];
+      dvec3 q = a + x * (b - a) + y * (c - a);
+      q = centre + (1.0 - inset) * (q - centre);
+      for (std::size_t l = 0; l < lights.size(); ++l) {
+        const dvec3 L(lights[l].position);
+        if (std::abs(glm::dot(L - q, normal)) < 1e-9 * glm::length(L - q)) continue;  // grazing
+        const dvec3 d = L - q;
+        rays.push_back({.origin = vec3(q), .direction = vec3(d), .tnear = 1e-4f, .tfar = 1.0f - 1e-4f});
+        expected.push_back((mesh.polygonMask[p] >> l) & 1);
+      }
+    }
+  }
+  const std::vector<std::uint8_t> blocked = rt.occludedBatch(rays);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    ++r.samples;
+    r.agree += (blocked[i] == 0) == (expected[i] == 1);
+  }
+  (void)tris;
+  return r;
+}
+
+/// The largest relative difference between an input triangle's area and the summed area
+/// of its pieces (precise positions), over triangles with area.
+inline double worstAreaError(const Mesh& scene, const CutMesh& mesh) {
+  std::vector<double> sum(scene.triangleCount(), 0.0);
+  for (std::size_t p = 0; p < mesh.polygonCount(); ++p) sum[mesh.polygonSource[p]] += polygonArea(mesh, p);
+  double worst = 0.0;
+  for (std::size_t t = 0; t < scene.triangleCount(); ++t) {
+    const dvec3 a(scene.positions[scene.indices[3 * t]]), b(scene.positions[scene.indices[3 * t + 1]]),
+        c(scene.positions[scene.indices[3 * t + 2]]);
+    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+    if (area == 0.0) continue;
+    worst = std::max(worst, std::abs(sum[t] - area) / area);
+  }
+  return worst;
+}
+
+}  // namespace glint::cut::testing
