@@ -473,18 +473,42 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
     stats.exactPredicates += ps.exact;
   }
 
+  // Connected surfaces of the input (triangles joined by edges): vertices are welded
+  // below only within one surface, so surfaces that merely touch stay apart, as they were.
+  std::vector<std::uint32_t> component(scene.triangles.size());
+  std::iota(component.begin(), component.end(), 0u);
+  const auto findRoot = [&](std::uint32_t x) {
+    while (component[x] != x) x = component[x] = component[component[x]];
+    return x;
+  };
+  for (const Edge& edge : prep.edges.edges()) {
+    const auto faces = prep.edges.faces(edge);
+    for (std::size_t i = 1; i < faces.size(); ++i) {
+      const std::uint32_t a = findRoot(faces[0].face), b = findRoot(faces[i].face);
+      if (a != b) component[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  for (std::uint32_t f = 0; f < component.size(); ++f) component[f] = findRoot(f);
+
   // 2. Vertex ids: welded points, then edge vertices edge by edge, then each receiver's
   //    interior vertices in triangle order.
   const std::uint32_t pointCount = std::uint32_t(prep.edges.positions().size());
   std::vector<std::uint32_t> groupBase(unionCount.size() + 1, pointCount);
   for (std::size_t gi = 0; gi < unionCount.size(); ++gi) groupBase[gi + 1] = groupBase[gi] + unionCount[gi];
   std::vector<dvec3> precise(groupBase.back());
+  std::vector<std::uint32_t> vertexComponent(groupBase.back(), kNone);
   for (std::uint32_t i = 0; i < pointCount; ++i) precise[i] = g.point(i);
+  for (std::uint32_t f = 0; f < scene.triangles.size(); ++f)
+    for (std::uint32_t c : scene.triangles[f])
+      if (vertexComponent[c] == kNone) vertexComponent[c] = component[f];
   std::vector<std::uint32_t> edgeGroup(prep.edges.edges().size(), kNone);
   for (std::size_t gi = 0; gi + 1 < groupStart.size(); ++gi) {
     edgeGroup[entries[groupStart[gi]].edge] = std::uint32_t(gi);
-    for (std::size_t i = groupStart[gi]; i < groupStart[gi + 1]; ++i)
+    const std::uint32_t c = component[prep.edges.faces(prep.edges.edges()[entries[groupStart[gi]].edge])[0].face];
+    for (std::size_t i = groupStart[gi]; i < groupStart[gi + 1]; ++i) {
       precise[groupBase[gi] + entries[i].unionIndex] = posOf(entries[i]);
+      vertexComponent[groupBase[gi] + entries[i].unionIndex] = c;
+    }
   }
   // Per (block, entry): its edge entries sorted by local vertex, to look them up.
   std::vector<std::size_t> byReceiver(entries.size());
@@ -526,6 +550,7 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
       } else {
         localId[v] = std::uint32_t(precise.size());
         precise.push_back(blk.positions[v0 + v]);
+        vertexComponent.push_back(component[f]);
       }
     }
     const auto faceEdges = prep.edges.faceEdges(f);
@@ -568,16 +593,17 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
     }
   }
 
-  // 4. Round to float; vertices that round to one position become one, and polygons
-  //    left with fewer than three corners (slivers thinner than a float) are dropped.
+  // 4. Round to float; vertices of one surface that round to one position become one, and
+  //    polygons left with fewer than three corners (slivers thinner than a float) are dropped.
   std::vector<vec3> rounded(precise.size());
   for (std::size_t i = 0; i < precise.size(); ++i)
     rounded[i] = i < pointCount ? prep.edges.positions()[i] : vec3(precise[i]);
   std::vector<std::uint32_t> byPosition(precise.size());
   std::iota(byPosition.begin(), byPosition.end(), 0u);
   const auto bits = [&](std::uint32_t i) {
-    std::array<std::uint32_t, 3> k;
+    std::array<std::uint32_t, 4> k;
     std::memcpy(k.data(), &rounded[i], sizeof(vec3));
+    k[3] = vertexComponent[i];
     return k;
   };
   std::sort(byPosition.begin(), byPosition.end(), [&](std::uint32_t x, std::uint32_t y) {

@@ -6,7 +6,9 @@
 #include "glint/mesh/mesh.h"
 #include "glint/raytrace/raytracer.h"
 
+#include <algorithm>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace glint::cut::testing {
@@ -45,8 +47,8 @@ inline OracleResult shadowOracle(const Mesh& scene, const CutMesh& mesh, const s
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::vector<raytrace::Ray> rays;
   std::vector<std::uint8_t> expected;
+  std::vector<std::uint32_t> source;
   OracleResult r;
-  const Triangles tris = triangulate(mesh);
   for (std::size_t p = 0; p < mesh.polygonCount(); ++p) {
     const std::uint32_t s = mesh.polygonStart[p];
     const std::size_t n = mesh.cornerCount(p);
@@ -85,17 +87,39 @@ inline OracleResult shadowOracle(const Mesh& scene, const CutMesh& mesh, const s
         const dvec3 L(lights[l].position);
         if (std::abs(glm::dot(L - q, normal)) < 1e-9 * glm::length(L - q)) continue;  // grazing
         const dvec3 d = L - q;
-        rays.push_back({.origin = vec3(q), .direction = vec3(d), .tnear = 1e-4f, .tfar = 1.0f - 1e-4f});
+        rays.push_back({.origin = vec3(q), .direction = vec3(d), .tnear = 1e-7f, .tfar = 1.0f - 1e-6f});
         expected.push_back((mesh.polygonMask[p] >> l) & 1);
+        source.push_back(mesh.polygonSource[p]);
       }
     }
   }
-  const std::vector<std::uint8_t> blocked = rt.occludedBatch(rays);
+  // Closest hits, not any hit: a hit on the piece's own input triangle (the origin is
+  // rounded to float, so it may lie a hair behind its surface) is stepped over and the
+  // ray cast again from there. Tiny tnear then, and nothing near the piece is missed.
+  std::vector<std::uint8_t> blocked(rays.size(), 0);
+  std::vector<std::size_t> pending(rays.size());
+  for (std::size_t i = 0; i < rays.size(); ++i) pending[i] = i;
+  for (int round = 0; round < 4 && !pending.empty(); ++round) {
+    std::vector<raytrace::Ray> batch;
+    for (std::size_t i : pending) batch.push_back(rays[i]);
+    const auto hits = rt.intersectBatch(batch);
+    std::vector<std::size_t> again;
+    for (std::size_t k = 0; k < pending.size(); ++k) {
+      const std::size_t i = pending[k];
+      if (!hits[k]) continue;
+      if (hits[k]->triangle == source[i]) {
+        rays[i].tnear = hits[k]->t + 1e-7f;
+        again.push_back(i);
+      } else {
+        blocked[i] = 1;
+      }
+    }
+    pending.swap(again);
+  }
   for (std::size_t i = 0; i < rays.size(); ++i) {
     ++r.samples;
     r.agree += (blocked[i] == 0) == (expected[i] == 1);
   }
-  (void)tris;
   return r;
 }
 
@@ -113,6 +137,59 @@ inline double worstAreaError(const Mesh& scene, const CutMesh& mesh) {
     worst = std::max(worst, std::abs(sum[t] - area) / area);
   }
   return worst;
+}
+
+/// The connected surfaces of a mesh (triangles joined by edges): a label per triangle.
+inline std::vector<std::uint32_t> surfaces(const Mesh& mesh) {
+  const EdgeMap map = EdgeMap::build(mesh);
+  std::vector<std::uint32_t> label(mesh.triangleCount());
+  for (std::uint32_t i = 0; i < label.size(); ++i) label[i] = i;
+  const auto root = [&](std::uint32_t x) {
+    while (label[x] != x) x = label[x] = label[label[x]];
+    return x;
+  };
+  for (const Edge& e : map.edges()) {
+    const auto faces = map.faces(e);
+    for (std::size_t i = 1; i < faces.size(); ++i) {
+      const std::uint32_t a = root(faces[0].face), b = root(faces[i].face);
+      if (a != b) label[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  for (std::uint32_t i = 0; i < label.size(); ++i) label[i] = root(i);
+  return label;
+}
+
+/// Edge topology of each input surface's pieces on its own: "" when every surface that
+/// was a closed manifold still is one, else what is wrong. (Surfaces that touch in the
+/// input get vertices at the same positions, so the output as a whole is checked per
+/// surface; EdgeMap welds by position.)
+inline std::string surfacesStillClosed(const Mesh& scene, const CutMesh& mesh) {
+  const std::vector<std::uint32_t> label = surfaces(scene);
+  const Triangles tris = triangulate(mesh);
+  std::string problems;
+  std::vector<std::uint32_t> roots(label);
+  std::sort(roots.begin(), roots.end());
+  roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+  for (std::uint32_t r : roots) {
+    Mesh in, out;
+    in.positions = scene.positions;
+    for (std::size_t t = 0; t < scene.triangleCount(); ++t)
+      if (label[t] == r) in.indices.insert(in.indices.end(), scene.indices.begin() + std::ptrdiff_t(3 * t),
+                                           scene.indices.begin() + std::ptrdiff_t(3 * t + 3));
+    if (!EdgeMap::build(in).isClosedManifold()) continue;
+    out.positions = tris.mesh.positions;
+    for (std::size_t t = 0; t < tris.trianglePolygon.size(); ++t)
+      if (label[mesh.polygonSource[tris.trianglePolygon[t]]] == r)
+        out.indices.insert(out.indices.end(), tris.mesh.indices.begin() + std::ptrdiff_t(3 * t),
+                           tris.mesh.indices.begin() + std::ptrdiff_t(3 * t + 3));
+    const EdgeMap map = EdgeMap::build(out);
+    if (!map.isClosedManifold())
+      problems += "surface of triangle " + std::to_string(r) + ": " + std::to_string(map.count(EdgeKind::Open)) + " open, " +
+                  std::to_string(map.count(EdgeKind::NonManifold)) + " non-manifold, " +
+                  std::to_string(map.count(EdgeKind::Inconsistent)) + " inconsistent, " +
+                  std::to_string(map.degenerateFaces()) + " degenerate; ";
+  }
+  return problems;
 }
 
 }  // namespace glint::cut::testing
