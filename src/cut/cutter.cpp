@@ -149,8 +149,87 @@ Prepared prepare(const Mesh& mesh, const std::vector<Light>& lights, bool bvh) {
     out.warnings.push_back(fmt::format("{} degenerate (zero-area) triangle(s): kept unlit, they cast no shadow", degenerate));
   if (collapsed > 0)
     out.warnings.push_back(fmt::format("{} triangle(s) with two corners at one position dropped", collapsed));
+  // Connected surfaces (triangles joined by edges), numbered in triangle order.
+  {
+    std::vector<std::uint32_t> parent(n);
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto root = [&](std::uint32_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    for (const Edge& edge : out.edges.edges()) {
+      const auto faces = out.edges.faces(edge);
+      for (std::size_t i = 1; i < faces.size(); ++i) {
+        const std::uint32_t a = root(faces[0].face), b = root(faces[i].face);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+      }
+    }
+    std::vector<std::uint32_t> number(n, 0xFFFFFFFFu);
+    s.component.resize(n);
+    std::uint32_t count = 0;
+    for (std::uint32_t f = 0; f < n; ++f) {
+      const std::uint32_t r = root(f);
+      if (number[r] == 0xFFFFFFFFu) number[r] = count++;
+      s.component[f] = number[r];
+    }
+    s.convexOutside.assign(count, 0);
+  }
   if (!bvh) return out;
   s.bvh = TriangleBvh(lo, hi, s.usable);
+
+  // Closed convex surfaces: every face with area, every edge shared by two faces running
+  // it in opposite directions and bending outwards (or flat), and the topology of a sphere
+  // (V − E + F = 2), which with local convexity makes the surface the boundary of a convex
+  // solid. Decided exactly, like everything the cut depends on.
+  {
+    const std::size_t count = s.convexOutside.size();
+    std::vector<std::uint8_t> convex(count, 1);
+    std::vector<std::int64_t> euler(count, 0);
+    exact::PredicateStats ignored;
+    for (std::uint32_t f = 0; f < n; ++f) {
+      if (!s.usable[f]) convex[s.component[f]] = 0;
+      euler[s.component[f]] += 1;
+    }
+    std::vector<std::uint32_t> pointComponent(out.edges.positions().size(), 0xFFFFFFFFu);
+    for (std::uint32_t f = 0; f < n; ++f)
+      for (std::uint32_t c : s.triangles[f])
+        if (pointComponent[c] == 0xFFFFFFFFu) {
+          pointComponent[c] = s.component[f];
+          euler[s.component[f]] += 1;
+        } else if (pointComponent[c] != s.component[f]) {
+          convex[s.component[f]] = convex[pointComponent[c]] = 0;  // surfaces meeting at a point
+        }
+    for (const Edge& edge : out.edges.edges()) {
+      const auto faces = out.edges.faces(edge);
+      const std::uint32_t c = s.component[faces[0].face];
+      euler[c] -= 1;
+      if (!convex[c]) continue;
+      if (out.edges.kind(edge) != EdgeKind::Manifold) {
+        convex[c] = 0;
+        continue;
+      }
+      // The corner of the second face off the edge, against the first face's plane.
+      const auto& t1 = s.triangles[faces[0].face];
+      const auto& t2 = s.triangles[faces[1].face];
+      std::uint32_t apex = t2[0];
+      for (std::uint32_t v : t2)
+        if (v != edge.a && v != edge.b) apex = v;
+      const exact::PlaneRec plane = s.geometry.plane(exact::PlaneDef{{t1[0], t1[1], t1[2]}});
+      if (s.geometry.side(apex, plane, ignored) > 0) convex[c] = 0;
+    }
+    for (std::size_t c = 0; c < count; ++c)
+      if (euler[c] != 2) convex[c] = 0;
+    // A light is outside a convex solid when some face of it faces the light.
+    for (std::uint32_t f = 0; f < n; ++f) {
+      const std::uint32_t c = s.component[f];
+      if (!convex[c]) continue;
+      const auto& t = s.triangles[f];
+      const exact::PlaneRec plane = s.geometry.plane(exact::PlaneDef{{t[0], t[1], t[2]}});
+      for (int l = 0; l < s.lightCount; ++l)
+        if (!(s.convexOutside[c] & (LightMask(1) << l)) && s.geometry.side(lightBase + std::uint32_t(l), plane, ignored) > 0)
+          s.convexOutside[c] |= LightMask(1) << l;
+    }
+  }
 
   // Lights in odd places: both still give a well-defined result, so they are warnings.
   std::vector<std::uint32_t> near;
@@ -473,22 +552,9 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
     stats.exactPredicates += ps.exact;
   }
 
-  // Connected surfaces of the input (triangles joined by edges): vertices are welded
-  // below only within one surface, so surfaces that merely touch stay apart, as they were.
-  std::vector<std::uint32_t> component(scene.triangles.size());
-  std::iota(component.begin(), component.end(), 0u);
-  const auto findRoot = [&](std::uint32_t x) {
-    while (component[x] != x) x = component[x] = component[component[x]];
-    return x;
-  };
-  for (const Edge& edge : prep.edges.edges()) {
-    const auto faces = prep.edges.faces(edge);
-    for (std::size_t i = 1; i < faces.size(); ++i) {
-      const std::uint32_t a = findRoot(faces[0].face), b = findRoot(faces[i].face);
-      if (a != b) component[std::max(a, b)] = std::min(a, b);
-    }
-  }
-  for (std::uint32_t f = 0; f < component.size(); ++f) component[f] = findRoot(f);
+  // Vertices are welded below only within one connected surface of the input, so
+  // surfaces that merely touch stay apart, as they were.
+  const std::vector<std::uint32_t>& component = scene.component;
 
   // 2. Vertex ids: welded points, then edge vertices edge by edge, then each receiver's
   //    interior vertices in triangle order.

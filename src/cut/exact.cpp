@@ -82,12 +82,14 @@ std::uint64_t VertexDef::hash() const {
   return h;
 }
 
-bool onPlaneByName(const VertexDef& v, const PlaneDef& plane) {
-  const auto key = plane.key();
+bool onPlaneByName(const VertexDef& v, const PlaneDef& plane) { return onPlaneByName(v, plane, plane.key()); }
+
+bool onPlaneByName(const VertexDef& v, const PlaneDef& plane, const std::array<std::uint32_t, 3>& key) {
+  // The planes a VertexDef names are stored by key (vertex defs are canonical).
   switch (v.kind) {
     case VertexKind::Point: return plane.contains(v.a);
-    case VertexKind::LinePlane: return (plane.contains(v.a) && plane.contains(v.b)) || v.q.key() == key;
-    case VertexKind::ThreePlanes: return v.q.key() == key || v.r.key() == key || v.s.key() == key;
+    case VertexKind::LinePlane: return (plane.contains(v.a) && plane.contains(v.b)) || v.q.p == key;
+    case VertexKind::ThreePlanes: return v.q.p == key || v.r.p == key || v.s.p == key;
   }
   return false;
 }
@@ -210,7 +212,7 @@ int Geometry::side(std::uint32_t p, const PlaneRec& plane, PredicateStats& stats
 }
 
 int Geometry::side(const VertexRec& v, const PlaneRec& plane, PredicateStats& stats) const {
-  if (onPlaneByName(v.def, plane.def)) {
+  if (onPlaneByName(v.def, plane.def, plane.key)) {
     ++stats.symbolic;
     return 0;
   }
@@ -235,7 +237,7 @@ void Geometry::sides(std::span<const VertexRec* const> vertices, const PlaneRec&
     Guard guard;
     for (std::size_t i = 0; i < vertices.size(); ++i) {
       const VertexRec& v = *vertices[i];
-      if (onPlaneByName(v.def, plane.def)) {
+      if (onPlaneByName(v.def, plane.def, plane.key)) {
         ++stats.symbolic;
         out[i] = 0;
       } else if (v.boxed) {

@@ -127,7 +127,9 @@ private:
   std::vector<dvec3> m_points;
 };
 
-/// Zero decided from the names alone: the vertex is on the plane by construction.
+/// Zero decided from the names alone: the vertex is on the plane by construction. Vertex
+/// defs name their planes by key (PlaneDef::key), as the cutter makes them.
 bool onPlaneByName(const VertexDef& v, const PlaneDef& plane);
+bool onPlaneByName(const VertexDef& v, const PlaneDef& plane, const std::array<std::uint32_t, 3>& key);
 
 }  // namespace glint::cut::exact

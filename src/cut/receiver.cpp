@@ -82,6 +82,7 @@ void ReceiverStats::add(const ReceiverStats& o) {
   splits += o.splits;
   facesBeforeMerge += o.facesBeforeMerge;
   grazing += o.grazing;
+  selfShadowed += o.selfShadowed;
   predicates.add(o.predicates);
 }
 
@@ -245,6 +246,8 @@ bool ReceiverCutter::findOccluders(int light, std::vector<Occluder>& out, Receiv
     const exact::PlaneRec pbRec = m_g.plane(pb);
     const int sB = m_g.side(lid, pbRec, *m_pstats);
     if (sB == 0) continue;  // the light in B's plane: B casts no shadow with area
+    // A convex solid's shadow is cast by its faces towards the light (receiver.h).
+    if (sB < 0 && (m_scene.convexOutside[m_scene.component[t]] >> light & 1)) continue;
     // B's far beam: inside the three planes (L, b_i, b_i+1) (their inner side has sign
     // −sB) and beyond B's plane from the light (sign −sB).
     const std::array<glm::dvec4, 4> far{outward(L, b[0], b[1], -sB, R), outward(L, b[1], b[2], -sB, R),
@@ -260,6 +263,7 @@ bool ReceiverCutter::findOccluders(int light, std::vector<Occluder>& out, Receiv
     if (poly.size() < 3) continue;
     Occluder o;
     o.triangle = t;
+    o.approx = far;
     o.lo = glm::dvec2(std::numeric_limits<double>::infinity());
     o.hi = -o.lo;
     dvec3 areaVector(0.0);
@@ -294,25 +298,40 @@ void ReceiverCutter::cut(std::uint32_t face, ReceiverPieces& out, ReceiverStats&
   reset(face);
   for (int light = 0; light < m_scene.lightCount; ++light) {
     const LightMask bit = LightMask(1) << light;
+    if ((m_scene.convexOutside[m_scene.component[face]] & bit) &&
+        m_g.side(m_scene.lightBase + std::uint32_t(light), m_plane, *m_pstats) < 0) {
+      // A face of a convex solid turned away from the light: in the solid's own shadow.
+      ++stats.selfShadowed;
+      for (Face& f : m_faces) f.mask &= ~bit;
+      continue;
+    }
     if (!findOccluders(light, m_occluders, stats)) {
       // The light lies in A's plane: it grazes A, which receives none of it (N·L = 0).
       ++stats.grazing;
       for (Face& f : m_faces) f.mask &= ~bit;
       continue;
     }
-    std::size_t lit = 1;
+    m_lit.clear();
+    for (std::uint32_t f = 0; f < m_faces.size(); ++f)
+      if (m_faces[f].alive && (m_faces[f].mask & bit)) m_lit.push_back(f);
     for (const Occluder& o : m_occluders) {
-      if (lit == 0) break;
+      if (m_lit.empty()) break;
       if (m_cancel && m_cancel->load(std::memory_order_relaxed)) break;
-      const std::size_t count = m_faces.size();  // faces added now lie outside this beam
-      for (std::size_t f = 0; f < count; ++f) {
+      const std::size_t before = m_faces.size();  // faces added now lie outside this beam
+      bool changed = false;
+      for (const std::uint32_t f : m_lit) {
         const Face& face = m_faces[f];
-        if (!face.alive || !(face.mask & bit)) continue;
         if (face.lo.x > o.hi.x || face.lo.y > o.hi.y || face.hi.x < o.lo.x || face.hi.y < o.lo.y) continue;
-        cutFace(std::uint32_t(f), o, bit, stats);
+        if (separated(f, o)) continue;
+        changed |= cutFace(f, o, bit, stats);
       }
-      lit = 0;
-      for (const Face& f : m_faces) lit += f.alive && (f.mask & bit);
+      if (!changed) continue;
+      m_nextLit.clear();
+      for (const std::uint32_t f : m_lit)
+        if (m_faces[f].mask & bit) m_nextLit.push_back(f);
+      for (std::uint32_t f = std::uint32_t(before); f < m_faces.size(); ++f)
+        if (m_faces[f].mask & bit) m_nextLit.push_back(f);
+      m_lit.swap(m_nextLit);
     }
   }
   std::size_t alive = 0;
@@ -320,6 +339,20 @@ void ReceiverCutter::cut(std::uint32_t face, ReceiverPieces& out, ReceiverStats&
   stats.facesBeforeMerge += alive;
   merge();
   emit(out);
+}
+
+bool ReceiverCutter::separated(std::uint32_t f, const Occluder& o) const {
+  // All corners clearly outside one of the four planes (approximate, relaxed): no overlap.
+  for (const glm::dvec4& p : o.approx) {
+    bool outside = true;
+    std::uint32_t e = m_faces[f].edge;
+    do {
+      outside = value(p, m_vertices[m_edges[e].origin].approx) > 0.0;
+      e = m_edges[e].next;
+    } while (outside && e != m_faces[f].edge);
+    if (outside) return true;
+  }
+  return false;
 }
 
 bool ReceiverCutter::cutFace(std::uint32_t f, const Occluder& o, LightMask bit, ReceiverStats& stats) {

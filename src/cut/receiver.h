@@ -35,6 +35,12 @@ struct SceneData {
   exact::Geometry geometry;                                ///< welded input points, then the lights
   std::vector<std::array<std::uint32_t, 3>> triangles;     ///< welded corners, counter-clockwise
   std::vector<std::uint8_t> usable;                        ///< 1: positive area (cut as receiver, casts shadows)
+  std::vector<std::uint32_t> component;                    ///< connected surface of each triangle (edge-joined)
+  /// Per surface: bit l set when the surface is the closed boundary of a convex solid and
+  /// light l lies outside it. Then only its faces that face the light can shadow anything
+  /// (a segment leaving the solid towards the light exits through one of them), and its
+  /// faces turned away are wholly in its own shadow.
+  std::vector<LightMask> convexOutside;
   TriangleBvh bvh;                                         ///< over the usable triangles
   std::uint32_t lightBase = 0;                             ///< point id of light 0
   int lightCount = 0;
@@ -67,6 +73,7 @@ struct ReceiverStats {
   std::uint64_t splits = 0;      ///< face splits
   std::uint64_t facesBeforeMerge = 0;
   std::uint64_t grazing = 0;     ///< (receiver, light) pairs with the light in the receiver's plane
+  std::uint64_t selfShadowed = 0;  ///< (receiver, light) pairs in their convex solid's own shadow
   exact::PredicateStats predicates;
   void add(const ReceiverStats& o);
 };
@@ -98,6 +105,7 @@ private:
   struct Occluder {
     std::uint32_t triangle = 0;
     std::array<HalfSpace, 4> halfSpaces;
+    std::array<glm::dvec4, 4> approx;  ///< the four planes in double, outside positive, relaxed
     glm::dvec2 lo, hi;
     double area = 0.0;
   };
@@ -119,6 +127,7 @@ private:
   /// Shadows the part of face f inside all half-spaces (for light bit `bit`); true when
   /// it had one.
   bool cutFace(std::uint32_t f, const Occluder& o, LightMask bit, ReceiverStats& stats);
+  bool separated(std::uint32_t f, const Occluder& o) const;
   std::uint32_t splitFace(std::uint32_t f, const HalfSpace& h, ReceiverStats& stats);
   std::uint32_t splitEdge(std::uint32_t e, std::uint32_t vertex);
   void merge();
@@ -148,6 +157,7 @@ private:
   std::vector<int> m_signs;
   std::vector<const exact::VertexRec*> m_recs;
   std::vector<Occluder> m_occluders;
+  std::vector<std::uint32_t> m_lit, m_nextLit;  ///< faces still lit by the current light
 };
 
 }  // namespace glint::cut
