@@ -214,8 +214,7 @@ Prepared prepare(const Mesh& mesh, const std::vector<Light>& lights, bool bvh) {
       std::uint32_t apex = t2[0];
       for (std::uint32_t v : t2)
         if (v != edge.a && v != edge.b) apex = v;
-      const exact::PlaneRec plane = s.geometry.plane(exact::PlaneDef{{t1[0], t1[1], t1[2]}});
-      if (s.geometry.side(apex, plane, ignored) > 0) convex[c] = 0;
+      if (s.geometry.side(apex, exact::PlaneDef{{t1[0], t1[1], t1[2]}}, ignored) > 0) convex[c] = 0;
     }
     for (std::size_t c = 0; c < count; ++c)
       if (euler[c] != 2) convex[c] = 0;
@@ -224,7 +223,7 @@ Prepared prepare(const Mesh& mesh, const std::vector<Light>& lights, bool bvh) {
       const std::uint32_t c = s.component[f];
       if (!convex[c]) continue;
       const auto& t = s.triangles[f];
-      const exact::PlaneRec plane = s.geometry.plane(exact::PlaneDef{{t[0], t[1], t[2]}});
+      const exact::PlaneDef plane{{t[0], t[1], t[2]}};
       for (int l = 0; l < s.lightCount; ++l)
         if (!(s.convexOutside[c] & (LightMask(1) << l)) && s.geometry.side(lightBase + std::uint32_t(l), plane, ignored) > 0)
           s.convexOutside[c] |= LightMask(1) << l;
@@ -396,8 +395,7 @@ Shard cutShard(const Mesh& mesh, const CutOptions& options) {
     for (std::uint32_t f : receivers) {
       if (prep.state[f] != Prepared::kUsable) continue;
       const auto& c = scene.triangles[f];
-      const exact::PlaneRec plane = scene.geometry.plane(exact::PlaneDef{{c[0], c[1], c[2]}});
-      grazing += scene.geometry.side(scene.lightBase + std::uint32_t(l), plane, ignored) == 0;
+      grazing += scene.geometry.side(scene.lightBase + std::uint32_t(l), exact::PlaneDef{{c[0], c[1], c[2]}}, ignored) == 0;
     }
     stats.lights[l].grazingTriangles = grazing;
   }

@@ -3,6 +3,7 @@
 // and the compiler must not fold or reorder floating-point operations across that.
 #include "exact.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 
@@ -191,24 +192,23 @@ VertexRec Geometry::vertex(const VertexDef& def) const {
 }
 
 int Geometry::side(std::uint32_t p, const PlaneRec& plane, PredicateStats& stats) const {
-  if (plane.def.contains(p)) {
+  return side(p, plane.def, stats);
+}
+
+int Geometry::side(std::uint32_t p, const PlaneDef& plane, PredicateStats& stats) const {
+  if (plane.contains(p)) {
     ++stats.symbolic;
     return 0;
   }
-  int s;
-  {
-    Guard guard;
-    s = signOf(evalPoint(plane, point(p)));
-  }
-  if (s != kUnsure) {
-    ++stats.filtered;
-    return s;
-  }
-  ++stats.exact;
-  VertexDef v;
-  v.kind = VertexKind::Point;
-  v.a = p;
-  return exactSide(v, plane.def);
+  // Four input points: CGAL's own orientation predicate (a static error bound first,
+  // then intervals, then exact), the same sign as n · (x − p0).
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const auto cg = [&](std::uint32_t id) {
+    const dvec3& q = point(id);
+    return K::Point_3(q.x, q.y, q.z);
+  };
+  ++stats.filtered;
+  return int(CGAL::orientation(cg(plane.p[0]), cg(plane.p[1]), cg(plane.p[2]), cg(p)));
 }
 
 int Geometry::side(const VertexRec& v, const PlaneRec& plane, PredicateStats& stats) const {

@@ -105,6 +105,7 @@ public:
 
   /// Sign (−1, 0, +1) of the plane's value at an input point, exactly.
   int side(std::uint32_t point, const PlaneRec& plane, PredicateStats& stats) const;
+  int side(std::uint32_t point, const PlaneDef& plane, PredicateStats& stats) const;
   /// Sign of the plane's value at a vertex, exactly.
   int side(const VertexRec& v, const PlaneRec& plane, PredicateStats& stats) const;
   /// side() for several vertices against one plane (one rounding-mode switch).

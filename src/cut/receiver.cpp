@@ -86,11 +86,54 @@ void ReceiverStats::add(const ReceiverStats& o) {
   predicates.add(o.predicates);
 }
 
-std::size_t ReceiverCutter::KeyHash::operator()(const std::array<std::uint32_t, 3>& k) const {
+namespace {
+std::uint64_t keyHash(const std::array<std::uint32_t, 3>& k) {
   std::uint64_t h = k[0] * 0x9E3779B97F4A7C15ull;
   h ^= (h >> 31) ^ (std::uint64_t(k[1]) * 0xC2B2AE3D27D4EB4Full);
   h ^= (h >> 29) ^ (std::uint64_t(k[2]) * 0x165667B19E3779F9ull);
-  return std::size_t(h ^ (h >> 32));
+  return h ^ (h >> 32);
+}
+}  // namespace
+
+template <typename Equal>
+std::uint32_t ReceiverCutter::NameIndex::find(std::uint64_t hash, Equal&& equal, std::uint32_t fresh) {
+  if (2 * (m_used.size() + 1) > m_slots.size()) grow();
+  const std::uint32_t h = std::uint32_t(hash ^ (hash >> 32));
+  const std::size_t mask = m_slots.size() - 1;
+  for (std::size_t i = h & mask;; i = (i + 1) & mask) {
+    auto& slot = m_slots[i];
+    if (slot.second == 0) {
+      slot = {h, fresh + 1};
+      m_used.push_back(std::uint32_t(i));
+      return fresh;
+    }
+    if (slot.first == h && equal(slot.second - 1)) return slot.second - 1;
+  }
+}
+
+void ReceiverCutter::NameIndex::grow() {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> old;
+  old.reserve(m_used.size());
+  for (std::uint32_t i : m_used) old.push_back(m_slots[i]);
+  m_slots.assign(std::max<std::size_t>(64, 2 * m_slots.size()), {0, 0});
+  m_used.clear();
+  const std::size_t mask = m_slots.size() - 1;
+  for (const auto& entry : old) {
+    std::size_t i = entry.first & mask;
+    while (m_slots[i].second != 0) i = (i + 1) & mask;
+    m_slots[i] = entry;
+    m_used.push_back(std::uint32_t(i));
+  }
+}
+
+void ReceiverCutter::NameIndex::clear() {
+  if (m_slots.size() > 16384) {  // released after a large receiver
+    m_slots.clear();
+    m_slots.shrink_to_fit();
+  } else {
+    for (std::uint32_t i : m_used) m_slots[i] = {0, 0};
+  }
+  m_used.clear();
 }
 
 ReceiverCutter::ReceiverCutter(const SceneData& scene, const std::atomic<bool>* cancel)
@@ -111,11 +154,8 @@ void ReceiverCutter::reset(std::uint32_t face) {
   m_vertices.clear();
   m_edges.clear();
   m_faces.clear();
-  // Tables grown by a large receiver are released rather than cleared bucket by bucket.
-  if (m_planeIndex.bucket_count() > 4096) m_planeIndex = {};
-  else m_planeIndex.clear();
-  if (m_vertexIndex.bucket_count() > 4096) m_vertexIndex = {};
-  else m_vertexIndex.clear();
+  m_planeIndex.clear();
+  m_vertexIndex.clear();
 
   // One face: the triangle, its edges on A's edge lines.
   Face f;
@@ -140,25 +180,29 @@ void ReceiverCutter::reset(std::uint32_t face) {
 
 std::uint32_t ReceiverCutter::planeIndex(const PlaneDef& def, int& orientation) {
   const auto key = def.key();
-  auto [it, inserted] = m_planeIndex.try_emplace(key, std::uint32_t(m_planes.size()));
-  if (inserted) {
+  const std::uint32_t fresh = std::uint32_t(m_planes.size());
+  const std::uint32_t index =
+      m_planeIndex.find(keyHash(key), [&](std::uint32_t i) { return m_planes[i].key == key; }, fresh);
+  if (index == fresh) {
     m_planes.push_back(m_g.plane(def));
     orientation = 1;
-    return it->second;
+    return index;
   }
   // Same plane, maybe the other orientation: an even permutation of the stored points
   // (a rotation) keeps it.
-  const auto& s = m_planes[it->second].def.p;
+  const auto& s = m_planes[index].def.p;
   const auto& p = def.p;
   const bool same = (p[0] == s[0] && p[1] == s[1]) || (p[0] == s[1] && p[1] == s[2]) || (p[0] == s[2] && p[1] == s[0]);
   orientation = same ? 1 : -1;
-  return it->second;
+  return index;
 }
 
 std::uint32_t ReceiverCutter::vertexIndex(const VertexDef& def) {
-  auto [it, inserted] = m_vertexIndex.try_emplace(def, std::uint32_t(m_vertices.size()));
-  if (inserted) m_vertices.push_back(m_g.vertex(def));
-  return it->second;
+  const std::uint32_t fresh = std::uint32_t(m_vertices.size());
+  const std::uint32_t index =
+      m_vertexIndex.find(def.hash(), [&](std::uint32_t i) { return m_vertices[i].def == def; }, fresh);
+  if (index == fresh) m_vertices.push_back(m_g.vertex(def));
+  return index;
 }
 
 VertexDef ReceiverCutter::meet(std::int32_t line, std::uint32_t plane) const {
@@ -243,8 +287,7 @@ bool ReceiverCutter::findOccluders(int light, std::vector<Occluder>& out, Receiv
       if (value(p, b[0]) > 0.0 && value(p, b[1]) > 0.0 && value(p, b[2]) > 0.0) separated = true;
     if (separated) continue;
     const PlaneDef pb{{bc[0], bc[1], bc[2]}};
-    const exact::PlaneRec pbRec = m_g.plane(pb);
-    const int sB = m_g.side(lid, pbRec, *m_pstats);
+    const int sB = m_g.side(lid, pb, *m_pstats);
     if (sB == 0) continue;  // the light in B's plane: B casts no shadow with area
     // A convex solid's shadow is cast by its faces towards the light (receiver.h).
     if (sB < 0 && (m_scene.convexOutside[m_scene.component[t]] >> light & 1)) continue;

@@ -22,7 +22,6 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace glint::cut {
@@ -109,11 +108,21 @@ private:
     glm::dvec2 lo, hi;
     double area = 0.0;
   };
-  struct KeyHash {
-    std::size_t operator()(const std::array<std::uint32_t, 3>& k) const;
-  };
-  struct DefHash {
-    std::size_t operator()(const exact::VertexDef& d) const { return std::size_t(d.hash()); }
+  /// An index of the planes or vertices of one receiver by name: open addressing over
+  /// (hash, index) slots. Cleared in time proportional to what it holds, not to its size:
+  /// a receiver clears it, and most receivers hold a few dozen names.
+  class NameIndex {
+  public:
+    /// The index of the entry equal to the one hashed, by `equal(index)`; else `fresh`,
+    /// which is recorded.
+    template <typename Equal>
+    std::uint32_t find(std::uint64_t hash, Equal&& equal, std::uint32_t fresh);
+    void clear();
+
+  private:
+    void grow();
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> m_slots;  ///< (hash, index + 1); 0: empty
+    std::vector<std::uint32_t> m_used;
   };
 
   void reset(std::uint32_t face);
@@ -146,9 +155,9 @@ private:
   exact::PlaneRec m_plane;
   int m_axisU = 0, m_axisV = 1;
   std::vector<exact::PlaneRec> m_planes;
-  std::unordered_map<std::array<std::uint32_t, 3>, std::uint32_t, KeyHash> m_planeIndex;
+  NameIndex m_planeIndex;
   std::vector<exact::VertexRec> m_vertices;
-  std::unordered_map<exact::VertexDef, std::uint32_t, DefHash> m_vertexIndex;
+  NameIndex m_vertexIndex;
   std::vector<HalfEdge> m_edges;
   std::vector<Face> m_faces;
   // scratch
