@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <span>
 
 namespace glint::cut {
 
@@ -237,6 +238,7 @@ Prepared prepare(const Mesh& mesh, const std::vector<Light>& lights, bool bvh) {
     const std::string name = lightName(lights[l], l);
     // On (or within a hair of) a surface: that surface grazes the light and stays dark.
     const double eps = 1e-6 * radius;
+    bool onSurface = false;
     near.clear();
     s.bvh.query(L - eps, L + eps, {}, near);
     for (std::uint32_t f : near) {
@@ -249,10 +251,13 @@ Prepared prepare(const Mesh& mesh, const std::vector<Light>& lights, bool bvh) {
                           glm::dot(glm::cross(a - d, q - d), nrm) >= -eps;
       if (std::abs(dist) <= eps && inside) {
         out.warnings.push_back(fmt::format("light '{}' lies on a surface (triangle {}): it lights nothing there", name, f));
+        onSurface = true;
         break;
       }
     }
     // Inside a closed mesh whose normals point out: the generalized winding number is 1.
+    // (Not decided for a light on a surface, where it is half-way by definition.)
+    if (onSurface) continue;
     double winding = 0.0;
     for (std::uint32_t f = 0; f < n; ++f) {
       if (!s.usable[f]) continue;
@@ -498,8 +503,12 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
       }
     }
   }
-  std::sort(entries.begin(), entries.end(), [](const EdgeEntry& x, const EdgeEntry& y) {
-    return std::tie(x.edge, x.block, x.entry, x.local) < std::tie(y.edge, y.block, y.entry, y.local);
+  // By edge, then receiver triangle: the first entry of each point along an edge (its
+  // position is the one kept) never depends on how receivers were grouped into blocks
+  // or shards.
+  std::sort(entries.begin(), entries.end(), [&](const EdgeEntry& x, const EdgeEntry& y) {
+    const std::uint32_t tx = blocks[x.block]->receiver[x.entry], ty = blocks[y.block]->receiver[y.entry];
+    return std::tie(x.edge, tx, x.local) < std::tie(y.edge, ty, y.local);
   });
   entries.erase(std::unique(entries.begin(), entries.end(),
                             [](const EdgeEntry& x, const EdgeEntry& y) {
@@ -569,7 +578,7 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
   for (std::size_t gi = 0; gi + 1 < groupStart.size(); ++gi) {
     edgeGroup[entries[groupStart[gi]].edge] = std::uint32_t(gi);
     const std::uint32_t c = component[prep.edges.faces(prep.edges.edges()[entries[groupStart[gi]].edge])[0].face];
-    for (std::size_t i = groupStart[gi]; i < groupStart[gi + 1]; ++i) {
+    for (std::size_t i = groupStart[gi + 1]; i-- > groupStart[gi];) {  // the first entry's position wins
       precise[groupBase[gi] + entries[i].unionIndex] = posOf(entries[i]);
       vertexComponent[groupBase[gi] + entries[i].unionIndex] = c;
     }
@@ -719,13 +728,7 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
   stats.outputPolygons = m.polygonCount();
   stats.outputVertices = m.positions.size();
   for (std::size_t p = 0; p < m.polygonCount(); ++p) {
-    const std::size_t n = m.cornerCount(p);
-    bool fan = false;
-    for (std::size_t i = 0; i < n && !fan; ++i) {
-      const std::size_t s = m.polygonStart[p];
-      fan = !m.straight[s + i] && !m.straight[s + (i + 1) % n] && !m.straight[s + (i + n - 1) % n];
-    }
-    stats.outputTriangles += fan ? n - 2 : n;
+    stats.outputTriangles += m.cornerCount(p) - 2;
     const double area = polygonArea(m, p);
     for (std::size_t l = 0; l < stats.lights.size(); ++l) {
       if (m.polygonMask[p] & (LightMask(1) << l)) {
@@ -765,34 +768,42 @@ double polygonArea(const CutMesh& mesh, std::size_t polygon) {
   return 0.5 * glm::length(sum);
 }
 
+void triangulatePolygon(std::span<const std::uint32_t> corners, std::span<const std::uint8_t> straight,
+                        std::vector<std::uint32_t>& out) {
+  // Ear clipping at corners that turn: the ear (prev, v, next) then has area, and prev and
+  // next turn afterwards (they were on v's two sides, which are different lines). An ear
+  // is taken only when at least three turning corners remain, so what is left keeps its
+  // area: n − 2 triangles, none of zero area, no extra vertex.
+  std::vector<std::uint32_t> v(corners.begin(), corners.end());
+  std::vector<std::uint8_t> st(straight.begin(), straight.end());
+  while (v.size() > 3) {
+    const std::size_t n = v.size();
+    std::size_t turning = 0;
+    for (std::uint8_t x : st) turning += !x;
+    std::size_t ear = n;
+    for (std::size_t i = 0; i < n && ear == n; ++i) {
+      if (st[i]) continue;
+      const std::size_t left = turning - 1 + st[(i + n - 1) % n] + st[(i + 1) % n];
+      if (left >= 3) ear = i;
+    }
+    if (ear == n) ear = 0;  // not reached for a convex polygon with area (cutter.h)
+    const std::size_t prev = (ear + n - 1) % n, next = (ear + 1) % n;
+    out.insert(out.end(), {v[prev], v[ear], v[next]});
+    st[prev] = st[next] = 0;
+    v.erase(v.begin() + std::ptrdiff_t(ear));
+    st.erase(st.begin() + std::ptrdiff_t(ear));
+  }
+  out.insert(out.end(), v.begin(), v.end());
+}
+
 Triangles triangulate(const CutMesh& mesh) {
   Triangles t;
   t.mesh.positions = mesh.positions;
   for (std::size_t p = 0; p < mesh.polygonCount(); ++p) {
     const std::uint32_t s = mesh.polygonStart[p];
-    const std::size_t n = mesh.cornerCount(p);
-    std::size_t apex = n;
-    for (std::size_t i = 0; i < n && apex == n; ++i)
-      if (!mesh.straight[s + i] && !mesh.straight[s + (i + 1) % n] && !mesh.straight[s + (i + n - 1) % n]) apex = i;
-    if (apex < n) {
-      for (std::size_t i = 1; i + 1 < n; ++i) {
-        t.mesh.indices.insert(t.mesh.indices.end(), {mesh.corners[s + apex], mesh.corners[s + (apex + i) % n],
-                                                     mesh.corners[s + (apex + i + 1) % n]});
-        t.trianglePolygon.push_back(std::uint32_t(p));
-      }
-    } else {
-      // Every corner has a straight neighbour: fan around the centre instead.
-      vec3 centre(0.0f);
-      dvec3 sum(0.0);
-      for (std::size_t i = 0; i < n; ++i) sum += mesh.precisePositions[mesh.corners[s + i]];
-      centre = vec3(sum / double(n));
-      const std::uint32_t c = std::uint32_t(t.mesh.positions.size());
-      t.mesh.positions.push_back(centre);
-      for (std::size_t i = 0; i < n; ++i) {
-        t.mesh.indices.insert(t.mesh.indices.end(), {c, mesh.corners[s + i], mesh.corners[s + (i + 1) % n]});
-        t.trianglePolygon.push_back(std::uint32_t(p));
-      }
-    }
+    const std::size_t n = mesh.cornerCount(p), before = t.mesh.indices.size();
+    triangulatePolygon(std::span(mesh.corners).subspan(s, n), std::span(mesh.straight).subspan(s, n), t.mesh.indices);
+    for (std::size_t i = before; i < t.mesh.indices.size(); i += 3) t.trianglePolygon.push_back(std::uint32_t(p));
   }
   return t;
 }

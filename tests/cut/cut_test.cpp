@@ -1,10 +1,17 @@
 // The shadow cutter against independent computations: Embree shadow rays, areas per
 // input triangle, the edge topology of the result; the seed's hard cases.
+#include "glint/core/error.h"
 #include "glint/cut/cutter.h"
+#include "glint/mesh/machine_room.h"
 
 #include "cut_test_util.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <filesystem>
+#include <limits>
 
 using namespace glint;
 using namespace glint::cut;
@@ -164,3 +171,135 @@ TEST(Cut, GridAlignedSceneStaysWatertight) {
   EXPECT_GT(r.stats.symbolicPredicates, 0u);
 }
 
+
+namespace {
+
+Mesh soup(int count, std::uint32_t seed) {
+  Mesh scene = makeBox({-3, -1, -3}, {3, 0, 3});
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f), h(0.3f, 2.5f), s(0.05f, 0.8f);
+  for (int i = 0; i < count; ++i) {
+    const vec3 c(u(rng), h(rng), u(rng));
+    scene.append(makeTriangle(c + vec3(s(rng), s(rng) - 0.4f, s(rng)), c - vec3(s(rng), s(rng) - 0.4f, 0.0f),
+                              c + vec3(0.0f, s(rng) - 0.4f, -s(rng))));
+  }
+  scene.append(makeMachineRoom({.modules = 1}));
+  return scene;
+}
+
+void expectSame(const CutMesh& a, const CutMesh& b) {
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.precisePositions, b.precisePositions);
+  EXPECT_EQ(a.polygonStart, b.polygonStart);
+  EXPECT_EQ(a.corners, b.corners);
+  EXPECT_EQ(a.straight, b.straight);
+  EXPECT_EQ(a.polygonSource, b.polygonSource);
+  EXPECT_EQ(a.polygonMask, b.polygonMask);
+}
+
+}  // namespace
+
+TEST(Cut, OutputDoesNotDependOnThreads) {
+  const Mesh scene = soup(300, 11);
+  CutOptions options;
+  options.lights = {{.position = {0.3f, 9.0f, 0.2f}}, {.position = {-5.0f, 4.0f, 3.5f}}};
+  CutResult one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = cut::cut(scene, options);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = cut::cut(scene, options);
+  }
+  ASSERT_GT(one.mesh.polygonCount(), scene.triangleCount());
+  expectSame(one.mesh, two.mesh);
+}
+
+TEST(Cut, ShardsMergeIntoTheSameMesh) {
+  const Mesh scene = soup(120, 5);
+  CutOptions options;
+  options.lights = {{.position = {0.3f, 9.0f, 0.2f}, .name = "key"}};
+  const CutResult whole = cut::cut(scene, options);
+  const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "cut-shards";
+  std::filesystem::create_directories(dir);
+  std::vector<Shard> shards;
+  for (int i = 2; i >= 0; --i) {  // any order
+    options.shardIndex = i;
+    options.shardCount = 3;
+    saveShard(cutShard(scene, options), dir / fmt::format("part{}.shard", i));
+    shards.push_back(loadShard(dir / fmt::format("part{}.shard", i)));
+  }
+  const CutResult merged = mergeShards(scene, shards);
+  expectSame(whole.mesh, merged.mesh);
+  // A missing shard, a shard twice, another scene: one-line errors.
+  EXPECT_THROW(mergeShards(scene, {shards[0], shards[1]}), Error);
+  EXPECT_THROW(mergeShards(scene, {shards[0], shards[1], shards[1]}), Error);
+  EXPECT_THROW(mergeShards(soup(121, 5), shards), Error);
+  std::filesystem::resize_file(dir / "part1.shard", 100);
+  EXPECT_THROW(loadShard(dir / "part1.shard"), Error);
+}
+
+TEST(Cut, DegenerateInputIsCarriedThroughWithWarnings) {
+  Mesh scene = makeBox({-2, -1, -2}, {2, 0, 2});
+  scene.append(makeBox({-0.5f, 1, -0.5f}, {0.5f, 2, 0.5f}));
+  scene.append(makeTriangle({0, 0.5f, 0}, {1, 0.5f, 0}, {2, 0.5f, 0}));        // collinear: zero area
+  scene.append(makeTriangle({0, 0.7f, 0}, {0, 0.7f, 0}, {1, 0.7f, 1}));        // two corners at one point
+  scene.append(makeTriangle({-1, 0.6f, 1}, {1, 0.6f, 1}, {1, 0.6f, 1.000001f}));  // a sliver, 1e-6 wide
+  CutOptions options;
+  options.lights = {{.position = {0.1f, 5.0f, 0.2f}}};
+  const CutResult r = cut::cut(scene, options);
+  EXPECT_EQ(r.stats.degenerateTriangles, 1u);
+  EXPECT_EQ(r.stats.collapsedTriangles, 1u);
+  ASSERT_GE(r.warnings.size(), 2u);
+  // The zero-area triangle is kept, unlit; the collapsed one dropped.
+  bool found = false;
+  for (std::size_t p = 0; p < r.mesh.polygonCount(); ++p) {
+    EXPECT_NE(r.mesh.polygonSource[p], 25u);
+    if (r.mesh.polygonSource[p] == 24) {
+      found = true;
+      EXPECT_EQ(r.mesh.polygonMask[p], 0u);
+    }
+  }
+  EXPECT_TRUE(found);
+  const OracleResult o = shadowOracle(scene, r.mesh, options.lights, 64);
+  EXPECT_GE(o.agreement(), 0.9999) << o.agree << " of " << o.samples;
+  expectClosed(scene, r.mesh);
+}
+
+TEST(Cut, BadInputIsAOneLineError) {
+  CutOptions options;
+  options.lights = {{.position = {0, 5, 0}}};
+  EXPECT_THROW(cut::cut(Mesh{}, options), Error);
+  Mesh nan = makeBox({-1, -1, -1}, {1, 1, 1});
+  nan.positions[3].y = std::numeric_limits<float>::quiet_NaN();
+  try {
+    cut::cut(nan, options);
+    FAIL() << "NaN accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
+  CutOptions none;
+  EXPECT_THROW(cut::cut(makeBox({-1, -1, -1}, {1, 1, 1}), none), Error);
+  CutOptions far;
+  far.lights = {{.position = {std::numeric_limits<float>::infinity(), 0, 0}}};
+  EXPECT_THROW(cut::cut(makeBox({-1, -1, -1}, {1, 1, 1}), far), Error);
+}
+
+TEST(Cut, LightsInOddPlacesWarn) {
+  const Mesh scene = boxOverFloor();
+  CutOptions options;
+  // On the floor's top face; inside the floating box.
+  options.lights = {{.position = {2.0f, 0.0f, 1.0f}, .name = "onfloor"}, {.position = {0.1f, 1.5f, 0.2f}, .name = "inbox"}};
+  const CutResult r = cut::cut(scene, options);
+  std::string all;
+  for (const auto& w : r.warnings) all += w + "\n";
+  EXPECT_NE(all.find("'onfloor' lies on a surface"), std::string::npos) << all;
+  EXPECT_NE(all.find("'inbox' is inside a closed mesh"), std::string::npos) << all;
+  // Inside the box, only the box's inside is lit.
+  EXPECT_EQ(r.stats.lights[1].litArea, 6.0) << "the box's six faces, from inside";
+  const OracleResult o = shadowOracle(scene, r.mesh, options.lights, 64);
+  EXPECT_GE(o.agreement(), 0.9999) << o.agree << " of " << o.samples;
+  EXPECT_GT(r.stats.lights[0].grazingTriangles, 0u);
+}

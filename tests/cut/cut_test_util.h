@@ -32,7 +32,7 @@ inline Mesh makeTriangle(vec3 a, vec3 b, vec3 c) {
 
 struct OracleResult {
   std::size_t samples = 0, agree = 0;
-  std::size_t skipped = 0;  ///< pieces too thin to sample inside
+  std::size_t skipped = 0;  ///< pieces too thin for float rays (mean width < 1e-5 of the scene)
   double agreement() const { return samples ? double(agree) / double(samples) : 1.0; }
 };
 
@@ -60,7 +60,12 @@ inline OracleResult shadowOracle(const Mesh& scene, const CutMesh& mesh, const s
     dvec3 normal(0.0);
     for (std::size_t i = 1; i + 1 < n; ++i)
       normal += glm::cross(mesh.precisePositions[mesh.corners[s + i]] - a, mesh.precisePositions[mesh.corners[s + i + 1]] - a);
-    if (area <= 1e-14 * double(sceneSize) * double(sceneSize) || glm::length(normal) == 0.0) {
+    // Pieces thinner than the float rays can resolve (2·area / perimeter, their mean
+    // width, under 1e-5 of the scene) are counted, not sampled.
+    double perimeter = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+      perimeter += glm::length(mesh.precisePositions[mesh.corners[s + (i + 1) % n]] - mesh.precisePositions[mesh.corners[s + i]]);
+    if (2.0 * area <= 1e-5 * double(sceneSize) * perimeter || glm::length(normal) == 0.0) {
       ++r.skipped;
       continue;
     }

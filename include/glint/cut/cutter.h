@@ -157,9 +157,10 @@ Shard loadShard(const std::filesystem::path& path);
 CutResult mergeShards(const Mesh& scene, std::vector<Shard> shards, const CutOptions& options = {});
 
 // ------------------------------------------------------------------ triangles
-/// The polygons as triangles: fans from a corner whose neighbours both turn (no
-/// zero-area triangle), or around a centre vertex when every corner has a straight
-/// neighbour. `trianglePolygon[t]` is the polygon triangle t belongs to.
+/// The polygons as triangles: n − 2 per polygon of n corners, none of zero area (ears
+/// clipped at corners that turn; corners on straight sides are kept, so neighbours still
+/// share every vertex), no vertex added. `trianglePolygon[t]` is the polygon triangle t
+/// belongs to.
 struct Triangles {
   Mesh mesh;  ///< positions and indices (counter-clockwise); no normals
   std::vector<std::uint32_t> trianglePolygon;
