@@ -135,11 +135,11 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
         const Mesh part = loadMesh(input);
         if (scene.positions.empty()) scene = part;
         else scene.append(part);
-        if (a->lights.empty())
+        if (a->lights.empty() && a->merge.empty())
           for (cut::Light& l : cut::loadGltfLights(input)) options.lights.push_back(std::move(l));
       }
     }
-    if (options.lights.empty())
+    if (options.lights.empty() && a->merge.empty())
       fail(ErrorKind::Usage, "no lights: give --light x,y,z (or a glTF scene with KHR_lights_punctual lights)");
     run.throwIfInterrupted();
 

@@ -4,6 +4,7 @@
 #include "glint/core/file.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
@@ -221,47 +222,62 @@ vec3 maskColor(LightMask mask, int lightCount) {
 std::vector<Light> loadGltfLights(const std::filesystem::path& path) {
   const std::string ext = lower(path.extension().string());
   if (ext != ".glb" && ext != ".gltf") return {};
-  tinygltf::TinyGLTF loader;
-  // Lights only: images are not decoded.
-  loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                           void*) { return true; }, nullptr);
-  tinygltf::Model model;
-  std::string err, warn;
-  const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
-                                : loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
-  if (!ok) {
-    std::string first = err.substr(0, err.find('\n'));
-    fail(ErrorKind::Input, "cannot read lights from '{}': {}", path.string(), first.empty() ? "not glTF" : first);
+  // Only the JSON is needed (nodes and the extension), not the buffers: it is read here
+  // with nlohmann-json, from the file or from a .glb's first chunk.
+  const std::string data = readTextFile(path);
+  std::string_view text = data;
+  if (ext == ".glb") {
+    std::uint32_t header[5] = {};
+    if (data.size() < sizeof header) fail(ErrorKind::Input, "'{}' is not a glTF binary", path.string());
+    std::memcpy(header, data.data(), sizeof header);
+    if (header[0] != 0x46546C67u || header[4] != 0x4E4F534Au || std::size_t(header[3]) > data.size() - 20)
+      fail(ErrorKind::Input, "'{}' is not a glTF binary", path.string());
+    text = std::string_view(data).substr(20, header[3]);
   }
+  const nlohmann::json gltf = nlohmann::json::parse(text, nullptr, false);
+  if (gltf.is_discarded() || !gltf.is_object()) fail(ErrorKind::Input, "'{}' is not glTF (its JSON does not parse)", path.string());
+  const auto lightsIt = gltf.find("extensions");
+  if (lightsIt == gltf.end() || !lightsIt->contains("KHR_lights_punctual")) return {};
+  const nlohmann::json& defs = (*lightsIt)["KHR_lights_punctual"].value("lights", nlohmann::json::array());
+  const nlohmann::json& nodes = gltf.value("nodes", nlohmann::json::array());
   std::vector<Light> out;
-  // World transforms down the scene's node tree.
-  const std::function<void(int, const glm::dmat4&)> visit = [&](int index, const glm::dmat4& parent) {
-    const tinygltf::Node& n = model.nodes[std::size_t(index)];
+  const auto number = [](const nlohmann::json& v, double fallback) { return v.is_number() ? v.get<double>() : fallback; };
+  // World transforms down the default scene's node tree (depth-limited against cycles).
+  const std::function<void(std::size_t, const glm::dmat4&, int)> visit = [&](std::size_t index, const glm::dmat4& parent,
+                                                                              int depth) {
+    if (index >= nodes.size() || depth > 64) return;
+    const nlohmann::json& n = nodes[index];
     glm::dmat4 local(1.0);
-    if (n.matrix.size() == 16) {
-      for (int i = 0; i < 16; ++i) local[i / 4][i % 4] = n.matrix[std::size_t(i)];
+    if (n.contains("matrix") && n["matrix"].size() == 16) {
+      for (int i = 0; i < 16; ++i) local[i / 4][i % 4] = number(n["matrix"][std::size_t(i)], 0.0);
     } else {
-      if (n.translation.size() == 3) local = glm::translate(local, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
-      if (n.rotation.size() == 4) local *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
-      if (n.scale.size() == 3) local = glm::scale(local, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+      if (n.contains("translation") && n["translation"].size() == 3)
+        local = glm::translate(local, glm::dvec3(number(n["translation"][0], 0), number(n["translation"][1], 0),
+                                                 number(n["translation"][2], 0)));
+      if (n.contains("rotation") && n["rotation"].size() == 4)
+        local *= glm::mat4_cast(glm::dquat(number(n["rotation"][3], 1), number(n["rotation"][0], 0),
+                                           number(n["rotation"][1], 0), number(n["rotation"][2], 0)));
+      if (n.contains("scale") && n["scale"].size() == 3)
+        local = glm::scale(local, glm::dvec3(number(n["scale"][0], 1), number(n["scale"][1], 1), number(n["scale"][2], 1)));
     }
     const glm::dmat4 world = parent * local;
-    const auto ext = n.extensions.find("KHR_lights_punctual");
-    if (ext != n.extensions.end() && ext->second.Has("light")) {
-      const int li = ext->second.Get("light").GetNumberAsInt();
-      if (li >= 0 && std::size_t(li) < model.lights.size() && model.lights[std::size_t(li)].type != "directional") {
+    if (n.contains("extensions") && n["extensions"].contains("KHR_lights_punctual")) {
+      const auto& ref = n["extensions"]["KHR_lights_punctual"];
+      const std::size_t li = ref.value("light", std::size_t(-1));
+      if (li < defs.size() && defs[li].value("type", "") != "directional") {
         const glm::dvec3 p(world[3]);
-        out.push_back({vec3(p), model.lights[std::size_t(li)].name});
+        out.push_back({vec3(p), defs[li].value("name", "")});
       }
     }
-    for (int c : n.children)
-      if (c >= 0 && std::size_t(c) < model.nodes.size()) visit(c, world);
+    if (n.contains("children") && n["children"].is_array())
+      for (const auto& c : n["children"])
+        if (c.is_number_unsigned()) visit(c.get<std::size_t>(), world, depth + 1);
   };
-  if (!model.scenes.empty()) {
-    const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
-    for (int root : model.scenes[std::size_t(s)].nodes)
-      if (root >= 0 && std::size_t(root) < model.nodes.size()) visit(root, glm::dmat4(1.0));
-  }
+  const nlohmann::json& scenes = gltf.value("scenes", nlohmann::json::array());
+  const std::size_t scene = gltf.value("scene", std::size_t(0));
+  if (scene < scenes.size() && scenes[scene].contains("nodes"))
+    for (const auto& root : scenes[scene]["nodes"])
+      if (root.is_number_unsigned()) visit(root.get<std::size_t>(), glm::dmat4(1.0), 0);
   return out;
 }
 

@@ -39,8 +39,8 @@ void checkOutputFormat(const std::filesystem::path& path);
 vec3 maskColor(LightMask mask, int lightCount);
 
 /// The KHR_lights_punctual point (and spot) lights of a .gltf/.glb file, at their nodes'
-/// world positions; empty for other formats or files without lights. Error(Input) when a
-/// glTF file cannot be parsed.
+/// world positions (default scene); empty for other formats or files without lights.
+/// Error(Input) when a glTF file's JSON cannot be parsed.
 std::vector<Light> loadGltfLights(const std::filesystem::path& path);
 
 /// A PLY written by saveCutMesh, read back: its polygons' masks in file order (tests,
