@@ -38,7 +38,14 @@ double processCpuSeconds() {
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
+/// Peak resident memory since the last resetPeak() (Linux: VmHWM, reset through
+/// /proc/self/clear_refs), so each run reports its own peak, not the process's so far.
+void resetPeak() { std::ofstream("/proc/self/clear_refs") << "5"; }
 double peakRssMiB() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // kB
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return double(usage.ru_maxrss) / 1024.0;
@@ -53,7 +60,7 @@ double loadAverage() {
 }
 
 struct Run {
-  double seconds = 0.0, cpuSeconds = 0.0, load = 0.0;
+  double seconds = 0.0, cpuSeconds = 0.0, load = 0.0, peakMiB = 0.0;
   cut::CutResult result;
 };
 
@@ -61,12 +68,14 @@ Run runCut(const Mesh& stage, const std::vector<cut::Light>& lights) {
   cut::CutOptions options;
   options.lights = lights;
   Run run;
+  resetPeak();
   const double cpu = processCpuSeconds();
   const auto start = Clock::now();
   run.result = cut::cut(stage, options);
   run.seconds = since(start);
   run.cpuSeconds = processCpuSeconds() - cpu;
   run.load = loadAverage();
+  run.peakMiB = peakRssMiB();  // the scene, the cut and its result
   return run;
 }
 
@@ -131,7 +140,8 @@ void runSuite(Recorder& r) {
               .note = fmt::format("{} of {:.0f}", s.exactPredicates, predicates)});
     for (const cut::LightStats& l : s.lights)
       r.record({.group = group, .name = "shadowed area " + l.name, .value = 100.0 * l.shadowedArea / (l.litArea + l.shadowedArea), .unit = "%"});
-    r.record({.group = group, .name = "peak memory", .value = peakRssMiB(), .unit = "MiB"});
+    r.record({.group = group, .name = "peak memory", .value = median.peakMiB, .unit = "MiB",
+              .note = "resident, during the run (scene, cut, result)"});
   }
   // (b) growth.
   std::vector<double> logN, logT;
@@ -142,9 +152,11 @@ void runSuite(Recorder& r) {
     const std::string group = "growth";
     const std::string name = fmt::format("{}k tris", stage.triangleCount() / 1000);
     r.record({.group = group, .name = name, .value = run.seconds, .unit = "s",
-              .note = fmt::format("{:.0f} pairs/CPU s, {} polygons out, peak {:.0f} MiB, load {:.2f}",
-                                  double(run.result.stats.clippedPairs) / run.cpuSeconds, run.result.stats.outputPolygons,
-                                  peakRssMiB(), run.load)});
+              .note = fmt::format("{:.1f} CPU s, {:.0f} pairs/CPU s, {} polygons out ({:.2f}×), peak {:.0f} MiB, load {:.2f}",
+                                  run.cpuSeconds, double(run.result.stats.clippedPairs) / run.cpuSeconds,
+                                  run.result.stats.outputPolygons,
+                                  double(run.result.stats.outputPolygons) / double(stage.triangleCount()), run.peakMiB,
+                                  run.load)});
     logN.push_back(std::log(double(stage.triangleCount())));
     logT.push_back(std::log(run.seconds));
   }

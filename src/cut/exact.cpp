@@ -7,6 +7,10 @@
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,7 +20,25 @@ namespace glint::cut::exact {
 namespace {
 
 using I = CGAL::Interval_nt<false>;  // needs the rounding mode upwards: see Guard
+
+#if defined(__SSE2__)
+/// Rounding upwards for the interval filter, and no flush-to-zero or denormals-are-zero
+/// while it runs: with those (Embree asks applications to set them on threads that trace
+/// rays, and a process may do both) a tiny interval bound would become 0 and a sign
+/// uncertain in truth could look certain. The whole MXCSR is restored afterwards.
+class Guard {
+public:
+  Guard() : m_saved(_mm_getcsr()) { _mm_setcsr((m_saved & ~(0x8000u | 0x0040u | _MM_ROUND_MASK)) | _MM_ROUND_UP); }
+  ~Guard() { _mm_setcsr(m_saved); }
+  Guard(const Guard&) = delete;
+  Guard& operator=(const Guard&) = delete;
+
+private:
+  unsigned int m_saved;
+};
+#else
 using Guard = CGAL::Protect_FPU_rounding<true>;
+#endif
 using E = CGAL::Mpzf;
 
 struct I3 {

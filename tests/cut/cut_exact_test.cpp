@@ -188,3 +188,26 @@ TEST(CutExact, OrderAlongALineMatchesRationals) {
   }
   EXPECT_GT(checked, 1500);
 }
+
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+
+TEST(CutExact, FlushToZeroOnTheThreadDoesNotFoolTheFilter) {
+  // A plane value of about 1e-316, a subnormal: with flush-to-zero set on the calling
+  // thread (as ray tracers ask for), an interval bound would become 0 and the sign look
+  // certainly zero. The predicates clear those modes while they work.
+  const Geometry g({dvec3(0.0), dvec3(1e-103, 0.0, 0.0), dvec3(0.0, 1e-103, 0.0), dvec3(0.0, 0.0, 1e-110)});
+  const PlaneRec p = g.plane(plane(0, 1, 2));
+  VertexDef v;
+  v.kind = VertexKind::Point;
+  v.a = 3;
+  PredicateStats stats;
+  const unsigned int saved = _mm_getcsr();
+  _mm_setcsr(saved | 0x8040u);  // FTZ | DAZ
+  const int inside = g.side(g.vertex(v), p, stats);
+  const unsigned int after = _mm_getcsr();
+  _mm_setcsr(saved);
+  EXPECT_EQ(inside, 1);
+  EXPECT_EQ(after & ~0x3Fu, (saved | 0x8040u) & ~0x3Fu);  // the caller's modes are given back (not the status flags)
+}
+#endif
