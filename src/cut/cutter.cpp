@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <optional>
 #include <span>
 
 namespace glint::cut {
@@ -348,8 +349,8 @@ Shard cutShard(const Mesh& mesh, const CutOptions& options) {
   std::vector<ReceiverStats> blockStats(blocks);
   tbb::enumerable_thread_specific<ReceiverCutter> cutters(std::cref(scene), options.cancel);
   tbb::enumerable_thread_specific<ReceiverPieces> scratch;
-  Progress progress("cut", receivers.size());
-  const bool showProgress = options.progress;
+  std::optional<Progress> progress;
+  if (options.progress) progress.emplace("cut", receivers.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
     ReceiverCutter& cutter = cutters.local();
     ReceiverPieces& pieces = scratch.local();
@@ -371,10 +372,10 @@ Shard cutShard(const Mesh& mesh, const CutOptions& options) {
         }
         out[b].append(f, pieces);
       }
-      if (showProgress) progress.advance(last - first);
+      if (progress) progress->advance(last - first);
     }
   }, tbb::simple_partitioner());
-  progress.finish();
+  if (progress) progress->finish();
   if (options.cancel && options.cancel->load()) fail(ErrorKind::Interrupted, "cut interrupted");
   ReceiverStats total;
   for (const ReceiverStats& s : blockStats) total.add(s);
