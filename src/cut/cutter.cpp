@@ -628,7 +628,6 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
       }
     }
     const auto faceEdges = prep.edges.faceEdges(f);
-    const auto& tri = scene.triangles[f];
     for (std::uint32_t p = blk.polygonFirst[e]; p < blk.polygonFirst[e + 1]; ++p) {
       const std::uint32_t c0 = blk.polygonStart[p], c1 = blk.polygonStart[p + 1];
       for (std::uint32_t c = c0; c < c1; ++c) {
@@ -648,7 +647,6 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
           const std::uint32_t id = blk.vertices[v0 + l].a;  // a corner of the triangle
           return id == edge.a ? -1 : std::int64_t(unionCount[gi]);
         };
-        (void)tri;
         const std::int64_t from = along(local), to = along(next);
         if (from < to)
           for (std::int64_t i = from + 1; i < to; ++i) {
