@@ -15,6 +15,7 @@ namespace glint::bench {
 // One register function per suite file; listed here (no static-initialiser tricks).
 // (Suites add themselves below as they are written.)
 void registerBakeSuite(Suites& suites);
+void registerCutSuite(Suites& suites);
 void registerRttSuite(Suites& suites);
 void registerShadowsSuite(Suites& suites);
 void registerWaterSuite(Suites& suites);
@@ -23,6 +24,7 @@ Suites& Suites::builtin() {
   static Suites suites = [] {
     Suites s;
     registerBakeSuite(s);
+    registerCutSuite(s);
     registerRttSuite(s);
     registerShadowsSuite(s);
     registerWaterSuite(s);

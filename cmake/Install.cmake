@@ -10,7 +10,7 @@
 #   share/glint/env, share/glint/bunny  data/ from scripts/setup, when it is there (core/locations.h)
 #
 # Exported targets, namespace glint:: (the same names work in this build as aliases):
-#   glint::core glint::image glint::mesh glint::raytrace glint::bake glint::raster
+#   glint::core glint::image glint::mesh glint::raytrace glint::bake glint::cut glint::raster
 #   glint::sim glint::gl glint::render glint::scenes glint::bench [glint::window]
 #   glint::glint (the command, an imported executable)
 # Each library brings the layers below it: linking glint::scenes is enough to render
@@ -18,7 +18,7 @@
 include(CMakePackageConfigHelpers)
 
 set(glint_libraries
-  glint_core glint_image glint_mesh glint_raytrace glint_bake glint_raster glint_sim
+  glint_core glint_image glint_mesh glint_raytrace glint_bake glint_cut glint_raster glint_sim
   glint_gl glint_render glint_scenes glint_bench)
 if(GLINT_BUILD_VIEWER)
   list(APPEND glint_libraries glint_window)

@@ -22,6 +22,7 @@ void registerShadowBunny(Registry& registry);
 void registerBumpDot3(Registry& registry);
 void registerBumpNormalMap(Registry& registry);
 void registerBakeResult(Registry& registry);
+void registerCutScenes(Registry& registry);
 void registerWaterScenes(Registry& registry);
 
 const Registry& Registry::builtin() {
@@ -41,6 +42,7 @@ const Registry& Registry::builtin() {
     registerBumpDot3(r);
     registerBumpNormalMap(r);
     registerBakeResult(r);
+    registerCutScenes(r);
     registerWaterScenes(r);
     return r;
   }();

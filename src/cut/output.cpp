@@ -1,0 +1,311 @@
+#include "glint/cut/output.h"
+
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+namespace glint::cut {
+
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+
+std::string lightName(const Light& l, std::size_t i) { return l.name.empty() ? fmt::format("light{}", i) : l.name; }
+
+/// Polygon corner to start from: one whose neighbours both turn (see triangulate()).
+std::size_t apex(const CutMesh& m, std::size_t p) {
+  const std::size_t s = m.polygonStart[p], n = m.cornerCount(p);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!m.straight[s + i] && !m.straight[s + (i + 1) % n] && !m.straight[s + (i + n - 1) % n]) return i;
+  return 0;
+}
+
+void append(std::vector<unsigned char>& data, const void* p, std::size_t n) {
+  const auto* b = static_cast<const unsigned char*>(p);
+  data.insert(data.end(), b, b + n);
+}
+
+int addView(tinygltf::Model& model, std::size_t offset, std::size_t length, int target) {
+  tinygltf::BufferView v;
+  v.buffer = 0;
+  v.byteOffset = offset;
+  v.byteLength = length;
+  v.target = target;
+  model.bufferViews.push_back(v);
+  return int(model.bufferViews.size() - 1);
+}
+
+void saveGltf(const CutMesh& mesh, const std::vector<Light>& lights, const std::filesystem::path& path, bool binary) {
+  const Triangles tris = triangulate(mesh);
+  // Triangles grouped by mask, in mask order; each group its own vertices.
+  std::map<LightMask, std::vector<std::uint32_t>> groups;
+  for (std::uint32_t t = 0; t < tris.trianglePolygon.size(); ++t)
+    groups[mesh.polygonMask[tris.trianglePolygon[t]]].push_back(t);
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "glint cut";
+  tinygltf::Buffer buffer;
+  tinygltf::Mesh gm;
+  gm.name = "cut";
+  for (const auto& [mask, triangles] : groups) {
+    std::vector<std::uint32_t> remap(tris.mesh.positions.size(), 0xFFFFFFFFu);
+    std::vector<vec3> positions;
+    std::vector<std::uint32_t> indices;
+    for (std::uint32_t t : triangles)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = tris.mesh.indices[3 * std::size_t(t) + std::size_t(k)];
+        if (remap[v] == 0xFFFFFFFFu) {
+          remap[v] = std::uint32_t(positions.size());
+          positions.push_back(tris.mesh.positions[v]);
+        }
+        indices.push_back(remap[v]);
+      }
+    const vec3 colour = maskColor(mask, int(lights.size()));
+    std::vector<vec3> colours(positions.size(), colour);
+    vec3 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+    for (const vec3& p : positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    const std::size_t posOffset = buffer.data.size();
+    append(buffer.data, positions.data(), positions.size() * sizeof(vec3));
+    const std::size_t colOffset = buffer.data.size();
+    append(buffer.data, colours.data(), colours.size() * sizeof(vec3));
+    const std::size_t idxOffset = buffer.data.size();
+    append(buffer.data, indices.data(), indices.size() * 4);
+
+    tinygltf::Accessor pos;
+    pos.bufferView = addView(model, posOffset, positions.size() * sizeof(vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+    pos.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    pos.count = positions.size();
+    pos.type = TINYGLTF_TYPE_VEC3;
+    pos.minValues = {lo.x, lo.y, lo.z};
+    pos.maxValues = {hi.x, hi.y, hi.z};
+    model.accessors.push_back(pos);
+    tinygltf::Accessor col = pos;
+    col.bufferView = addView(model, colOffset, colours.size() * sizeof(vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+    col.minValues.clear();
+    col.maxValues.clear();
+    model.accessors.push_back(col);
+    tinygltf::Accessor idx;
+    idx.bufferView = addView(model, idxOffset, indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    idx.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    idx.count = indices.size();
+    idx.type = TINYGLTF_TYPE_SCALAR;
+    model.accessors.push_back(idx);
+
+    tinygltf::Primitive prim;
+    const int base = int(model.accessors.size()) - 3;
+    prim.attributes["POSITION"] = base;
+    prim.attributes["COLOR_0"] = base + 1;
+    prim.indices = base + 2;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    tinygltf::Value::Array litBy;
+    for (std::size_t l = 0; l < lights.size(); ++l)
+      if (mask & (LightMask(1) << l)) litBy.emplace_back(lightName(lights[l], l));
+    tinygltf::Value::Object extras;
+    extras["light_mask"] = tinygltf::Value(double(mask));
+    extras["lit_by"] = tinygltf::Value(litBy);
+    prim.extras = tinygltf::Value(extras);
+    gm.primitives.push_back(prim);
+  }
+  model.buffers.push_back(buffer);
+  model.meshes.push_back(gm);
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.name = "cut";
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  for (std::size_t l = 0; l < lights.size(); ++l) {
+    tinygltf::Light light;
+    light.name = lightName(lights[l], l);
+    light.type = "point";
+    light.color = {1.0, 1.0, 1.0};
+    model.lights.push_back(light);
+    tinygltf::Node ln;
+    ln.name = light.name;
+    ln.translation = {lights[l].position.x, lights[l].position.y, lights[l].position.z};
+    tinygltf::Value::Object ext;
+    ext["light"] = tinygltf::Value(int(l));
+    ln.extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
+    model.nodes.push_back(ln);
+    scene.nodes.push_back(int(model.nodes.size() - 1));
+  }
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    tinygltf::TinyGLTF writer;
+    if (!binary) {
+      // Embed the buffer: one file, so the write stays atomic.
+      model.buffers[0].uri = "";
+    }
+    if (!writer.WriteGltfSceneToStream(&model, out, false, binary) || !out)
+      fail(ErrorKind::Output, "cannot write '{}'", path.string());
+  });
+}
+
+void savePly(const CutMesh& mesh, const std::vector<Light>& lights, const std::filesystem::path& path) {
+  std::ostringstream header;
+  header << "ply\nformat binary_little_endian 1.0\ncomment glint cut: light_mask bit l set = light l reaches the face\n";
+  for (std::size_t l = 0; l < lights.size(); ++l)
+    header << fmt::format("comment light {} {} {} {} {}\n", l, lightName(lights[l], l), lights[l].position.x,
+                          lights[l].position.y, lights[l].position.z);
+  header << "element vertex " << mesh.positions.size() << "\nproperty float x\nproperty float y\nproperty float z\n"
+         << "element face " << mesh.polygonCount() << "\nproperty list uchar uint vertex_indices\n"
+         << "property uint light_mask\nproperty uint source\nproperty uchar red\nproperty uchar green\n"
+         << "property uchar blue\nend_header\n";
+  std::string data = header.str();
+  static_assert(std::endian::native == std::endian::little, "PLY is written little-endian");
+  data.append(reinterpret_cast<const char*>(mesh.positions.data()), mesh.positions.size() * sizeof(vec3));
+  for (std::size_t p = 0; p < mesh.polygonCount(); ++p) {
+    const std::size_t n = mesh.cornerCount(p);
+    if (n > 255) fail(ErrorKind::Output, "'{}': a polygon with {} corners does not fit PLY's uchar count", path.string(), n);
+    data.push_back(char(n));
+    const std::size_t first = apex(mesh, p);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t v = mesh.corners[mesh.polygonStart[p] + (first + i) % n];
+      data.append(reinterpret_cast<const char*>(&v), 4);
+    }
+    const std::uint32_t mask = mesh.polygonMask[p], source = mesh.polygonSource[p];
+    data.append(reinterpret_cast<const char*>(&mask), 4);
+    data.append(reinterpret_cast<const char*>(&source), 4);
+    const vec3 c = maskColor(mask, int(lights.size()));
+    for (float x : {c.r, c.g, c.b}) data.push_back(char(std::uint8_t(std::lround(x * 255.0f))));
+  }
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(data.data(), std::streamsize(data.size()));
+    if (!out) fail(ErrorKind::Output, "cannot write '{}'", path.string());
+  });
+}
+
+}  // namespace
+
+void checkOutputFormat(const std::filesystem::path& path) {
+  const std::string ext = lower(path.extension().string());
+  if (ext != ".glb" && ext != ".gltf" && ext != ".ply")
+    fail(ErrorKind::Usage, "cannot write '{}': the cut mesh is written as .glb, .gltf or .ply", path.string());
+}
+
+void saveCutMesh(const CutMesh& mesh, const std::vector<Light>& lights, const std::filesystem::path& path) {
+  checkOutputFormat(path);
+  const std::string ext = lower(path.extension().string());
+  if (ext == ".ply") savePly(mesh, lights, path);
+  else saveGltf(mesh, lights, path, ext == ".glb");
+}
+
+vec3 maskColor(LightMask mask, int lightCount) {
+  const int lit = std::popcount(mask & (lightCount >= 32 ? ~LightMask(0) : (LightMask(1) << lightCount) - 1));
+  const float grey = 0.2f + 0.8f * float(lit) / float(std::max(1, lightCount));
+  return vec3(grey);
+}
+
+std::vector<Light> loadGltfLights(const std::filesystem::path& path) {
+  const std::string ext = lower(path.extension().string());
+  if (ext != ".glb" && ext != ".gltf") return {};
+  // Only the JSON is needed (nodes and the extension), not the buffers: it is read here
+  // with nlohmann-json, from the file or from a .glb's first chunk.
+  const std::string data = readTextFile(path);
+  std::string_view text = data;
+  if (ext == ".glb") {
+    std::uint32_t header[5] = {};
+    if (data.size() < sizeof header) fail(ErrorKind::Input, "'{}' is not a glTF binary", path.string());
+    std::memcpy(header, data.data(), sizeof header);
+    if (header[0] != 0x46546C67u || header[4] != 0x4E4F534Au || std::size_t(header[3]) > data.size() - 20)
+      fail(ErrorKind::Input, "'{}' is not a glTF binary", path.string());
+    text = std::string_view(data).substr(20, header[3]);
+  }
+  const nlohmann::json gltf = nlohmann::json::parse(text, nullptr, false);
+  if (gltf.is_discarded() || !gltf.is_object()) fail(ErrorKind::Input, "'{}' is not glTF (its JSON does not parse)", path.string());
+  const auto lightsIt = gltf.find("extensions");
+  if (lightsIt == gltf.end() || !lightsIt->contains("KHR_lights_punctual")) return {};
+  const nlohmann::json& defs = (*lightsIt)["KHR_lights_punctual"].value("lights", nlohmann::json::array());
+  const nlohmann::json& nodes = gltf.value("nodes", nlohmann::json::array());
+  std::vector<Light> out;
+  const auto number = [](const nlohmann::json& v, double fallback) { return v.is_number() ? v.get<double>() : fallback; };
+  // World transforms down the default scene's node tree (depth-limited against cycles).
+  const std::function<void(std::size_t, const glm::dmat4&, int)> visit = [&](std::size_t index, const glm::dmat4& parent,
+                                                                              int depth) {
+    if (index >= nodes.size() || depth > 64) return;
+    const nlohmann::json& n = nodes[index];
+    glm::dmat4 local(1.0);
+    if (n.contains("matrix") && n["matrix"].size() == 16) {
+      for (int i = 0; i < 16; ++i) local[i / 4][i % 4] = number(n["matrix"][std::size_t(i)], 0.0);
+    } else {
+      if (n.contains("translation") && n["translation"].size() == 3)
+        local = glm::translate(local, glm::dvec3(number(n["translation"][0], 0), number(n["translation"][1], 0),
+                                                 number(n["translation"][2], 0)));
+      if (n.contains("rotation") && n["rotation"].size() == 4)
+        local *= glm::mat4_cast(glm::dquat(number(n["rotation"][3], 1), number(n["rotation"][0], 0),
+                                           number(n["rotation"][1], 0), number(n["rotation"][2], 0)));
+      if (n.contains("scale") && n["scale"].size() == 3)
+        local = glm::scale(local, glm::dvec3(number(n["scale"][0], 1), number(n["scale"][1], 1), number(n["scale"][2], 1)));
+    }
+    const glm::dmat4 world = parent * local;
+    if (n.contains("extensions") && n["extensions"].contains("KHR_lights_punctual")) {
+      const auto& ref = n["extensions"]["KHR_lights_punctual"];
+      const std::size_t li = ref.value("light", std::size_t(-1));
+      if (li < defs.size() && defs[li].value("type", "") != "directional") {
+        const glm::dvec3 p(world[3]);
+        out.push_back({vec3(p), defs[li].value("name", "")});
+      }
+    }
+    if (n.contains("children") && n["children"].is_array())
+      for (const auto& c : n["children"])
+        if (c.is_number_unsigned()) visit(c.get<std::size_t>(), world, depth + 1);
+  };
+  const nlohmann::json& scenes = gltf.value("scenes", nlohmann::json::array());
+  const std::size_t scene = gltf.value("scene", std::size_t(0));
+  if (scene < scenes.size() && scenes[scene].contains("nodes"))
+    for (const auto& root : scenes[scene]["nodes"])
+      if (root.is_number_unsigned()) visit(root.get<std::size_t>(), glm::dmat4(1.0), 0);
+  return out;
+}
+
+std::vector<LightMask> loadPlyMasks(const std::filesystem::path& path) {
+  const std::string text = readTextFile(path);
+  const std::size_t end = text.find("end_header\n");
+  if (text.rfind("ply\n", 0) != 0 || end == std::string::npos || text.find("property uint light_mask") > end)
+    fail(ErrorKind::Input, "'{}' is not a PLY written by glint cut", path.string());
+  std::size_t vertices = 0, faces = 0;
+  std::istringstream h(text.substr(0, end));
+  std::string line;
+  while (std::getline(h, line)) {
+    if (line.rfind("element vertex ", 0) == 0) vertices = std::stoull(line.substr(15));
+    if (line.rfind("element face ", 0) == 0) faces = std::stoull(line.substr(13));
+  }
+  std::size_t pos = end + 11 + vertices * 12;
+  std::vector<LightMask> masks;
+  for (std::size_t f = 0; f < faces; ++f) {
+    if (pos >= text.size()) fail(ErrorKind::Input, "'{}' is truncated", path.string());
+    const std::size_t n = std::uint8_t(text[pos]);
+    pos += 1 + 4 * n;
+    if (pos + 11 > text.size()) fail(ErrorKind::Input, "'{}' is truncated", path.string());
+    LightMask m;
+    std::memcpy(&m, text.data() + pos, 4);
+    masks.push_back(m);
+    pos += 11;
+  }
+  return masks;
+}
+
+}  // namespace glint::cut

@@ -1,0 +1,213 @@
+// Shard files: one shard's pieces, by name, so that another process (another machine)
+// can join them with the rest. Binary, native little-endian, versioned; every count is
+// checked against what is left of the file before anything is allocated.
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+
+#include "pieces.h"
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+namespace glint::cut {
+
+namespace {
+
+constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'U', 'T'};
+constexpr std::uint32_t kVersion = 1;
+
+class Writer {
+public:
+  template <typename T>
+  void pod(const T& v) {
+    const auto* p = reinterpret_cast<const char*>(&v);
+    m_data.insert(m_data.end(), p, p + sizeof(T));
+  }
+  template <typename T>
+  void array(const std::vector<T>& v) {
+    pod(std::uint64_t(v.size()));
+    const auto* p = reinterpret_cast<const char*>(v.data());
+    m_data.insert(m_data.end(), p, p + v.size() * sizeof(T));
+  }
+  void string(const std::string& s) {
+    pod(std::uint64_t(s.size()));
+    m_data.insert(m_data.end(), s.begin(), s.end());
+  }
+  const std::vector<char>& data() const { return m_data; }
+
+private:
+  std::vector<char> m_data;
+};
+
+class Reader {
+public:
+  Reader(std::vector<char> data, std::string name) : m_data(std::move(data)), m_name(std::move(name)) {}
+  template <typename T>
+  T pod() {
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, m_data.data() + m_pos, sizeof(T));
+    m_pos += sizeof(T);
+    return v;
+  }
+  template <typename T>
+  std::vector<T> array() {
+    const auto n = pod<std::uint64_t>();
+    if (n > (m_data.size() - m_pos) / sizeof(T)) truncated();
+    std::vector<T> v(n);
+    std::memcpy(v.data(), m_data.data() + m_pos, n * sizeof(T));
+    m_pos += n * sizeof(T);
+    return v;
+  }
+  std::string string() {
+    const auto n = pod<std::uint64_t>();
+    need(n);
+    std::string s(m_data.data() + m_pos, n);
+    m_pos += n;
+    return s;
+  }
+  bool atEnd() const { return m_pos == m_data.size(); }
+  [[noreturn]] void truncated() const { fail(ErrorKind::Input, "'{}' is truncated or corrupt", m_name); }
+
+private:
+  void need(std::size_t n) const {
+    if (n > m_data.size() - m_pos) truncated();
+  }
+  std::vector<char> m_data;
+  std::string m_name;
+  std::size_t m_pos = 0;
+};
+
+void writeStats(Writer& w, const CutStats& s) {
+  for (std::uint64_t v : {s.inputTriangles, s.receivers, s.degenerateTriangles, s.collapsedTriangles, s.candidates,
+                          s.occluders, s.clippedPairs, s.cuts, s.facesBeforeMerge, s.symbolicPredicates,
+                          s.filteredPredicates, s.exactPredicates})
+    w.pod(v);
+  w.pod(s.prepareSeconds);
+  w.pod(s.cutSeconds);
+  w.pod(std::uint64_t(s.lights.size()));
+  for (const LightStats& l : s.lights) {
+    w.string(l.name);
+    w.pod(l.position);
+    w.pod(l.grazingTriangles);
+  }
+}
+
+CutStats readStats(Reader& r) {
+  CutStats s;
+  for (std::uint64_t* v : {&s.inputTriangles, &s.receivers, &s.degenerateTriangles, &s.collapsedTriangles, &s.candidates,
+                           &s.occluders, &s.clippedPairs, &s.cuts, &s.facesBeforeMerge, &s.symbolicPredicates,
+                           &s.filteredPredicates, &s.exactPredicates})
+    *v = r.pod<std::uint64_t>();
+  s.prepareSeconds = r.pod<double>();
+  s.cutSeconds = r.pod<double>();
+  const auto n = r.pod<std::uint64_t>();
+  if (n > std::uint64_t(kMaxLights)) r.truncated();
+  s.lights.resize(n);
+  for (LightStats& l : s.lights) {
+    l.name = r.string();
+    l.position = r.pod<vec3>();
+    l.grazingTriangles = r.pod<std::uint64_t>();
+  }
+  return s;
+}
+
+}  // namespace
+
+void saveShard(const Shard& shard, const std::filesystem::path& path) {
+  Writer w;
+  for (char c : kMagic) w.pod(c);
+  w.pod(kVersion);
+  w.pod(shard.inputHash);
+  w.pod(std::int32_t(shard.shardIndex));
+  w.pod(std::int32_t(shard.shardCount));
+  w.pod(std::uint64_t(shard.lights.size()));
+  for (const Light& l : shard.lights) {
+    w.pod(l.position);
+    w.string(l.name);
+  }
+  writeStats(w, shard.stats);
+  w.pod(std::uint64_t(shard.warnings.size()));
+  for (const std::string& s : shard.warnings) w.string(s);
+  const auto& blocks = shard.pieces->blocks;
+  w.pod(std::uint64_t(blocks.size()));
+  for (const PieceBlock& b : blocks) {
+    w.array(b.receiver);
+    w.array(b.vertexStart);
+    w.array(b.vertices);
+    w.array(b.positions);
+    w.array(b.polygonFirst);
+    w.array(b.polygonStart);
+    w.array(b.corners);
+    w.array(b.flags);
+    w.array(b.masks);
+  }
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(w.data().data(), std::streamsize(w.data().size()));
+    if (!out) fail(ErrorKind::Output, "cannot write '{}'", path.string());
+  });
+}
+
+Shard loadShard(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(ErrorKind::Input, "cannot read '{}'", path.string());
+  std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Reader r(std::move(data), path.string());
+  char magic[8];
+  for (char& c : magic) c = r.pod<char>();
+  if (std::memcmp(magic, kMagic, 8) != 0) fail(ErrorKind::Input, "'{}' is not a glint cut shard", path.string());
+  if (r.pod<std::uint32_t>() != kVersion) fail(ErrorKind::Input, "'{}' is a shard of another glint version", path.string());
+  Shard s;
+  s.inputHash = r.pod<std::uint64_t>();
+  s.shardIndex = r.pod<std::int32_t>();
+  s.shardCount = r.pod<std::int32_t>();
+  if (s.shardCount < 1 || s.shardIndex < 0 || s.shardIndex >= s.shardCount) r.truncated();
+  const auto lights = r.pod<std::uint64_t>();
+  if (lights == 0 || lights > std::uint64_t(kMaxLights)) r.truncated();
+  s.lights.resize(lights);
+  for (Light& l : s.lights) {
+    l.position = r.pod<vec3>();
+    l.name = r.string();
+  }
+  s.stats = readStats(r);
+  const auto warnings = r.pod<std::uint64_t>();
+  if (warnings > 1000) r.truncated();
+  for (std::uint64_t i = 0; i < warnings; ++i) s.warnings.push_back(r.string());
+  s.pieces = std::make_shared<Shard::Impl>();
+  const auto blocks = r.pod<std::uint64_t>();
+  if (blocks > (std::uint64_t(1) << 32)) r.truncated();
+  for (std::uint64_t i = 0; i < blocks; ++i) {
+    PieceBlock b;
+    b.receiver = r.array<std::uint32_t>();
+    b.vertexStart = r.array<std::uint32_t>();
+    b.vertices = r.array<exact::VertexDef>();
+    b.positions = r.array<dvec3>();
+    b.polygonFirst = r.array<std::uint32_t>();
+    b.polygonStart = r.array<std::uint32_t>();
+    b.corners = r.array<std::uint32_t>();
+    b.flags = r.array<std::uint8_t>();
+    b.masks = r.array<LightMask>();
+    // Consistency of the offsets, so that merging never reads out of bounds.
+    const std::size_t n = b.receiver.size();
+    bool ok = b.vertexStart.size() == n + 1 && b.polygonFirst.size() == n + 1 && b.positions.size() == b.vertices.size() &&
+              b.polygonStart.size() == b.masks.size() + 1 && b.flags.size() == b.corners.size() &&
+              b.vertexStart.back() == b.vertices.size() && b.polygonFirst.back() == b.masks.size() &&
+              b.polygonStart.back() == b.corners.size();
+    for (std::size_t e = 0; ok && e < n; ++e) {
+      ok = b.vertexStart[e] <= b.vertexStart[e + 1] && b.polygonFirst[e] <= b.polygonFirst[e + 1];
+      for (std::uint32_t p = b.polygonFirst[e]; ok && p < b.polygonFirst[e + 1]; ++p) {
+        ok = b.polygonStart[p] + 3 <= b.polygonStart[p + 1];
+        for (std::uint32_t c = b.polygonStart[p]; ok && c < b.polygonStart[p + 1]; ++c)
+          ok = b.corners[c] < b.vertexStart[e + 1] - b.vertexStart[e];
+      }
+    }
+    if (!ok) r.truncated();
+    s.pieces->blocks.push_back(std::move(b));
+  }
+  if (!r.atEnd()) r.truncated();
+  return s;
+}
+
+}  // namespace glint::cut

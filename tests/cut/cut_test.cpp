@@ -1,0 +1,359 @@
+// The shadow cutter against independent computations: Embree shadow rays, areas per
+// input triangle, the edge topology of the result; the seed's hard cases.
+#include "glint/core/error.h"
+#include "glint/cut/cutter.h"
+#include "glint/mesh/machine_room.h"
+
+#include "cut_test_util.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <filesystem>
+#include <limits>
+#include <map>
+
+using namespace glint;
+using namespace glint::cut;
+using namespace glint::cut::testing;
+
+namespace {
+
+/// A closed slab as the floor, a closed box floating above it.
+Mesh boxOverFloor() {
+  Mesh scene = makeBox({-4, -1, -4}, {4, 0, 4});
+  scene.append(makeBox({-0.5f, 1, -0.5f}, {0.5f, 2, 0.5f}));
+  return scene;
+}
+
+void expectClosed(const Mesh& scene, const CutMesh& mesh) { EXPECT_EQ(surfacesStillClosed(scene, mesh), ""); }
+
+/// The oracle's figures, printed for docs/cut.md, and checked.
+void expectAgreement(const char* what, const OracleResult& o) {
+  EXPECT_GT(o.samples, 1000u);
+  std::printf("[ oracle   ] %s: %zu of %zu shadow rays agree (%.5f %%), %zu thin pieces not sampled\n", what, o.agree,
+              o.samples, 100.0 * o.agreement(), o.skipped);
+  EXPECT_GE(o.agreement(), 0.9999) << o.agree << " of " << o.samples;
+}
+
+}  // namespace
+
+TEST(Cut, BoxOverFloorAgreesWithShadowRays) {
+  const Mesh scene = boxOverFloor();
+  CutOptions options;
+  options.lights = {{.position = {0.7f, 6.0f, 0.4f}, .name = "key"}};
+  const CutResult result = cut::cut(scene, options);
+  EXPECT_GT(result.mesh.polygonCount(), scene.triangleCount());
+  const OracleResult o = shadowOracle(scene, result.mesh, options.lights, 64);
+  expectAgreement("box over floor", o);
+  EXPECT_LT(worstAreaError(scene, result.mesh), 1e-6);
+  expectClosed(scene, result.mesh);
+  // The floor under the box is shadowed, its far corners lit.
+  EXPECT_GT(result.stats.lights[0].shadowedArea, 1.0);
+  EXPECT_GT(result.stats.lights[0].litArea, 60.0);
+}
+
+/// Three long triangles, each passing over the next one and under the previous one: no
+/// order sorts them (the seed's "root of all evil"), over a closed floor slab.
+Mesh cyclicTriangles() {
+  Mesh scene = makeBox({-4, -1, -4}, {4, 0, 4});
+  for (int i = 0; i < 3; ++i) {
+    const float angle = float(i) * 2.0f * kPi / 3.0f;
+    const vec3 t(std::cos(angle), 0.0f, std::sin(angle));   // along the triangle
+    const vec3 n(-t.z, 0.0f, t.x);                            // across it
+    const vec3 c = 0.6f * n;                                  // the three lines make a triangle
+    const vec3 start = c - 2.2f * t, end = c + 2.2f * t;
+    // High (1.6) at its wide start, low (0.8) at its tip: where the tip of i crosses the
+    // start of i + 1, i + 1 is above.
+    scene.append(makeTriangle(start + vec3(0, 1.6f, 0) - 0.5f * n, end + vec3(0, 0.8f, 0), start + vec3(0, 1.6f, 0) + 0.5f * n));
+  }
+  return scene;
+}
+
+double shadowedAreaOf(const CutResult& r, std::uint32_t triangle, int light = 0) {
+  double area = 0.0;
+  for (std::size_t p = 0; p < r.mesh.polygonCount(); ++p)
+    if (r.mesh.polygonSource[p] == triangle && !(r.mesh.polygonMask[p] & (1u << light))) area += polygonArea(r.mesh, p);
+  return area;
+}
+
+TEST(Cut, CyclicallyOverlappingTrianglesAllShadowEachOther) {
+  const Mesh scene = cyclicTriangles();
+  CutOptions options;
+  options.lights = {{.position = {0.2f, 8.0f, -0.3f}}};
+  const CutResult r = cut::cut(scene, options);
+  const OracleResult o = shadowOracle(scene, r.mesh, options.lights, 256);
+  expectAgreement("cyclic triangles", o);
+  EXPECT_LT(worstAreaError(scene, r.mesh), 1e-6);
+  // Each of the three (input triangles 12, 13, 14) is partly in the shadow of another.
+  for (std::uint32_t t = 12; t < 15; ++t) {
+    const double shadowed = shadowedAreaOf(r, t);
+    EXPECT_GT(shadowed, 0.01) << "triangle " << t;
+  }
+}
+
+TEST(Cut, CoplanarTrianglesDoNotShadowEachOther) {
+  Mesh scene = makeBox({-4, -1, -4}, {4, 0, 4});
+  // Three overlapping triangles in one plane (decals), and a stack of parallel squares.
+  for (int i = 0; i < 3; ++i) {
+    const float x = -2.5f + 0.4f * float(i);
+    scene.append(makeTriangle({x, 0.5f, -1.0f}, {x + 1.5f, 0.5f, 1.0f}, {x + 1.5f, 0.5f, -1.0f}));
+  }
+  for (int i = 0; i < 3; ++i) {
+    const float h = 1.0f + 0.5f * float(i), s = 1.0f - 0.25f * float(i);
+    Mesh square = makePlane(2.0f * s);
+    square.transform(glm::translate(mat4(1.0f), vec3(2.0f, h, 0.0f)));
+    scene.append(square);
+  }
+  CutOptions options;
+  options.lights = {{.position = {1.0f, 7.0f, 0.5f}}};
+  const CutResult r = cut::cut(scene, options);
+  const OracleResult o = shadowOracle(scene, r.mesh, options.lights, 128);
+  expectAgreement("coplanar stack", o);
+  EXPECT_LT(worstAreaError(scene, r.mesh), 1e-6);
+  for (std::uint32_t t = 12; t < 15; ++t) EXPECT_EQ(shadowedAreaOf(r, t), 0.0) << "decal " << t;
+  // The lower squares are partly shadowed by the ones above; the top one is not.
+  EXPECT_GT(shadowedAreaOf(r, 15) + shadowedAreaOf(r, 16), 0.1);
+  EXPECT_EQ(shadowedAreaOf(r, 19) + shadowedAreaOf(r, 20), 0.0);
+}
+
+TEST(Cut, OccluderSharingAnEdgeWithItsReceiver) {
+  // An open book: the hinge along z at x = 0, the receiver flat on x ∈ [0, 2], the other
+  // page leaning over it at 60°. Light high on the left: the leaning page shades the
+  // receiver near the hinge; light high on the right: nothing is shaded.
+  const vec3 h0(0, 0, -1), h1(0, 0, 1);
+  const vec3 lean(std::cos(1.0472f) * 2.0f, std::sin(1.0472f) * 2.0f, 0.0f);
+  Mesh scene = makeTriangle(h0, h1, vec3(2, 0, 0));
+  scene.append(makeTriangle(h1, h0, lean));
+  CutOptions options;
+  options.lights = {{.position = {-0.5f, 6.0f, 0.2f}, .name = "left"}, {.position = {4.0f, 3.0f, 0.1f}, .name = "right"}};
+  const CutResult r = cut::cut(scene, options);
+  const OracleResult o = shadowOracle(scene, r.mesh, options.lights, 512);
+  expectAgreement("shared-edge occluder", o);
+  EXPECT_LT(worstAreaError(scene, r.mesh), 1e-6);
+  const double shaded = shadowedAreaOf(r, 0, 0);
+  EXPECT_GT(shaded, 0.05);
+  EXPECT_LT(shaded, 2.0);
+  EXPECT_EQ(shadowedAreaOf(r, 0, 1), 0.0);
+  // The shared edge stays shared: two triangles, one edge between them, both sides agree.
+  const EdgeMap map = EdgeMap::build(triangulate(r.mesh).mesh);
+  EXPECT_EQ(map.count(EdgeKind::NonManifold), 0u);
+  EXPECT_EQ(map.count(EdgeKind::Inconsistent), 0u);
+  EXPECT_EQ(map.borderLoops(), 1u);
+}
+
+TEST(Cut, RandomTriangleSoupAgreesWithShadowRays) {
+  // Intersecting, touching and thin triangles at random, two lights.
+  Mesh scene = makeBox({-3, -1, -3}, {3, 0, 3});
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f), h(0.3f, 2.5f), s(0.05f, 0.8f);
+  for (int i = 0; i < 150; ++i) {
+    const vec3 c(u(rng), h(rng), u(rng));
+    scene.append(makeTriangle(c + vec3(s(rng), s(rng) - 0.4f, s(rng)), c - vec3(s(rng), s(rng) - 0.4f, 0.0f),
+                              c + vec3(0.0f, s(rng) - 0.4f, -s(rng))));
+  }
+  CutOptions options;
+  options.lights = {{.position = {0.3f, 6.0f, 0.2f}}, {.position = {-4.0f, 3.0f, 2.5f}}};
+  const CutResult r = cut::cut(scene, options);
+  const OracleResult o = shadowOracle(scene, r.mesh, options.lights, 32);
+  expectAgreement("random soup", o);
+  EXPECT_GT(o.samples, 50000u);
+  EXPECT_LT(worstAreaError(scene, r.mesh), 1e-6);
+}
+
+TEST(Cut, GridAlignedSceneStaysWatertight) {
+  // Axis-aligned boxes on a tessellated slab, lights at round coordinates: many vertices
+  // lie exactly on many planes, which only exact predicates classify consistently.
+  Mesh scene = makeBox({-4, -1, -4}, {4, 0, 4});
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      scene.append(makeBox({-3.0f + 1.5f * float(i), 0.0f, -3.0f + 1.5f * float(j)},
+                           {-2.0f + 1.5f * float(i), 0.5f + 0.25f * float(i + j), -2.0f + 1.5f * float(j)}));
+  CutOptions options;
+  options.lights = {{.position = {0.0f, 4.0f, 0.0f}}, {.position = {2.0f, 2.0f, -1.0f}}};
+  const CutResult r = cut::cut(scene, options);
+  expectClosed(scene, r.mesh);
+  EXPECT_LT(worstAreaError(scene, r.mesh), 1e-6);
+  const OracleResult o = shadowOracle(scene, r.mesh, options.lights, 64);
+  expectAgreement("grid-aligned boxes", o);
+  EXPECT_GT(r.stats.symbolicPredicates, 0u);
+}
+
+
+namespace {
+
+Mesh soup(int count, std::uint32_t seed) {
+  Mesh scene = makeBox({-3, -1, -3}, {3, 0, 3});
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f), h(0.3f, 2.5f), s(0.05f, 0.8f);
+  for (int i = 0; i < count; ++i) {
+    const vec3 c(u(rng), h(rng), u(rng));
+    scene.append(makeTriangle(c + vec3(s(rng), s(rng) - 0.4f, s(rng)), c - vec3(s(rng), s(rng) - 0.4f, 0.0f),
+                              c + vec3(0.0f, s(rng) - 0.4f, -s(rng))));
+  }
+  scene.append(makeMachineRoom({.modules = 1}));
+  return scene;
+}
+
+void expectSame(const CutMesh& a, const CutMesh& b) {
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.precisePositions, b.precisePositions);
+  EXPECT_EQ(a.polygonStart, b.polygonStart);
+  EXPECT_EQ(a.corners, b.corners);
+  EXPECT_EQ(a.straight, b.straight);
+  EXPECT_EQ(a.polygonSource, b.polygonSource);
+  EXPECT_EQ(a.polygonMask, b.polygonMask);
+}
+
+}  // namespace
+
+TEST(Cut, OutputDoesNotDependOnThreads) {
+  const Mesh scene = soup(300, 11);
+  CutOptions options;
+  options.lights = {{.position = {0.3f, 9.0f, 0.2f}}, {.position = {-5.0f, 4.0f, 3.5f}}};
+  CutResult one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = cut::cut(scene, options);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = cut::cut(scene, options);
+  }
+  ASSERT_GT(one.mesh.polygonCount(), scene.triangleCount());
+  expectSame(one.mesh, two.mesh);
+}
+
+TEST(Cut, ShardsMergeIntoTheSameMesh) {
+  const Mesh scene = soup(120, 5);
+  CutOptions options;
+  options.lights = {{.position = {0.3f, 9.0f, 0.2f}, .name = "key"}};
+  const CutResult whole = cut::cut(scene, options);
+  const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "cut-shards";
+  std::filesystem::create_directories(dir);
+  std::vector<Shard> shards;
+  for (int i = 2; i >= 0; --i) {  // any order
+    options.shardIndex = i;
+    options.shardCount = 3;
+    saveShard(cutShard(scene, options), dir / fmt::format("part{}.shard", i));
+    shards.push_back(loadShard(dir / fmt::format("part{}.shard", i)));
+  }
+  const CutResult merged = mergeShards(scene, shards);
+  expectSame(whole.mesh, merged.mesh);
+  // A missing shard, a shard twice, another scene: one-line errors.
+  EXPECT_THROW(mergeShards(scene, {shards[0], shards[1]}), Error);
+  EXPECT_THROW(mergeShards(scene, {shards[0], shards[1], shards[1]}), Error);
+  EXPECT_THROW(mergeShards(soup(121, 5), shards), Error);
+  std::filesystem::resize_file(dir / "part1.shard", 100);
+  EXPECT_THROW(loadShard(dir / "part1.shard"), Error);
+}
+
+TEST(Cut, DegenerateInputIsCarriedThroughWithWarnings) {
+  Mesh scene = makeBox({-2, -1, -2}, {2, 0, 2});
+  scene.append(makeBox({-0.5f, 1, -0.5f}, {0.5f, 2, 0.5f}));
+  scene.append(makeTriangle({0, 0.5f, 0}, {1, 0.5f, 0}, {2, 0.5f, 0}));        // collinear: zero area
+  scene.append(makeTriangle({0, 0.7f, 0}, {0, 0.7f, 0}, {1, 0.7f, 1}));        // two corners at one point
+  scene.append(makeTriangle({-1, 0.6f, 1}, {1, 0.6f, 1}, {1, 0.6f, 1.000001f}));  // a sliver, 1e-6 wide
+  CutOptions options;
+  options.lights = {{.position = {0.1f, 5.0f, 0.2f}}};
+  const CutResult r = cut::cut(scene, options);
+  EXPECT_EQ(r.stats.degenerateTriangles, 1u);
+  EXPECT_EQ(r.stats.collapsedTriangles, 1u);
+  ASSERT_GE(r.warnings.size(), 2u);
+  // The zero-area triangle is kept, unlit; the collapsed one dropped.
+  bool found = false;
+  for (std::size_t p = 0; p < r.mesh.polygonCount(); ++p) {
+    EXPECT_NE(r.mesh.polygonSource[p], 25u);
+    if (r.mesh.polygonSource[p] == 24) {
+      found = true;
+      EXPECT_EQ(r.mesh.polygonMask[p], 0u);
+    }
+  }
+  EXPECT_TRUE(found);
+  const OracleResult o = shadowOracle(scene, r.mesh, options.lights, 64);
+  expectAgreement("degenerate input", o);
+  expectClosed(scene, r.mesh);
+}
+
+TEST(Cut, BadInputIsAOneLineError) {
+  CutOptions options;
+  options.lights = {{.position = {0, 5, 0}}};
+  EXPECT_THROW(cut::cut(Mesh{}, options), Error);
+  Mesh nan = makeBox({-1, -1, -1}, {1, 1, 1});
+  nan.positions[3].y = std::numeric_limits<float>::quiet_NaN();
+  try {
+    cut::cut(nan, options);
+    FAIL() << "NaN accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Input);
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
+  CutOptions none;
+  EXPECT_THROW(cut::cut(makeBox({-1, -1, -1}, {1, 1, 1}), none), Error);
+  CutOptions far;
+  far.lights = {{.position = {std::numeric_limits<float>::infinity(), 0, 0}}};
+  EXPECT_THROW(cut::cut(makeBox({-1, -1, -1}, {1, 1, 1}), far), Error);
+}
+
+TEST(Cut, LightsInOddPlacesWarn) {
+  const Mesh scene = boxOverFloor();
+  CutOptions options;
+  // On the floor's top face; inside the floating box.
+  options.lights = {{.position = {2.0f, 0.0f, 1.0f}, .name = "onfloor"}, {.position = {0.1f, 1.5f, 0.2f}, .name = "inbox"}};
+  const CutResult r = cut::cut(scene, options);
+  std::string all;
+  for (const auto& w : r.warnings) all += w + "\n";
+  EXPECT_NE(all.find("'onfloor' lies on a surface"), std::string::npos) << all;
+  EXPECT_NE(all.find("'inbox' is inside a closed mesh"), std::string::npos) << all;
+  // Inside the box, only the box's inside is lit.
+  EXPECT_EQ(r.stats.lights[1].litArea, 6.0) << "the box's six faces, from inside";
+  const OracleResult o = shadowOracle(scene, r.mesh, options.lights, 64);
+  expectAgreement("odd lights", o);
+  EXPECT_GT(r.stats.lights[0].grazingTriangles, 0u);
+}
+
+TEST(Cut, MachineRoomAgreesWithShadowRaysAndStaysClosed) {
+  // The bench's Pipe Dream stand-in at one module (~10k triangles), its two lights.
+  const MachineRoomOptions room{.modules = 1};
+  const Mesh scene = makeMachineRoom(room);
+  const auto l = machineRoomLights(room);
+  CutOptions options;
+  options.lights = {{.position = l[0], .name = "key"}, {.position = l[1], .name = "fill"}};
+  const CutResult r = cut::cut(scene, options);
+  expectAgreement("machine room, 1 module", shadowOracle(scene, r.mesh, options.lights, 8));
+  const double areaError = worstAreaError(scene, r.mesh);
+  std::printf("[ area     ] machine room, 1 module: worst relative area error per input triangle %.3g\n", areaError);
+  EXPECT_LT(areaError, 1e-6);
+  expectClosed(scene, r.mesh);
+  EXPECT_EQ(r.stats.droppedSlivers, 0u);
+}
+
+TEST(Cut, MachineRoomPartsAreClosedOutwardSolids) {
+  const Mesh one = makeMachineRoom({.modules = 1}), four = makeMachineRoom({.modules = 4});
+  // Each module adds the same parts; the floor and walls grow with the stage.
+  EXPECT_EQ(machineRoomModulesFor(550000), 63);
+  const std::vector<std::uint32_t> label = surfaces(four);
+  std::map<std::uint32_t, std::vector<std::uint32_t>> parts;
+  for (std::uint32_t t = 0; t < label.size(); ++t) parts[label[t]].push_back(t);
+  int closed = 0, open = 0;
+  for (const auto& [root, triangles] : parts) {
+    Mesh part;
+    part.positions = four.positions;
+    double volume = 0.0;
+    for (std::uint32_t t : triangles) {
+      const std::uint32_t a = four.indices[3 * t], b = four.indices[3 * t + 1], c = four.indices[3 * t + 2];
+      part.indices.insert(part.indices.end(), {a, b, c});
+      volume += glm::dot(dvec3(four.positions[a]), glm::cross(dvec3(four.positions[b]), dvec3(four.positions[c]))) / 6.0;
+    }
+    if (EdgeMap::build(part).isClosedManifold()) {
+      ++closed;
+      EXPECT_GT(volume, 0.0) << "part of triangle " << root << " faces inwards";
+    } else {
+      ++open;
+    }
+  }
+  EXPECT_EQ(open, 1);  // the floor and two walls, joined along their shared edges
+  EXPECT_EQ(closed, 4 * (1 + 3 + 6 + 2 + 4));  // platform, drums, upright pipes, pipes, struts
+  EXPECT_GT(one.triangleCount(), 9000u);
+}
