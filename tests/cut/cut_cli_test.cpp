@@ -193,8 +193,10 @@ TEST(CutCli, CtrlCLeavesNoPartialFile) {
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
-    execl(GLINT_EXE, GLINT_EXE, "-q", "cut", inPath.c_str(), "-o", glb.c_str(), "--light", "-1,20,2", "--json",
-          json.c_str(), static_cast<char*>(nullptr));
+    // Four lights: the cut takes several seconds even on a quiet machine, so the signal
+    // below always arrives while it is loading or cutting.
+    execl(GLINT_EXE, GLINT_EXE, "-q", "cut", inPath.c_str(), "-o", glb.c_str(), "--light", "-1,20,2", "--light",
+          "6,18,-3", "--light", "-8,15,5", "--light", "3,22,9", "--json", json.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(2500));  // loaded, cutting
