@@ -223,14 +223,17 @@ Image channelImage(const Context& ctx, int first, int count, bool flipRows, cons
   const int W = ctx.options.width, H = ctx.options.height;
   Image image(W, H, count, PixelType::F32);
   auto px = image.pixels<float>();
-  for (int y = 0; y < H; ++y) {
-    const int row = flipRows ? H - 1 - y : y;  // texels are stored v-up, images top-down
-    for (int x = 0; x < W; ++x) {
-      const float* in = &ctx.texels[(std::size_t(y) * std::size_t(W) + std::size_t(x)) * std::size_t(ctx.channels)];
-      float* out = &px[(std::size_t(row) * std::size_t(W) + std::size_t(x)) * std::size_t(count)];
-      transform(in + first, out, ctx.covered[std::size_t(y) * std::size_t(W) + std::size_t(x)] != 0);
+  // In parallel bands of rows: this runs after the trace, on the critical path.
+  tbb::parallel_for(tbb::blocked_range<int>(0, H, 32), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y != rows.end(); ++y) {
+      const int row = flipRows ? H - 1 - y : y;  // texels are stored v-up, images top-down
+      for (int x = 0; x < W; ++x) {
+        const float* in = &ctx.texels[(std::size_t(y) * std::size_t(W) + std::size_t(x)) * std::size_t(ctx.channels)];
+        float* out = &px[(std::size_t(row) * std::size_t(W) + std::size_t(x)) * std::size_t(count)];
+        transform(in + first, out, ctx.covered[std::size_t(y) * std::size_t(W) + std::size_t(x)] != 0);
+      }
     }
-  }
+  });
   return image;
 }
 
@@ -241,14 +244,24 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   BakeStats& stats = result.stats;
   auto start = Clock::now();
   detail::Prepared in = detail::prepareInputs(low, high, options, stats, result.warnings);
+  const double checkSeconds = secondsSince(start);  // (these split the phases in the debug log)
   // Not robust (watertight) traversal: ~15 % faster; the rare ray that slips through a
-  // shared vertex is retried (trace.cpp). Medium build quality: a bake's short rays along
-  // the low poly's normals trace no faster through Embree's high-quality (spatial split)
-  // BVH — 4.26 M rays of a 2048² bake took 0.33 s either way — while it builds 4× slower
-  // (1 M triangles: 0.94 s against 0.22 s on two cores).
-  const raytrace::Scene scene(*in.high, {.quality = raytrace::SceneOptions::Quality::Default});
+  // shared vertex is retried (trace.cpp). Never Embree's high-quality (spatial split) BVH:
+  // a bake's short rays along the low poly's normals trace no faster through it — 4.26 M
+  // rays of a 2048² bake took 0.33 s either way — while it builds 4× slower (1 M
+  // triangles: 0.94 s against 0.22 s on two cores). The low-quality (Morton) build is
+  // 2–3× quicker again than the medium one (262k triangles: 0.03 s against 0.06–0.08 s;
+  // 1 M: 0.15 s against 0.30–0.45 s) and its rays cost the same up to tens of rays per
+  // triangle; at 150 (2048², 36 per texel, 1 M triangles) they took 4–8 % longer, more
+  // than the build saves: medium from 64 rays per triangle on.
+  const double expectedRays = double(options.width) * double(options.height) * double(options.samples) *
+                              (options.ambientOcclusion ? 1.0 + double(options.aoSamples) : 1.0);
+  const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
+  const raytrace::Scene scene(*in.high, {.quality = fewRays ? raytrace::SceneOptions::Quality::Fast
+                                                            : raytrace::SceneOptions::Quality::Default});
   stats.bvhBytes = scene.memoryBytes();
   stats.prepareSeconds = secondsSince(start);
+  const auto setupStart = Clock::now();
 
   Context ctx{options, in, scene};
   const int W = options.width, H = options.height;
@@ -261,9 +274,15 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   ctx.aoDistance = options.aoDistance.resolve(in.diagonal);
   ctx.epsilon = 1e-5f * std::max(in.diagonal, scene.bounds().diagonal());
   ctx.worldNormalMatrix = glm::transpose(glm::inverse(mat3(options.objectToWorld)));
-  ctx.highCornerNormals.resize(in.high->triangleCount());
-  for (std::size_t t = 0; t < ctx.highCornerNormals.size(); ++t) {
-    for (std::size_t k = 0; k < 3; ++k) ctx.highCornerNormals[t][k] = in.high->normals[in.high->indices[3 * t + k]];
+  const std::vector<std::uint32_t>& highIndices = in.high->indices;
+  bool identity = in.high->normals.size() == highIndices.size();
+  for (std::size_t i = 0; identity && i < highIndices.size(); ++i) identity = highIndices[i] == i;
+  if (identity) {
+    ctx.highCornerNormals = in.high->normals.data();  // already corner by corner: no 9 MB copy per million triangles
+  } else {
+    ctx.highCornerNormalCopy.resize(highIndices.size());
+    for (std::size_t i = 0; i < highIndices.size(); ++i) ctx.highCornerNormalCopy[i] = in.high->normals[highIndices[i]];
+    ctx.highCornerNormals = ctx.highCornerNormalCopy.data();
   }
   ctx.lowCorners.resize(in.low.triangleCount());
   for (std::size_t t = 0; t < ctx.lowCorners.size(); ++t) {
@@ -286,6 +305,7 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   ctx.texels.assign(std::size_t(stats.texels) * std::size_t(ctx.channels), 0.0f);
   ctx.covered.assign(std::size_t(stats.texels), 0);
 
+  const double setupSeconds = secondsSince(setupStart);
   // Triangles in texel space, binned into tiles (in id order, so bins are sorted).
   start = Clock::now();
   const double cpuStart = processCpuSeconds();
@@ -370,6 +390,7 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
                                 {.passes = options.fillAll ? -1 : options.padding, .unitVectorChannels = 3});
   }
   stats.dilateSeconds = secondsSince(start);
+  const auto imagesStart = Clock::now();
   const vec3 background = options.space == NormalSpace::Tangent ? vec3(0.0f, 0.0f, 1.0f) : vec3(0.0f);
   std::vector<std::uint8_t> islands = ctx.covered;
   ctx.covered = filled;
@@ -391,13 +412,19 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   }
   result.coverage = Image(W, H, 1, PixelType::U8);
   auto cov = result.coverage.pixels<std::uint8_t>();
-  for (int y = 0; y < H; ++y) {
-    for (int x = 0; x < W; ++x) {
-      const std::size_t i = std::size_t(y) * std::size_t(W) + std::size_t(x);
-      cov[std::size_t(H - 1 - y) * std::size_t(W) + std::size_t(x)] = islands[i] ? 255 : filled[i] ? 128 : 0;
+  tbb::parallel_for(tbb::blocked_range<int>(0, H, 64), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y != rows.end(); ++y) {
+      for (int x = 0; x < W; ++x) {
+        const std::size_t i = std::size_t(y) * std::size_t(W) + std::size_t(x);
+        cov[std::size_t(H - 1 - y) * std::size_t(W) + std::size_t(x)] = islands[i] ? 255 : filled[i] ? 128 : 0;
+      }
     }
-  }
+  });
   result.low = std::move(in.low);
+  log::debug("bake: checks and tangents {:.0f} ms, BVH {:.0f} ms ({} quality), setup {:.0f} ms, trace {:.0f} ms, "
+             "dilate {:.0f} ms, images {:.0f} ms", 1e3 * checkSeconds, 1e3 * (stats.prepareSeconds - checkSeconds),
+             fewRays ? "low" : "medium", 1e3 * setupSeconds, 1e3 * stats.traceSeconds, 1e3 * stats.dilateSeconds,
+             1e3 * secondsSince(imagesStart));
   return result;
 }
 

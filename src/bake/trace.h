@@ -46,9 +46,13 @@ struct Context {
   int aoChannel = -1, heightChannel = -1, missChannel = -1;
   std::vector<float> texels;          ///< width × height × channels, row 0 = bottom (v = 0)
   std::vector<std::uint8_t> covered;  ///< per texel
-  /// The high poly's three corner normals per triangle, side by side: one cache line per
-  /// hit instead of four scattered reads (indices, then three normals) on million-triangle meshes.
-  std::vector<std::array<vec3, 3>> highCornerNormals;
+  /// The high poly's three corner normals per triangle, side by side (corner k of triangle
+  /// t at [3t + k]): one cache line per hit instead of four scattered reads (indices, then
+  /// three normals) on million-triangle meshes. Points into the mesh's own normals when its
+  /// indices are 0, 1, 2, ... (a mesh loaded without joining vertices, as `glint bake`
+  /// loads the high poly), else into highCornerNormalCopy.
+  const vec3* highCornerNormals = nullptr;
+  std::vector<vec3> highCornerNormalCopy;
   /// The low poly's corners per triangle, side by side, for the same reason; as 4-float
   /// vectors (position xyz0, normal xyz0, tangent xyzw) so interpolating one attribute is
   /// three vector multiply-adds.
