@@ -19,6 +19,7 @@
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <sys/resource.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -31,6 +32,7 @@
 #include <ctime>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <unistd.h>
 
 namespace glint::bench {
@@ -101,20 +103,18 @@ bool blenderAvailable() { return std::system("command -v blender >/dev/null 2>&1
 
 fs::path self() { return fs::read_symlink("/proc/self/exe"); }
 
-/// One number from `glint bake --json`'s "seconds" object, or NaN.
-double jsonSeconds(const std::string& json, const std::string& key) {
-  const std::size_t at = json.find("\"" + key + "\": ", json.find("\"seconds\""));
-  return at == std::string::npos ? std::nan("") : std::atof(json.c_str() + at + key.size() + 4);
+/// The "seconds" object of a `glint bake --json` report (null when the file is missing or
+/// not JSON: the phases then read as NaN).
+nlohmann::json reportSeconds(const fs::path& path) {
+  std::ifstream in(path);
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  return report.is_object() && report.contains("seconds") ? report["seconds"] : nlohmann::json();
 }
 
-std::string readText(const fs::path& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return {};
-  std::string text;
-  char buffer[4096];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) text.append(buffer, n);
-  std::fclose(f);
-  return text;
+/// One phase of such an object, or NaN.
+double phaseSeconds(const nlohmann::json& seconds, const char* phase) {
+  return seconds.is_object() && seconds.contains(phase) && seconds[phase].is_number() ? seconds[phase].get<double>()
+                                                                                       : std::nan("");
 }
 
 /// (a) the whole run, both tools from the same OBJ files, runs alternating.
@@ -135,10 +135,10 @@ void versusBlender(Recorder& r, const fs::path& dir) {
     glintRuns.push_back(timeCommand(fmt::format("{} bake {} -o {} --json {}", shellQuote(self()), args,
                                                 shellQuote(dir / "glint.png"), shellQuote(dir / "glint.json"))));
     if (glintRuns.back() < 0) fail(ErrorKind::Internal, "bench bake: `glint bake` failed");
-    const std::string json = readText(dir / "glint.json");
-    load.push_back(jsonSeconds(json, "load"));
-    bake.push_back(jsonSeconds(json, "prepare") + jsonSeconds(json, "trace") + jsonSeconds(json, "dilate"));
-    write.push_back(jsonSeconds(json, "write"));
+    const nlohmann::json seconds = reportSeconds(dir / "glint.json");
+    load.push_back(phaseSeconds(seconds, "load"));
+    bake.push_back(phaseSeconds(seconds, "prepare") + phaseSeconds(seconds, "trace") + phaseSeconds(seconds, "dilate"));
+    write.push_back(phaseSeconds(seconds, "write"));
     if (blender && !blenderFailed && i < kPeerRepeats) {
       blenderRuns.push_back(timeCommand(fmt::format("blender -b --factory-startup --python {} -- {} {} {} 1024 1 0.06 >/dev/null 2>&1",
                                                     shellQuote(script), shellQuote(dir / "low.obj"),
