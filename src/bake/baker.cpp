@@ -257,8 +257,10 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   const double expectedRays = double(options.width) * double(options.height) * double(options.samples) *
                               (options.ambientOcclusion ? 1.0 + double(options.aoSamples) : 1.0);
   const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
+  // The high poly is read in place (it outlives the scene): no copy of its vertices.
   const raytrace::Scene scene(*in.high, {.quality = fewRays ? raytrace::SceneOptions::Quality::Fast
-                                                            : raytrace::SceneOptions::Quality::Default});
+                                                            : raytrace::SceneOptions::Quality::Default,
+                                         .shareMeshes = true});
   stats.bvhBytes = scene.memoryBytes();
   stats.prepareSeconds = secondsSince(start);
   const auto setupStart = Clock::now();

@@ -483,7 +483,7 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   // One vertex per corner for the whole file, in file order (what Assimp's OBJ reader makes).
   PolyMesh all;
   all.perCorner = true;
-  all.positions.resize(cornerCount);
+  resizePositions(all.positions, cornerCount);
   all.corners.resize(cornerCount);
   all.faceStart.resize(faceCount + 1);
   std::vector<std::uint8_t> flags(faceCount);
