@@ -153,9 +153,10 @@ void versusBlender(Recorder& r, const fs::path& dir) {
   const double loadS = median(load), bakeS = median(bake), writeS = median(write);
   r.record({.group = group, .name = "  load (both meshes)", .value = loadS, .unit = "s",
             .note = fmt::format("{:.1f} MB of OBJ; medians of the runs' --json phases", double(fs::file_size(dir / "high.obj") + fs::file_size(dir / "low.obj")) / 1e6)});
-  r.record({.group = group, .name = "  trace (BVH + rays + dilate)", .value = bakeS, .unit = "s"});
+  r.record({.group = group, .name = "  bake (prepare + trace + dilate)", .value = bakeS, .unit = "s",
+            .note = "all of bake::bake(): checks, tangents, BVH, rays, dilation, images"});
   r.record({.group = group, .name = "  write (PNG)", .value = writeS, .unit = "s"});
-  r.record({.group = group, .name = "  load + write vs trace (target < 1)", .value = (loadS + writeS) / bakeS, .unit = "×"});
+  r.record({.group = group, .name = "  load + write vs bake (target < 1)", .value = (loadS + writeS) / bakeS, .unit = "×"});
   if (!blender) {
     r.record({.group = group, .name = "blender cycles", .value = std::nan(""), .unit = "s",
               .note = "peer unavailable: `blender` is not installed (apt install blender)"});

@@ -392,9 +392,16 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
       }
     };
     // Lines end at LF, CR LF or a lone CR (as tinyobjloader reads them); memchr finds them.
+    // Most files have no CR at all: one look over the chunk spares a search per line.
+    const bool anyCr = std::memchr(c.begin, '\r', std::size_t(c.end - c.begin)) != nullptr;
     for (const char* p = c.begin; p < c.end;) {
       const void* found = std::memchr(p, '\n', std::size_t(c.end - p));
       const char* lf = found ? static_cast<const char*>(found) : c.end;
+      if (!anyCr) {
+        count(p, lf);
+        p = lf + 1;
+        continue;
+      }
       for (const char* q = p;;) {
         const void* cr = std::memchr(q, '\r', std::size_t(lf - q));
         if (!cr) {

@@ -124,10 +124,11 @@ struct BakeStats {
   std::size_t addedVertices = 0;        ///< vertices split by tangent generation
   float frontDistance = 0, rearDistance = 0, aoDistance = 0;  ///< resolved, scene units
   std::size_t bvhBytes = 0;             ///< Embree memory for the high poly
-  double prepareSeconds = 0;            ///< tangents, BVH build
+  // The three phases add up to the whole of bake():
+  double prepareSeconds = 0;            ///< checks, tangents, BVH build, per-triangle tables
   double traceSeconds = 0;              ///< rasterizing samples and casting rays (wall clock)
   double traceCpuSeconds = 0;           ///< the same phase in process CPU time (all threads)
-  double dilateSeconds = 0;
+  double dilateSeconds = 0;             ///< dilation and the maps as images
   double hitRatio() const { return samples ? double(hits) / double(samples) : 0.0; }
 };
 
