@@ -219,19 +219,28 @@ void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<r
   tileCounters = counters;
 }
 
-Image channelImage(const Context& ctx, int first, int count, bool flipRows, const auto& transform) {
+/// Channels [first, first + count) of the texels as an image of `type` (row 0 on top when
+/// flipRows): `transform` writes a pixel's floats, integer types are quantized row by row.
+Image channelImage(const Context& ctx, int first, int count, bool flipRows, PixelType type, const auto& transform) {
   const int W = ctx.options.width, H = ctx.options.height;
-  Image image(W, H, count, PixelType::F32);
-  auto px = image.pixels<float>();
+  Image image(W, H, count, type);
+  const std::size_t rowValues = std::size_t(W) * std::size_t(count);
+  const std::span<float> floats = type == PixelType::F32 ? image.pixels<float>() : std::span<float>();
+  const std::span<std::uint8_t> bytes = type == PixelType::U8 ? image.pixels<std::uint8_t>() : std::span<std::uint8_t>();
+  const std::span<std::uint16_t> words = type == PixelType::U16 ? image.pixels<std::uint16_t>() : std::span<std::uint16_t>();
   // In parallel bands of rows: this runs after the trace, on the critical path.
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 32), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<float> scratch(type == PixelType::F32 ? 0 : rowValues);
     for (int y = rows.begin(); y != rows.end(); ++y) {
-      const int row = flipRows ? H - 1 - y : y;  // texels are stored v-up, images top-down
+      const std::size_t row = std::size_t(flipRows ? H - 1 - y : y);  // texels are stored v-up, images top-down
+      float* out = type == PixelType::F32 ? &floats[row * rowValues] : scratch.data();
       for (int x = 0; x < W; ++x) {
-        const float* in = &ctx.texels[(std::size_t(y) * std::size_t(W) + std::size_t(x)) * std::size_t(ctx.channels)];
-        float* out = &px[(std::size_t(row) * std::size_t(W) + std::size_t(x)) * std::size_t(count)];
-        transform(in + first, out, ctx.covered[std::size_t(y) * std::size_t(W) + std::size_t(x)] != 0);
+        const std::size_t texel = std::size_t(y) * std::size_t(W) + std::size_t(x);
+        transform(&ctx.texels[texel * std::size_t(ctx.channels) + std::size_t(first)], out + std::size_t(x * count),
+                  ctx.covered[texel] != 0);
       }
+      if (type == PixelType::U8) quantize(scratch, bytes.subspan(row * rowValues, rowValues));
+      if (type == PixelType::U16) quantize(scratch, words.subspan(row * rowValues, rowValues));
     }
   });
   return image;
@@ -397,21 +406,21 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   const vec3 background = options.space == NormalSpace::Tangent ? vec3(0.0f, 0.0f, 1.0f) : vec3(0.0f);
   std::vector<std::uint8_t> islands = ctx.covered;
   ctx.covered = filled;
-  result.normal = channelImage(ctx, 0, 3, true, [&](const float* in, float* out, bool has) {
+  result.normal = channelImage(ctx, 0, 3, true, options.normalType, [&](const float* in, float* out, bool has) {
     const vec3 rgb = has ? encodeNormal(vec3(in[0], in[1], in[2]), options.directX) : background * 0.5f + 0.5f;
     out[0] = rgb.x;
     out[1] = rgb.y;
     out[2] = rgb.z;
   });
   if (ctx.aoChannel >= 0) {
-    result.ao = channelImage(ctx, ctx.aoChannel, 1, true, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 1.0f; });
+    result.ao = channelImage(ctx, ctx.aoChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 1.0f; });
   }
   if (ctx.heightChannel >= 0) {
-    result.height = channelImage(ctx, ctx.heightChannel, 1, true, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
+    result.height = channelImage(ctx, ctx.heightChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
   }
   ctx.covered = islands;
   if (ctx.missChannel >= 0) {
-    result.missMask = channelImage(ctx, ctx.missChannel, 1, true, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
+    result.missMask = channelImage(ctx, ctx.missChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
   }
   result.coverage = Image(W, H, 1, PixelType::U8);
   auto cov = result.coverage.pixels<std::uint8_t>();

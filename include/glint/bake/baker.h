@@ -98,6 +98,9 @@ struct BakeOptions {
   Distance aoDistance{0.1f, true};///< AO ray length
   bool heightMap = false;         ///< also bake the signed ray distance (+ outside the low poly)
   bool missMask = false;          ///< also output the fraction of samples whose rays missed
+  /// Pixel type of BakeResult::normal: F32, or U8/U16 quantized as Image::converted does —
+  /// what an integer file holds, without a float copy of the map on the way.
+  PixelType normalType = PixelType::F32;
 
   bool progress = true;           ///< draw a progress bar (only on a terminal, see core/progress.h)
   /// Polled between tiles; when it becomes true bake() throws Error(Interrupted).
@@ -133,7 +136,8 @@ struct BakeStats {
 };
 
 struct BakeResult {
-  Image normal;     ///< RGB F32, encoded 0..1 (encodeNormal, image/normalmap.h), green flipped if directX
+  Image normal;     ///< RGB encoded 0..1 (encodeNormal, image/normalmap.h), green flipped if directX; F32
+                    ///< unless BakeOptions::normalType says otherwise
   Image ao;         ///< R F32 0..1 (1 = unoccluded), when asked
   Image height;     ///< R F32 signed distance in scene units, when asked
   Image missMask;   ///< R F32 0..1 fraction of missed samples, when asked (not dilated)
