@@ -313,7 +313,9 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   if (options.heightMap) ctx.heightChannel = ctx.channels++;
   if (options.missMask) ctx.missChannel = ctx.channels++;
   stats.texels = std::uint64_t(W) * std::uint64_t(H);
-  ctx.texels.assign(std::size_t(stats.texels) * std::size_t(ctx.channels), 0.0f);
+  const std::size_t texelValues = std::size_t(stats.texels) * std::size_t(ctx.channels);
+  ctx.texelStorage = std::make_unique_for_overwrite<float[]>(texelValues);
+  ctx.texels = std::span<float>(ctx.texelStorage.get(), texelValues);
   ctx.covered.assign(std::size_t(stats.texels), 0);
 
   const double setupSeconds = secondsSince(setupStart);

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -44,7 +45,11 @@ struct Context {
   mat3 worldNormalMatrix{1.0f};
   int channels = 3;  ///< normal (3) [+ ao] [+ height] [+ miss]
   int aoChannel = -1, heightChannel = -1, missChannel = -1;
-  std::vector<float> texels;          ///< width × height × channels, row 0 = bottom (v = 0)
+  /// width × height × channels, row 0 = bottom (v = 0). Left uninitialized: a texel is only
+  /// read once covered is set for it (the bake or the dilation wrote it), and zeroing 12 MB
+  /// on one thread before the bake cost more than the workers touching the pages themselves.
+  std::unique_ptr<float[]> texelStorage;
+  std::span<float> texels;
   std::vector<std::uint8_t> covered;  ///< per texel
   /// The high poly's three corner normals per triangle, side by side (corner k of triangle
   /// t at [3t + k]): one cache line per hit instead of four scattered reads (indices, then
