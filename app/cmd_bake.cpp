@@ -258,6 +258,7 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     report["max_rear"] = s.rearDistance;
     report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays) / s.traceSeconds : 0.0;
     report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
+    report["bvh_quality"] = s.lowQualityBvh ? "low" : "medium";
     for (const auto& w : result.warnings) run.recordWarning(w);
     run.finish();
     return 0;

@@ -271,6 +271,7 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
                                                             : raytrace::SceneOptions::Quality::Default,
                                          .shareMeshes = true});
   stats.bvhBytes = scene.memoryBytes();
+  stats.lowQualityBvh = fewRays;
   const double bvhSeconds = secondsSince(start) - checkSeconds;
   const auto setupStart = Clock::now();
 

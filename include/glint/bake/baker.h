@@ -127,6 +127,7 @@ struct BakeStats {
   std::size_t addedVertices = 0;        ///< vertices split by tangent generation
   float frontDistance = 0, rearDistance = 0, aoDistance = 0;  ///< resolved, scene units
   std::size_t bvhBytes = 0;             ///< Embree memory for the high poly
+  bool lowQualityBvh = false;           ///< BVH built at Embree's low quality (few rays per triangle), else medium
   // The three phases add up to the whole of bake():
   double prepareSeconds = 0;            ///< checks, tangents, BVH build, per-triangle tables
   double traceSeconds = 0;              ///< rasterizing samples and casting rays (wall clock)
