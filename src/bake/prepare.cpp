@@ -16,7 +16,7 @@ namespace {
 
 template <typename V>
 void checkFinite(const std::vector<V>& values, const char* mesh, const char* what) {
-  // One pass without exits first (it vectorizes; |x| ≤ FLT_MAX fails for inf and NaN),
+  // One branch-free pass first (|x| ≤ FLT_MAX fails for inf and NaN),
   // the offender is looked for only when there is one.
   bool finite = true;
   for (const V& v : values) {
