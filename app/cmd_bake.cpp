@@ -170,6 +170,7 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     options.cancel = &run.cancelFlag();
     bake::validateOptions(options);
     const PixelType normalType = bake::outputType(a->output, a->bits);
+    options.normalType = normalType;  // quantized by the baker: no float copy of the map
     std::vector<std::string> outputs{a->output};
     for (const std::string* extra : {&a->ao, &a->height, &a->missMask}) {
       if (extra->empty()) continue;
@@ -220,7 +221,7 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     run.addSeconds("dilate", s.dilateSeconds);
 
     std::optional<ToolRun::Phase> writing(std::in_place, run, "write");
-    saveImage(bake::forOutput(result.normal, normalType), a->output);
+    saveImage(result.normal, a->output);
     if (!a->ao.empty()) saveImage(bake::forOutput(result.ao, bake::outputType(a->ao, a->bits)), a->ao);
     if (!a->height.empty()) {
       const float range = std::max(result.stats.frontDistance, result.stats.rearDistance);
@@ -257,6 +258,7 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     report["max_rear"] = s.rearDistance;
     report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays) / s.traceSeconds : 0.0;
     report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
+    report["bvh_quality"] = s.lowQualityBvh ? "low" : "medium";
     for (const auto& w : result.warnings) run.recordWarning(w);
     run.finish();
     return 0;

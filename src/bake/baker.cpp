@@ -219,18 +219,30 @@ void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<r
   tileCounters = counters;
 }
 
-Image channelImage(const Context& ctx, int first, int count, bool flipRows, const auto& transform) {
+/// Channels [first, first + count) of the texels as an image of `type` (row 0 on top when
+/// flipRows): `transform` writes a pixel's floats, integer types are quantized row by row.
+Image channelImage(const Context& ctx, int first, int count, bool flipRows, PixelType type, const auto& transform) {
   const int W = ctx.options.width, H = ctx.options.height;
-  Image image(W, H, count, PixelType::F32);
-  auto px = image.pixels<float>();
-  for (int y = 0; y < H; ++y) {
-    const int row = flipRows ? H - 1 - y : y;  // texels are stored v-up, images top-down
-    for (int x = 0; x < W; ++x) {
-      const float* in = &ctx.texels[(std::size_t(y) * std::size_t(W) + std::size_t(x)) * std::size_t(ctx.channels)];
-      float* out = &px[(std::size_t(row) * std::size_t(W) + std::size_t(x)) * std::size_t(count)];
-      transform(in + first, out, ctx.covered[std::size_t(y) * std::size_t(W) + std::size_t(x)] != 0);
+  Image image(W, H, count, type);
+  const std::size_t rowValues = std::size_t(W) * std::size_t(count);
+  const std::span<float> floats = type == PixelType::F32 ? image.pixels<float>() : std::span<float>();
+  const std::span<std::uint8_t> bytes = type == PixelType::U8 ? image.pixels<std::uint8_t>() : std::span<std::uint8_t>();
+  const std::span<std::uint16_t> words = type == PixelType::U16 ? image.pixels<std::uint16_t>() : std::span<std::uint16_t>();
+  // In parallel bands of rows: this runs after the trace, on the critical path.
+  tbb::parallel_for(tbb::blocked_range<int>(0, H, 32), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<float> scratch(type == PixelType::F32 ? 0 : rowValues);
+    for (int y = rows.begin(); y != rows.end(); ++y) {
+      const std::size_t row = std::size_t(flipRows ? H - 1 - y : y);  // texels are stored v-up, images top-down
+      float* out = type == PixelType::F32 ? &floats[row * rowValues] : scratch.data();
+      for (int x = 0; x < W; ++x) {
+        const std::size_t texel = std::size_t(y) * std::size_t(W) + std::size_t(x);
+        transform(&ctx.texels[texel * std::size_t(ctx.channels) + std::size_t(first)], out + std::size_t(x * count),
+                  ctx.covered[texel] != 0);
+      }
+      if (type == PixelType::U8) quantize(scratch, bytes.subspan(row * rowValues, rowValues));
+      if (type == PixelType::U16) quantize(scratch, words.subspan(row * rowValues, rowValues));
     }
-  }
+  });
   return image;
 }
 
@@ -241,14 +253,27 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   BakeStats& stats = result.stats;
   auto start = Clock::now();
   detail::Prepared in = detail::prepareInputs(low, high, options, stats, result.warnings);
+  const double checkSeconds = secondsSince(start);  // (these split the phases in the debug log)
   // Not robust (watertight) traversal: ~15 % faster; the rare ray that slips through a
-  // shared vertex is retried (trace.cpp). Medium build quality: a bake's short rays along
-  // the low poly's normals trace no faster through Embree's high-quality (spatial split)
-  // BVH — 4.26 M rays of a 2048² bake took 0.33 s either way — while it builds 4× slower
-  // (1 M triangles: 0.94 s against 0.22 s on two cores).
-  const raytrace::Scene scene(*in.high, {.quality = raytrace::SceneOptions::Quality::Default});
+  // shared vertex is retried (trace.cpp). Never Embree's high-quality (spatial split) BVH:
+  // a bake's short rays along the low poly's normals trace no faster through it — 4.26 M
+  // rays of a 2048² bake took 0.33 s either way — while it builds 4× slower (1 M
+  // triangles: 0.94 s against 0.22 s on two cores). The low-quality (Morton) build is
+  // 2–3× quicker again than the medium one (262k triangles: 0.03 s against 0.06–0.08 s;
+  // 1 M: 0.15 s against 0.30–0.45 s) and its rays cost the same up to tens of rays per
+  // triangle; at 150 (2048², 36 per texel, 1 M triangles) they took 4–8 % longer, more
+  // than the build saves: medium from 64 rays per triangle on.
+  const double expectedRays = double(options.width) * double(options.height) * double(options.samples) *
+                              (options.ambientOcclusion ? 1.0 + double(options.aoSamples) : 1.0);
+  const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
+  // The high poly is read in place (it outlives the scene): no copy of its vertices.
+  const raytrace::Scene scene(*in.high, {.quality = fewRays ? raytrace::SceneOptions::Quality::Fast
+                                                            : raytrace::SceneOptions::Quality::Default,
+                                         .shareMeshes = true});
   stats.bvhBytes = scene.memoryBytes();
-  stats.prepareSeconds = secondsSince(start);
+  stats.lowQualityBvh = fewRays;
+  const double bvhSeconds = secondsSince(start) - checkSeconds;
+  const auto setupStart = Clock::now();
 
   Context ctx{options, in, scene};
   const int W = options.width, H = options.height;
@@ -261,9 +286,15 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   ctx.aoDistance = options.aoDistance.resolve(in.diagonal);
   ctx.epsilon = 1e-5f * std::max(in.diagonal, scene.bounds().diagonal());
   ctx.worldNormalMatrix = glm::transpose(glm::inverse(mat3(options.objectToWorld)));
-  ctx.highCornerNormals.resize(in.high->triangleCount());
-  for (std::size_t t = 0; t < ctx.highCornerNormals.size(); ++t) {
-    for (std::size_t k = 0; k < 3; ++k) ctx.highCornerNormals[t][k] = in.high->normals[in.high->indices[3 * t + k]];
+  const std::vector<std::uint32_t>& highIndices = in.high->indices;
+  bool identity = in.high->normals.size() == highIndices.size();
+  for (std::size_t i = 0; identity && i < highIndices.size(); ++i) identity = highIndices[i] == i;
+  if (identity) {
+    ctx.highCornerNormals = in.high->normals.data();  // already corner by corner: no 9 MB copy per million triangles
+  } else {
+    ctx.highCornerNormalCopy.resize(highIndices.size());
+    for (std::size_t i = 0; i < highIndices.size(); ++i) ctx.highCornerNormalCopy[i] = in.high->normals[highIndices[i]];
+    ctx.highCornerNormals = ctx.highCornerNormalCopy.data();
   }
   ctx.lowCorners.resize(in.low.triangleCount());
   for (std::size_t t = 0; t < ctx.lowCorners.size(); ++t) {
@@ -283,9 +314,13 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   if (options.heightMap) ctx.heightChannel = ctx.channels++;
   if (options.missMask) ctx.missChannel = ctx.channels++;
   stats.texels = std::uint64_t(W) * std::uint64_t(H);
-  ctx.texels.assign(std::size_t(stats.texels) * std::size_t(ctx.channels), 0.0f);
+  const std::size_t texelValues = std::size_t(stats.texels) * std::size_t(ctx.channels);
+  ctx.texelStorage = std::make_unique_for_overwrite<float[]>(texelValues);
+  ctx.texels = std::span<float>(ctx.texelStorage.get(), texelValues);
   ctx.covered.assign(std::size_t(stats.texels), 0);
 
+  const double setupSeconds = secondsSince(setupStart);
+  stats.prepareSeconds = secondsSince(start);  // the phases cover the whole of bake()
   // Triangles in texel space, binned into tiles (in id order, so bins are sorted).
   start = Clock::now();
   const double cpuStart = processCpuSeconds();
@@ -369,35 +404,42 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
     stats.paddedTexels = dilate(ctx.texels, ctx.channels, W, H, filled,
                                 {.passes = options.fillAll ? -1 : options.padding, .unitVectorChannels = 3});
   }
-  stats.dilateSeconds = secondsSince(start);
+  const double dilationSeconds = secondsSince(start);
+  const auto imagesStart = Clock::now();
   const vec3 background = options.space == NormalSpace::Tangent ? vec3(0.0f, 0.0f, 1.0f) : vec3(0.0f);
   std::vector<std::uint8_t> islands = ctx.covered;
   ctx.covered = filled;
-  result.normal = channelImage(ctx, 0, 3, true, [&](const float* in, float* out, bool has) {
+  result.normal = channelImage(ctx, 0, 3, true, options.normalType, [&](const float* in, float* out, bool has) {
     const vec3 rgb = has ? encodeNormal(vec3(in[0], in[1], in[2]), options.directX) : background * 0.5f + 0.5f;
     out[0] = rgb.x;
     out[1] = rgb.y;
     out[2] = rgb.z;
   });
   if (ctx.aoChannel >= 0) {
-    result.ao = channelImage(ctx, ctx.aoChannel, 1, true, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 1.0f; });
+    result.ao = channelImage(ctx, ctx.aoChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 1.0f; });
   }
   if (ctx.heightChannel >= 0) {
-    result.height = channelImage(ctx, ctx.heightChannel, 1, true, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
+    result.height = channelImage(ctx, ctx.heightChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
   }
   ctx.covered = islands;
   if (ctx.missChannel >= 0) {
-    result.missMask = channelImage(ctx, ctx.missChannel, 1, true, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
+    result.missMask = channelImage(ctx, ctx.missChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
   }
   result.coverage = Image(W, H, 1, PixelType::U8);
   auto cov = result.coverage.pixels<std::uint8_t>();
-  for (int y = 0; y < H; ++y) {
-    for (int x = 0; x < W; ++x) {
-      const std::size_t i = std::size_t(y) * std::size_t(W) + std::size_t(x);
-      cov[std::size_t(H - 1 - y) * std::size_t(W) + std::size_t(x)] = islands[i] ? 255 : filled[i] ? 128 : 0;
+  tbb::parallel_for(tbb::blocked_range<int>(0, H, 64), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y != rows.end(); ++y) {
+      for (int x = 0; x < W; ++x) {
+        const std::size_t i = std::size_t(y) * std::size_t(W) + std::size_t(x);
+        cov[std::size_t(H - 1 - y) * std::size_t(W) + std::size_t(x)] = islands[i] ? 255 : filled[i] ? 128 : 0;
+      }
     }
-  }
+  });
   result.low = std::move(in.low);
+  stats.dilateSeconds = secondsSince(start);
+  log::debug("bake: checks and tangents {:.0f} ms, BVH {:.0f} ms ({} quality), setup {:.0f} ms, trace {:.0f} ms, "
+             "dilate {:.0f} ms, images {:.0f} ms", 1e3 * checkSeconds, 1e3 * bvhSeconds, fewRays ? "low" : "medium",
+             1e3 * setupSeconds, 1e3 * stats.traceSeconds, 1e3 * dilationSeconds, 1e3 * secondsSince(imagesStart));
   return result;
 }
 

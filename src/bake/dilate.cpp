@@ -28,17 +28,18 @@ std::uint64_t dilate(std::span<float> texels, int channels, int width, int heigh
   };
 
   // Frontier: empty texels with a filled neighbour, each listed once (in scan order at
-  // first, then in the order they were discovered; the order never affects values).
+  // first, then in the order they were discovered; the order never affects values). Found
+  // from the empty side: a bake that covers most of its map has few empty texels to look at.
   std::vector<std::uint8_t> queued(count, 0);
   std::vector<std::size_t> frontier;
   for (std::size_t i = 0; i < count; ++i) {
-    if (!filled[i]) continue;
-    neighbours(i, [&](std::size_t n) {
-      if (!filled[n] && !queued[n]) {
-        queued[n] = 1;
-        frontier.push_back(n);
-      }
-    });
+    if (filled[i]) continue;
+    bool touches = false;
+    neighbours(i, [&](std::size_t n) { touches = touches || filled[n] != 0; });
+    if (touches) {
+      queued[i] = 1;
+      frontier.push_back(i);
+    }
   }
 
   const std::size_t c = std::size_t(channels);

@@ -6,6 +6,7 @@
 #include "glint/mesh/tangents.h"
 #include "internal.h"
 
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
@@ -15,7 +16,13 @@ namespace {
 
 template <typename V>
 void checkFinite(const std::vector<V>& values, const char* mesh, const char* what) {
-  for (std::size_t i = 0; i < values.size(); ++i) {
+  // One branch-free pass first (|x| ≤ FLT_MAX fails for inf and NaN),
+  // the offender is looked for only when there is one.
+  bool finite = true;
+  for (const V& v : values) {
+    for (int c = 0; c < V::length(); ++c) finite &= std::fabs(v[c]) <= FLT_MAX;
+  }
+  for (std::size_t i = 0; !finite && i < values.size(); ++i) {
     for (int c = 0; c < V::length(); ++c) {
       if (!std::isfinite(values[i][c])) fail(ErrorKind::Input, "{}: {} {} is not finite", mesh, what, i);
     }

@@ -180,7 +180,7 @@ float ambientOcclusion(const Context& ctx, const Found& f, const vec3& normal, s
 /// The high poly's interpolated normal at a hit, not normalized; its facet normal where the
 /// interpolation has no length (opposite corner normals).
 vec3 interpolatedHighNormal(const Context& ctx, const raytrace::Hit& hit) {
-  const std::array<vec3, 3>& corner = ctx.highCornerNormals[hit.triangle];
+  const vec3* corner = &ctx.highCornerNormals[3 * std::size_t(hit.triangle)];
   const vec3 n = (1.0f - hit.u - hit.v) * corner[0] + hit.u * corner[1] + hit.v * corner[2];
   return n == vec3(0.0f) ? hit.geometricNormal : n;
 }
@@ -327,7 +327,7 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
   // The hit triangles' normals are scattered over a large array: ask for them all now, so
   // the memory fetches overlap instead of stalling each sample in turn.
   for (std::size_t i = 0; i < n; ++i) {
-    if (hits[i]) __builtin_prefetch(&ctx.highCornerNormals[hits[i]->triangle]);
+    if (hits[i]) __builtin_prefetch(&ctx.highCornerNormals[3 * std::size_t(hits[i]->triangle)]);
   }
   // The usual case, kept lean: the sweep's first hit is at or beyond P, so it is the
   // closest either way and this one ray decides (Caster::resolve does the rest). For plain

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -44,11 +45,19 @@ struct Context {
   mat3 worldNormalMatrix{1.0f};
   int channels = 3;  ///< normal (3) [+ ao] [+ height] [+ miss]
   int aoChannel = -1, heightChannel = -1, missChannel = -1;
-  std::vector<float> texels;          ///< width × height × channels, row 0 = bottom (v = 0)
+  /// width × height × channels, row 0 = bottom (v = 0). Left uninitialized: a texel is only
+  /// read once covered is set for it (the bake or the dilation wrote it), and zeroing 12 MB
+  /// on one thread before the bake cost more than the workers touching the pages themselves.
+  std::unique_ptr<float[]> texelStorage;
+  std::span<float> texels;
   std::vector<std::uint8_t> covered;  ///< per texel
-  /// The high poly's three corner normals per triangle, side by side: one cache line per
-  /// hit instead of four scattered reads (indices, then three normals) on million-triangle meshes.
-  std::vector<std::array<vec3, 3>> highCornerNormals;
+  /// The high poly's three corner normals per triangle, side by side (corner k of triangle
+  /// t at [3t + k]): one cache line per hit instead of four scattered reads (indices, then
+  /// three normals) on million-triangle meshes. Points into the mesh's own normals when its
+  /// indices are 0, 1, 2, ... (a mesh loaded without joining vertices, as `glint bake`
+  /// loads the high poly), else into highCornerNormalCopy.
+  const vec3* highCornerNormals = nullptr;
+  std::vector<vec3> highCornerNormalCopy;
   /// The low poly's corners per triangle, side by side, for the same reason; as 4-float
   /// vectors (position xyz0, normal xyz0, tangent xyzw) so interpolating one attribute is
   /// three vector multiply-adds.

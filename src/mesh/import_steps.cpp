@@ -238,7 +238,7 @@ void encodeNgons(std::vector<std::uint32_t>& triangles, const std::vector<std::u
 void expandPerCorner(PolyMesh& mesh) {
   PolyMesh out;
   const std::size_t n = mesh.corners.size();
-  out.positions.resize(n);
+  resizePositions(out.positions, n);
   if (!mesh.uvs.empty()) out.uvs.resize(n);
   if (!mesh.normals.empty()) out.normals.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -360,7 +360,7 @@ void joinVertices(Mesh& mesh) {
   // Per position (slot): its newest representative; per representative: the one before.
   std::vector<std::uint32_t> replace(n, 0), latest(capacity, kNone), previous(n, kNone);
   Mesh out;
-  out.positions.reserve(n);
+  out.positions.reserve(n + 1);  // see resizePositions
   for (std::size_t i = 0; i < n; ++i) {
     if (slotOf[i] == kNone) continue;
     std::uint32_t& newest = latest[slotOf[i]];

@@ -34,6 +34,13 @@ private:
   std::size_t m_size = 0;
 };
 
+/// Sizes a mesh's positions to n with room for one more vertex: a ray tracer can then read
+/// them in place (raytrace::SceneOptions::shareMeshes; Embree loads 16 bytes per vertex).
+inline void resizePositions(std::vector<vec3>& positions, std::size_t n) {
+  positions.reserve(n + 1);
+  positions.resize(n);
+}
+
 /// Thrown by a fast path for a file it does not reproduce Assimp's reading of (PLY big
 /// endian, OBJ vertex attributes present on some corners only, ...). loadMesh then reads
 /// the file with Assimp; the reason is logged at debug level.

@@ -4,6 +4,8 @@
 
 #include "glint/core/error.h"
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <utility>
 
@@ -28,7 +30,11 @@ void Mesh::validate(const std::string& what) const {
   }
   if (indices.empty()) fail(ErrorKind::Input, "{}: has no triangles", what);
   const std::size_t n = positions.size();
-  for (std::size_t i = 0; i < indices.size(); ++i) {
+  // The largest index first, in a branch-free loop (meshes of millions of triangles are
+  // checked on every load: 1.8 ms for 786k corners); the offender is looked for only then.
+  std::uint32_t largest = 0;
+  for (const std::uint32_t index : indices) largest = std::max(largest, index);
+  for (std::size_t i = 0; largest >= n && i < indices.size(); ++i) {
     if (indices[i] >= n) {
       fail(ErrorKind::Input, "{}: index {} (triangle {}) is {}, out of range for {} vertices", what, i,
            i / 3, indices[i], n);
@@ -43,7 +49,12 @@ void Mesh::validate(const std::string& what) const {
   checkSize(normals.size(), "normals");
   checkSize(uvs.size(), "uvs");
   checkSize(tangents.size(), "tangents");
-  for (std::size_t i = 0; i < n; ++i) {
+  // Likewise: |x| ≤ FLT_MAX is false for infinities and NaN.
+  bool finite = true;
+  for (const vec3& p : positions) {
+    finite &= (std::fabs(p.x) <= FLT_MAX) & (std::fabs(p.y) <= FLT_MAX) & (std::fabs(p.z) <= FLT_MAX);
+  }
+  for (std::size_t i = 0; !finite && i < n; ++i) {
     const vec3& p = positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
       fail(ErrorKind::Input, "{}: position {} is not finite ({}, {}, {})", what, i, p.x, p.y, p.z);

@@ -47,12 +47,14 @@ public:
 };
 
 /// The kinds of line tinyobjloader reports a vertex record for: `v`, `vt`, `vn` after
-/// optional blanks, followed by a blank — counted exactly as it recognizes them.
-enum class Record { Other, Position, TexCoord, Normal };
+/// optional blanks, followed by a blank — counted exactly as it recognizes them. Faces
+/// (`f`) are counted too, only to size the chunk's corner lists.
+enum class Record { Other, Position, TexCoord, Normal, Face };
 
 Record classify(const char* p, const char* end) {
   while (p < end && (*p == ' ' || *p == '\t')) ++p;
   const auto blank = [&](const char* q) { return q < end && (*q == ' ' || *q == '\t'); };
+  if (p < end && *p == 'f' && blank(p + 1)) return Record::Face;
   if (p >= end || *p != 'v') return Record::Other;
   if (blank(p + 1)) return Record::Position;
   if (p + 1 < end && p[1] == 't' && blank(p + 2)) return Record::TexCoord;
@@ -73,6 +75,7 @@ struct Chunk {
   const char* begin = nullptr;
   const char* end = nullptr;
   std::size_t positions = 0, texCoords = 0, normals = 0;      // records in this chunk
+  std::size_t faces = 0;                                      // `f` lines in this chunk
   std::size_t firstPosition = 0, firstTexCoord = 0, firstNormal = 0;  // file-wide offsets
   // Faces: corner c of the chunk has vertex v[c], uv t[c], normal n[c] (absolute, kAbsent if none).
   std::vector<std::uint32_t> v, t, n;
@@ -384,13 +387,21 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
         case Record::Position: ++c.positions; break;
         case Record::TexCoord: ++c.texCoords; break;
         case Record::Normal: ++c.normals; break;
+        case Record::Face: ++c.faces; break;
         case Record::Other: break;
       }
     };
     // Lines end at LF, CR LF or a lone CR (as tinyobjloader reads them); memchr finds them.
+    // Most files have no CR at all: one look over the chunk spares a search per line.
+    const bool anyCr = std::memchr(c.begin, '\r', std::size_t(c.end - c.begin)) != nullptr;
     for (const char* p = c.begin; p < c.end;) {
       const void* found = std::memchr(p, '\n', std::size_t(c.end - p));
       const char* lf = found ? static_cast<const char*>(found) : c.end;
+      if (!anyCr) {
+        count(p, lf);
+        p = lf + 1;
+        continue;
+      }
       for (const char* q = p;;) {
         const void* cr = std::memchr(q, '\r', std::size_t(lf - q));
         if (!cr) {
@@ -428,10 +439,12 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   callbacks.usemtl_cb = onMaterial;
   tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t i) {
     Chunk& c = chunks[i];
-    const std::size_t guess = std::size_t(c.end - c.begin) / 40;
-    c.v.reserve(guess);
-    c.t.reserve(guess);
-    c.n.reserve(guess);
+    // Room for triangles: growing by doubling would copy and touch fresh pages twice over.
+    c.v.reserve(3 * c.faces);
+    c.t.reserve(3 * c.faces);
+    c.n.reserve(3 * c.faces);
+    c.faceSize.reserve(c.faces);
+    c.faceFlags.reserve(c.faces);
     MemoryBuffer buffer(c.begin, c.end);
     std::istream stream(&buffer);
     ParseState state{&c, &buffer, &positions, &texCoords, &normals, positionCount, texCoordCount, normalCount};
@@ -477,7 +490,7 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   // One vertex per corner for the whole file, in file order (what Assimp's OBJ reader makes).
   PolyMesh all;
   all.perCorner = true;
-  all.positions.resize(cornerCount);
+  resizePositions(all.positions, cornerCount);
   all.corners.resize(cornerCount);
   all.faceStart.resize(faceCount + 1);
   std::vector<std::uint8_t> flags(faceCount);

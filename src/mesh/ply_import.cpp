@@ -96,7 +96,7 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   PolyMesh mesh;
   {
     const std::vector<float> px = floats(*x, vertexCount), py = floats(*y, vertexCount), pz = floats(*z, vertexCount);
-    mesh.positions.resize(std::size_t(vertexCount));
+    resizePositions(mesh.positions, std::size_t(vertexCount));
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) mesh.positions[i] = vec3(px[i], py[i], pz[i]);
   }
   if (nx) {

@@ -141,19 +141,30 @@ Scene::Scene(std::span<const Mesh> meshes, const SceneOptions& options) : m_impl
   for (const Mesh& mesh : meshes) {
     RTCGeometry geometry = rtcNewGeometry(impl.device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(geometry, toEmbree(options.quality));
-    // Embree-owned buffers: rtcSetNewGeometryBuffer pads the vertex buffer so
-    // its 16-byte SIMD loads of the last vertex stay in bounds.
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                                 RTC_FORMAT_FLOAT3, sizeof(vec3),
-                                                                 mesh.positions.size()));
-    auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.triangleCount()));
-    if (!vertices || !indices) {
+    // Embree's 16-byte loads of the last vertex must stay in allocated memory: a shared
+    // vector needs spare capacity after it, Embree's own buffers come padded.
+    if (options.shareMeshes && mesh.positions.capacity() > mesh.positions.size()) {
+      rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.positions.data(), 0,
+                                 sizeof(vec3), mesh.positions.size());
+    } else {
+      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                   RTC_FORMAT_FLOAT3, sizeof(vec3),
+                                                                   mesh.positions.size()));
+      if (vertices) std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(vec3));
+    }
+    if (options.shareMeshes) {
+      rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
+                                 3 * sizeof(std::uint32_t), mesh.triangleCount());
+    } else {
+      auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+          geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.triangleCount()));
+      if (indices) std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
+    }
+    if (!rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0) ||
+        !rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_INDEX, 0)) {
       rtcReleaseGeometry(geometry);
       fail(ErrorKind::Internal, "cannot allocate ray-tracing buffers ({})", impl.firstError);
     }
-    std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(vec3));
-    std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(impl.scene, geometry);  // ids are 0, 1, ... in attach order
     rtcReleaseGeometry(geometry);

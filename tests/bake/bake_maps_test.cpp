@@ -285,6 +285,26 @@ TEST(BakeMaps, OutputDoesNotDependOnThreadCount) {
   EXPECT_EQ(one.stats.rays, many.stats.rays);
 }
 
+// An integer normal map straight from the baker holds exactly the codes of the float map
+// converted afterwards (the baker quantizes row by row instead of copying the floats).
+TEST(BakeMaps, IntegerNormalTypesMatchTheFloatMapConverted) {
+  log::setLevel(log::Level::Error);
+  const Mesh high = makeTorus(1.0f, 0.35f, 96, 48);
+  const Mesh low = makeTorus(1.0f, 0.35f, 12, 6);
+  bake::BakeOptions options;
+  options.width = 90;
+  options.height = 70;
+  options.padding = 2;  // keep some background texels too
+  const auto reference = bake::bake(low, high, options);
+  ASSERT_EQ(reference.normal.type(), PixelType::F32);
+  for (PixelType type : {PixelType::U8, PixelType::U16}) {
+    options.normalType = type;
+    const auto quantized = bake::bake(low, high, options);
+    EXPECT_EQ(quantized.normal.type(), type);
+    EXPECT_TRUE(quantized.normal == reference.normal.converted(type)) << pixelTypeName(type);
+  }
+}
+
 TEST(BakeMaps, CancelThrowsInterrupted) {
   log::setLevel(log::Level::Error);
   std::atomic<bool> cancel{true};

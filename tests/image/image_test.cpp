@@ -36,6 +36,36 @@ TEST(Image, NormalizedAccessRoundsToTheNearestCode) {
   EXPECT_EQ(img.pixels<std::uint8_t>()[1], 0);  // NaN is not garbage
 }
 
+// converted() quantizes floats in one loop; set() is the reference rounding (lround of the
+// clamped value). Every half-way point between codes and its float neighbours, specials and
+// random values must land on the same code in both.
+TEST(Image, ConvertedQuantizesLikeSet) {
+  std::vector<float> values = {0.0f, -0.0f, 1.0f, -1.0f, 2.0f, NAN, INFINITY, -INFINITY, 1e-30f, 0.49999997f};
+  for (float scale : {255.0f, 65535.0f}) {
+    for (int k = 0; k <= int(scale); k += scale > 300.0f ? 97 : 1) {
+      for (float v : {(float(k) + 0.5f) / scale, float(k) / scale}) {
+        values.insert(values.end(), {v, std::nextafter(v, 0.0f), std::nextafter(v, 2.0f)});
+      }
+    }
+  }
+  std::uint32_t state = 12345;
+  for (int i = 0; i < 10000; ++i) {
+    state = state * 1664525u + 1013904223u;
+    values.push_back(float(state >> 8) / float(1 << 24) * 1.2f - 0.1f);
+  }
+  Image source(int(values.size()), 1, 1, PixelType::F32);
+  std::copy(values.begin(), values.end(), source.pixels<float>().begin());
+  for (PixelType type : {PixelType::U8, PixelType::U16}) {
+    Image reference(source.width(), 1, 1, type);
+    for (int x = 0; x < source.width(); ++x) reference.set(x, 0, 0, source.at(x, 0, 0));
+    const Image fast = source.converted(type);
+    for (int x = 0; x < source.width(); ++x) {
+      ASSERT_EQ(fast.at(x, 0, 0), reference.at(x, 0, 0)) << "value " << values[std::size_t(x)] << ", "
+                                                         << pixelTypeName(type);
+    }
+  }
+}
+
 TEST(Image, RejectsBadShapesAndWrongTypedViews) {
   EXPECT_THROW(Image(0, 4, 3), Error);
   EXPECT_THROW(Image(4, 4, 5), Error);

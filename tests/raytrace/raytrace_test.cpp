@@ -211,6 +211,42 @@ TEST(Raytrace, BatchesMatchSingleRays) {
   EXPECT_THROW(scene.intersectBatch(rays, tooFew), Error);
 }
 
+// shareMeshes reads positions and indices in place when the positions have room after the
+// last vertex (Embree's 16-byte loads), copies them otherwise: same answers either way, and
+// no Embree-owned copy of the shared buffers.
+TEST(Raytrace, SharedMeshesGiveTheSameHits) {
+  Mesh roomy = makeTorus(1.0f, 0.4f, 96, 48);
+  roomy.positions.reserve(roomy.positions.size() + 1);
+  Mesh tight = roomy;
+  tight.positions.shrink_to_fit();
+  ASSERT_EQ(tight.positions.capacity(), tight.positions.size());
+  const Scene copied(roomy);
+  const Scene shared(roomy, {.shareMeshes = true});
+  const Scene fallback(tight, {.shareMeshes = true});
+  // Embree no longer allocates the vertex and index buffers (its BVH is the same size).
+  const std::size_t buffers = roomy.positions.size() * sizeof(vec3) + roomy.indices.size() * sizeof(std::uint32_t);
+  EXPECT_LE(shared.memoryBytes() + buffers, copied.memoryBytes());
+  EXPECT_LT(shared.memoryBytes(), fallback.memoryBytes());
+
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  int hitCount = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const vec3 origin = randomUnit(rng) * 3.0f, target(unit(rng) * 1.4f, unit(rng) * 0.4f, unit(rng) * 1.4f);
+    const Ray ray{.origin = origin, .direction = target - origin};
+    const auto a = copied.intersect(ray), b = shared.intersect(ray), c = fallback.intersect(ray);
+    ASSERT_EQ(bool(a), bool(b));
+    ASSERT_EQ(bool(a), bool(c));
+    if (!a) continue;
+    ++hitCount;
+    EXPECT_EQ(a->t, b->t);
+    EXPECT_EQ(a->triangle, b->triangle);
+    EXPECT_EQ(a->t, c->t);
+    EXPECT_EQ(a->triangle, c->triangle);
+  }
+  EXPECT_GT(hitCount, 500);
+}
+
 TEST(Raytrace, ResultsDoNotDependOnThreadCount) {
   const Mesh sphere = makeUvSphere(1.0f, 96, 48);
   std::vector<Ray> rays;

@@ -98,6 +98,9 @@ struct BakeOptions {
   Distance aoDistance{0.1f, true};///< AO ray length
   bool heightMap = false;         ///< also bake the signed ray distance (+ outside the low poly)
   bool missMask = false;          ///< also output the fraction of samples whose rays missed
+  /// Pixel type of BakeResult::normal: F32, or U8/U16 quantized as Image::converted does —
+  /// what an integer file holds, without a float copy of the map on the way.
+  PixelType normalType = PixelType::F32;
 
   bool progress = true;           ///< draw a progress bar (only on a terminal, see core/progress.h)
   /// Polled between tiles; when it becomes true bake() throws Error(Interrupted).
@@ -124,15 +127,18 @@ struct BakeStats {
   std::size_t addedVertices = 0;        ///< vertices split by tangent generation
   float frontDistance = 0, rearDistance = 0, aoDistance = 0;  ///< resolved, scene units
   std::size_t bvhBytes = 0;             ///< Embree memory for the high poly
-  double prepareSeconds = 0;            ///< tangents, BVH build
+  bool lowQualityBvh = false;           ///< BVH built at Embree's low quality (few rays per triangle), else medium
+  // The three phases add up to the whole of bake():
+  double prepareSeconds = 0;            ///< checks, tangents, BVH build, per-triangle tables
   double traceSeconds = 0;              ///< rasterizing samples and casting rays (wall clock)
   double traceCpuSeconds = 0;           ///< the same phase in process CPU time (all threads)
-  double dilateSeconds = 0;
+  double dilateSeconds = 0;             ///< dilation and the maps as images
   double hitRatio() const { return samples ? double(hits) / double(samples) : 0.0; }
 };
 
 struct BakeResult {
-  Image normal;     ///< RGB F32, encoded 0..1 (encodeNormal, image/normalmap.h), green flipped if directX
+  Image normal;     ///< RGB encoded 0..1 (encodeNormal, image/normalmap.h), green flipped if directX; F32
+                    ///< unless BakeOptions::normalType says otherwise
   Image ao;         ///< R F32 0..1 (1 = unoccluded), when asked
   Image height;     ///< R F32 signed distance in scene units, when asked
   Image missMask;   ///< R F32 0..1 fraction of missed samples, when asked (not dilated)

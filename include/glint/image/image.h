@@ -32,6 +32,12 @@ enum class PixelType {
 std::size_t pixelTypeSize(PixelType type);
 const char* pixelTypeName(PixelType type);
 
+/// Normalized floats → integer codes, exactly as Image::set stores them: NaN → 0, clamped
+/// to 0..1, rounded to the nearest code (halves up). For whole buffers at once (one tight
+/// loop). Error(Internal) when the spans differ in size.
+void quantize(std::span<const float> in, std::span<std::uint8_t> out);
+void quantize(std::span<const float> in, std::span<std::uint16_t> out);
+
 class Image {
 public:
   Image() = default;

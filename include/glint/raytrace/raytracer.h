@@ -92,13 +92,21 @@ struct SceneOptions {
   /// speed cost. Watertight meshes hit by rays through their vertices (grid-aligned rays
   /// on grid meshes, exact poles) want it; random rays rarely need it.
   bool robust = false;
+  /// Read the meshes' positions and indices where they are instead of copying them into
+  /// the Scene: for a million-triangle mesh loaded without joining vertices, ~48 MB less
+  /// to allocate, fault in and copy before the build. The meshes must then outlive the
+  /// Scene, unchanged. Embree reads every vertex as 16 bytes, so a mesh whose positions
+  /// have no spare capacity after the last vertex is copied all the same (loadMesh leaves
+  /// one vertex of slack after the positions it reads from OBJ and PLY files).
+  bool shareMeshes = false;
 };
 
 /// An acceleration structure over triangle meshes (positions and indices only; other
 /// attributes stay in the caller's Mesh, to be looked up with interpolate()).
 ///
-/// The Scene copies what it needs: the meshes may be destroyed or changed afterwards
-/// (rebuild to see the changes). Move-only; owns its Embree device and scene.
+/// The Scene copies what it needs (unless SceneOptions::shareMeshes): the meshes may be
+/// destroyed or changed afterwards (rebuild to see the changes). Move-only; owns its
+/// Embree device and scene.
 class Scene {
 public:
   /// Builds from one mesh. Error(Input) when it has no triangles, an index count that is
