@@ -26,31 +26,6 @@ struct CutArgs {
   ToolSettings tool;
 };
 
-/// "x,y,z" or "x,y,z,name".
-cut::Light parseLight(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) parts.push_back(item);
-  if (parts.size() != 3 && parts.size() != 4)
-    fail(ErrorKind::Usage, "--light must be x,y,z or x,y,z,name, got '{}'", text);
-  cut::Light light;
-  for (int i = 0; i < 3; ++i) {
-    std::size_t used = 0;
-    float v = 0.0f;
-    try {
-      v = std::stof(parts[std::size_t(i)], &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != parts[std::size_t(i)].size() || !std::isfinite(v))
-      fail(ErrorKind::Usage, "--light '{}': '{}' is not a finite number", text, parts[std::size_t(i)]);
-    light.position[i] = v;
-  }
-  if (parts.size() == 4) light.name = parts[3];
-  return light;
-}
-
 /// "i/n" (1-based) → (i − 1, n).
 std::pair<int, int> parseShard(const std::string& text) {
   int i = 0, n = 0;
@@ -121,7 +96,7 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
       for (const auto& o : a->outputs) cut::checkOutputFormat(o);
     }
     cut::CutOptions options;
-    for (const auto& l : a->lights) options.lights.push_back(parseLight(l));
+    for (const auto& l : a->lights) options.lights.push_back(cut::parseLight(l));
     std::vector<std::string> outputs = a->outputs;
     if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
     for (const auto& path : outputs) checkWritable(path);

@@ -18,18 +18,6 @@ namespace glint::app {
 #include "commands.inc"
 #undef GLINT_COMMAND
 
-ivec2 parseSize(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X')) {
-    fail(ErrorKind::Usage, "size must be WIDTHxHEIGHT (e.g. 640x360), got '{}'", text);
-  }
-  if (w < 1 || h < 1 || w > 16384 || h > 16384) {
-    fail(ErrorKind::Usage, "size {}x{} is out of range (1..16384 per side)", w, h);
-  }
-  return {w, h};
-}
-
 void addToolOptions(CLI::App& command, ToolSettings& settings, const std::string& reportContents) {
   command.add_option("--threads", settings.threads, "Worker threads (default: all cores); the output does not depend on it")
       ->check(CLI::NonNegativeNumber);

@@ -2,6 +2,7 @@
 
 #include "glint/core/error.h"
 #include "glint/core/file.h"
+#include "glint/core/text.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <charconv>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -289,9 +291,17 @@ std::vector<LightMask> loadPlyMasks(const std::filesystem::path& path) {
   std::size_t vertices = 0, faces = 0;
   std::istringstream h(text.substr(0, end));
   std::string line;
+  // A count that is not a number, or more elements than the file has bytes: not glint's PLY.
+  const auto count = [&](std::string_view digits) {
+    std::size_t n = 0;
+    const auto [last, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+    if (ec != std::errc() || last != digits.data() + digits.size() || n > text.size())
+      fail(ErrorKind::Input, "'{}' is not a PLY written by glint cut (element count '{}')", path.string(), printable(digits));
+    return n;
+  };
   while (std::getline(h, line)) {
-    if (line.rfind("element vertex ", 0) == 0) vertices = std::stoull(line.substr(15));
-    if (line.rfind("element face ", 0) == 0) faces = std::stoull(line.substr(13));
+    if (line.rfind("element vertex ", 0) == 0) vertices = count(std::string_view(line).substr(15));
+    if (line.rfind("element face ", 0) == 0) faces = count(std::string_view(line).substr(13));
   }
   std::size_t pos = end + 11 + vertices * 12;
   std::vector<LightMask> masks;

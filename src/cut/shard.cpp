@@ -56,7 +56,7 @@ public:
     const auto n = pod<std::uint64_t>();
     if (n > (m_data.size() - m_pos) / sizeof(T)) truncated();
     std::vector<T> v(n);
-    std::memcpy(v.data(), m_data.data() + m_pos, n * sizeof(T));
+    if (n > 0) std::memcpy(v.data(), m_data.data() + m_pos, n * sizeof(T));  // an empty vector's data() may be null
     m_pos += n * sizeof(T);
     return v;
   }
