@@ -134,9 +134,10 @@ Image edgesReference(const Image& rgba, const EdgesOptions& options = {});
 //
 // Arithmetic: with 8-bit values k = 255·v and n = s² texels, the sums Σk and
 // D = Σ_c (n·Σk_c² − (Σk_c)²) = n²·255²·variance are integers, and the comparison is on D:
-// exact. The GPU's statistics pass stores the same sums in a float texture, exact while
-// they stay below 2²⁴: for s ≤ 4. Larger quadrants (up to 8) may decide near-ties (D within
-// a few parts in 10⁷) differently from this reference.
+// exact. The GPU's statistics pass sums in 32-bit integers and stores Σk and D in a float
+// texture: exact while D < 2²⁴ (s ≤ 4), rounded once above (s up to 8), and rounding keeps
+// the order, so the GPU can choose differently only where two quadrants' variances agree to
+// seven digits without being equal (never on the test images).
 
 struct KuwaharaOptions {
   int size = 3;  ///< quadrant edge length s, 2..8; the seed: 3 (a 5×5 window)
