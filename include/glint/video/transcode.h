@@ -27,6 +27,7 @@
 #include "glint/video/frame.h"
 
 #include <atomic>
+#include <deque>
 #include <functional>
 #include <optional>
 #include <string>
@@ -46,6 +47,38 @@ public:
   virtual void process(Frame&& frame, const Emit& emit) = 0;
   /// Emits every frame still in flight.
   virtual void flush(const Emit& emit) = 0;
+};
+
+/// A FrameProcessor around a pipelined stream with render/post's FrameStream interface —
+/// push(const Image&), pop(Image&), full(), empty() — keeping each frame's index and
+/// timestamps and reusing the input frames' images for the results. A template, so the
+/// video layer needs nothing of the GPU side:
+///
+///   render::post::FrameStream stream(size, effects);
+///   video::StreamProcessor processor(stream);
+///   video::transcode(source, sink, processor);
+template <typename Stream>
+class StreamProcessor final : public FrameProcessor {
+public:
+  explicit StreamProcessor(Stream& stream) : m_stream(stream) {}
+  void process(Frame&& frame, const Emit& emit) override {
+    if (m_stream.full()) popOne(emit);
+    m_stream.push(frame.image);
+    m_waiting.push_back(std::move(frame));  // its image becomes a result's storage
+  }
+  void flush(const Emit& emit) override {
+    while (!m_stream.empty()) popOne(emit);
+  }
+
+private:
+  void popOne(const Emit& emit) {
+    Frame out = std::move(m_waiting.front());
+    m_waiting.pop_front();
+    m_stream.pop(out.image);
+    emit(std::move(out));
+  }
+  Stream& m_stream;
+  std::deque<Frame> m_waiting;
 };
 
 struct TranscodeOptions {
