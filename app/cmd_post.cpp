@@ -149,7 +149,7 @@ int runImage(const PostArgs& a, const std::vector<render::post::Effect>& effects
     auto timed = run.phase("write");
     saveImage(result, a.output);
   }
-  log::info("post: {} ({}x{}) → {}", a.input, size.x, size.y, a.output);
+  log::info("post: {} ({}x{}) → {}: {}", a.input, size.x, size.y, a.output, run.report()["effects"].get<std::string>());
   run.report()["input"] = a.input;
   run.report()["output"] = a.output;
   run.report()["width"] = size.x;
@@ -321,14 +321,14 @@ Command postCommand(CLI::App& app, const GlobalOptions& global) {
                    }
                    if (a->output.empty()) fail(ErrorKind::Usage, "post needs -o OUTPUT");
                    const auto effects = render::post::parseEffects(a->effects, a->settings);
-                   if (effects.empty()) log::warn("post: no effect given (-e): the frames are copied through the GPU unchanged");
                    checkWritable(a->output);
                    if (!a->tool.json.empty() && a->tool.json != "-") checkWritable(a->tool.json);
                    const bool image = !a->input.empty() && !a->input.starts_with("lavfi:") && video::isImagePath(a->input);
+                   if (image || video::isImagePath(a->output)) preloadImageIo();  // while the GPU starts
                    if (!image && a->input.starts_with("lavfi:")) a->lavfi = std::exchange(a->input, {});
                    return image ? runImage(*a, effects, run, global) : runVideo(*a, effects, run, global);
                  },
-                 .readsImages = true};
+                 .readsImages = false};  // images load OpenImageIO themselves (runImage, runStill)
 }
 
 }  // namespace glint::app

@@ -10,6 +10,9 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include "backend.h"
+
+#include "glint/core/error.h"
 #include "glint/video/frame.h"
 
 #include <memory>
@@ -79,6 +82,25 @@ private:
   AVCodecParameters* m_parameters = nullptr;
   AVRational m_timeBase;
 };
+
+/// Runs `body` and returns its result; a thrown Error (or anything else) is caught into
+/// `status` instead, with `failed` returned: no exception leaves the module.
+template <typename Body, typename Result>
+Result guarded(backend::Status& status, Body&& body, Result failed) {
+  status = {};
+  try {
+    return body();
+  } catch (const Error& e) {
+    status = {false, e.kind(), e.what()};
+  } catch (const std::exception& e) {
+    status = {false, ErrorKind::Internal, e.what()};
+  } catch (...) {
+    status = {false, ErrorKind::Internal, "unknown exception in the video module"};
+  }
+  return failed;
+}
+
+std::int64_t concatenateFiles(std::span<const std::filesystem::path> parts, const std::filesystem::path& destination);
 
 /// The colorspace libswscale should use for a YUV frame: its own tag, else BT.709 for
 /// 720 lines and up, BT.601 below.

@@ -48,7 +48,7 @@ enum class Codec {
 
 /// "h264" / "ffv1" → Codec; Error(Usage) otherwise.
 Codec parseCodec(const std::string& name);
-const char* codecName(Codec codec);
+inline const char* codecName(Codec codec) { return codec == Codec::H264 ? "h264" : "ffv1"; }
 
 struct SinkOptions {
   Codec codec = Codec::H264;

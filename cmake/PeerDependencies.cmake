@@ -1,9 +1,8 @@
-# The third-party libraries behind `glint post` and its oracles, found the same way in
-# glint's build and in an installed glint's package (glintConfig.cmake includes this
-# file), so the imported targets glint's exported libraries name exist in both:
+# The libraries `glint bench post` measures glint against and the post tests use as
+# oracles, found the same way in glint's build and in an installed glint's package
+# (glintConfig.cmake includes this file: glint::bench links them), so the imported
+# targets exist in both:
 #
-#   PkgConfig::FFMPEG    libavformat libavcodec libavdevice libavfilter libswscale libavutil
-#                        (Debian's libav*-dev; glint::video)
 #   PkgConfig::FFTW      fftw3 (double: the tests' oracle) and fftw3f (float: the bench's peer)
 #   glint_deps::opencv   OpenCV core + imgproc (the bench's peers, the tests' oracles)
 #
@@ -11,27 +10,17 @@
 # OpenCVConfig.cmake (those come with libopencv-dev, which pulls in every OpenCV module),
 # so the OpenCV target is made here from the headers and the two libraries.
 #
-# Sets GLINT_POST_DEPENDENCIES_FOUND and, when something is missing,
-# GLINT_POST_DEPENDENCIES_MISSING (what, and the Debian package to install).
+# Sets GLINT_PEER_DEPENDENCIES_FOUND and, when something is missing,
+# GLINT_PEER_DEPENDENCIES_MISSING (what, and the Debian package to install).
 find_package(PkgConfig REQUIRED)
-set(GLINT_POST_DEPENDENCIES_FOUND TRUE)
-set(GLINT_POST_DEPENDENCIES_MISSING "")
-
-if(NOT TARGET PkgConfig::FFMPEG)
-  pkg_check_modules(FFMPEG QUIET IMPORTED_TARGET
-    libavformat libavcodec libavdevice libavfilter libswscale libavutil)
-  if(NOT FFMPEG_FOUND)
-    set(GLINT_POST_DEPENDENCIES_FOUND FALSE)
-    string(APPEND GLINT_POST_DEPENDENCIES_MISSING
-      " FFmpeg's libraries (Debian: libavformat-dev libavcodec-dev libavdevice-dev libavfilter-dev libswscale-dev)")
-  endif()
-endif()
+set(GLINT_PEER_DEPENDENCIES_FOUND TRUE)
+set(GLINT_PEER_DEPENDENCIES_MISSING "")
 
 if(NOT TARGET PkgConfig::FFTW)
   pkg_check_modules(FFTW QUIET IMPORTED_TARGET fftw3 fftw3f)
   if(NOT FFTW_FOUND)
-    set(GLINT_POST_DEPENDENCIES_FOUND FALSE)
-    string(APPEND GLINT_POST_DEPENDENCIES_MISSING " FFTW (Debian: libfftw3-dev)")
+    set(GLINT_PEER_DEPENDENCIES_FOUND FALSE)
+    string(APPEND GLINT_PEER_DEPENDENCIES_MISSING " FFTW (Debian: libfftw3-dev)")
   endif()
 endif()
 
@@ -46,8 +35,8 @@ if(NOT TARGET glint_deps::opencv)
       INTERFACE_INCLUDE_DIRECTORIES "${GLINT_OPENCV_INCLUDE_DIR}"
       INTERFACE_LINK_LIBRARIES "${GLINT_OPENCV_IMGPROC_LIBRARY};${GLINT_OPENCV_CORE_LIBRARY}")
   else()
-    set(GLINT_POST_DEPENDENCIES_FOUND FALSE)
-    string(APPEND GLINT_POST_DEPENDENCIES_MISSING
+    set(GLINT_PEER_DEPENDENCIES_FOUND FALSE)
+    string(APPEND GLINT_PEER_DEPENDENCIES_MISSING
       " OpenCV core and imgproc (Debian: libopencv-core-dev libopencv-imgproc-dev)")
   endif()
 endif()

@@ -1,5 +1,3 @@
-#include "glint/video/sink.h"
-
 #include "ffmpeg.h"
 
 #include "glint/core/error.h"
@@ -12,14 +10,6 @@
 namespace glint::video {
 
 namespace fs = std::filesystem;
-
-Codec parseCodec(const std::string& name) {
-  if (name == "h264" || name == "H264" || name == "x264") return Codec::H264;
-  if (name == "ffv1" || name == "FFV1") return Codec::Ffv1;
-  fail(ErrorKind::Usage, "unknown codec '{}': h264 or ffv1 (lossless)", name);
-}
-
-const char* codecName(Codec codec) { return codec == Codec::H264 ? "h264" : "ffv1"; }
 
 namespace {
 struct OutputDeleter {
@@ -52,7 +42,7 @@ void openFile(AVFormatContext& output, const fs::path& tmp, const fs::path& dest
 }
 }  // namespace
 
-struct Sink::Impl {
+struct FfmpegSink {
   SinkOptions options;
   fs::path destination;
   std::optional<AtomicFile> file;
@@ -69,17 +59,21 @@ struct Sink::Impl {
   std::int64_t lastPts = kNoTimestamp;
   bool headerWritten = false, finished = false;
 
+  FfmpegSink(const fs::path& destination, const SinkOptions& options);
   void drain(bool flushing);
   void writePacket(AVPacket& p);
+  void write(const Frame& frame);
+  void writeAudio(Packet packet);
+  void finish();
 };
 
-void Sink::Impl::writePacket(AVPacket& p) {
+void FfmpegSink::writePacket(AVPacket& p) {
   if (const int e = av_interleaved_write_frame(output.get(), &p); e < 0) {
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(e));
   }
 }
 
-void Sink::Impl::drain(bool flushing) {
+void FfmpegSink::drain(bool flushing) {
   while (true) {
     const int r = avcodec_receive_packet(encoder.get(), packet.get());
     if (r == AVERROR(EAGAIN) || r == AVERROR_EOF) return;
@@ -91,9 +85,11 @@ void Sink::Impl::drain(bool flushing) {
   }
 }
 
-Sink::Sink(const fs::path& destination, const SinkOptions& options) : m_impl(std::make_unique<Impl>()) {
+FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_) {
   initFfmpeg();
-  Impl& s = *m_impl;
+  FfmpegSink& s = *this;
+  const fs::path& destination = destination_;
+  const SinkOptions& options = options_;
   s.options = options;
   s.destination = destination;
   if (options.size.x <= 0 || options.size.y <= 0) fail(ErrorKind::Usage, "video size must be positive");
@@ -178,12 +174,8 @@ Sink::Sink(const fs::path& destination, const SinkOptions& options) : m_impl(std
   s.frame->color_range = e.color_range;
 }
 
-Sink::Sink(Sink&&) noexcept = default;
-Sink& Sink::operator=(Sink&&) noexcept = default;
-Sink::~Sink() = default;  // AtomicFile removes the temporary file unless finish() committed it
-
-void Sink::write(const Frame& frame) {
-  Impl& s = *m_impl;
+void FfmpegSink::write(const Frame& frame) {
+  FfmpegSink& s = *this;
   if (s.finished) fail(ErrorKind::Internal, "Sink::write after finish()");
   if (frame.image.width() != s.encoder->width || frame.image.height() != s.encoder->height) {
     fail(ErrorKind::Internal, "frame {}x{} does not match the video's {}x{}", frame.image.width(),
@@ -215,8 +207,8 @@ void Sink::write(const Frame& frame) {
   ++s.written;
 }
 
-void Sink::writeAudio(Packet packet) {
-  Impl& s = *m_impl;
+void FfmpegSink::writeAudio(Packet packet) {
+  FfmpegSink& s = *this;
   if (!s.audioStream || !packet) return;
   AVPacket* p = packet.get();
   av_packet_rescale_ts(p, s.audio->timeBase(), s.audioStream->time_base);
@@ -225,8 +217,8 @@ void Sink::writeAudio(Packet packet) {
   s.writePacket(*p);
 }
 
-void Sink::finish() {
-  Impl& s = *m_impl;
+void FfmpegSink::finish() {
+  FfmpegSink& s = *this;
   if (s.finished) return;
   if (const int r = avcodec_send_frame(s.encoder.get(), nullptr); r < 0 && r != AVERROR_EOF) {
     fail(ErrorKind::Internal, "encoding '{}' failed: {}", s.destination.string(), ffmpegError(r));
@@ -240,9 +232,6 @@ void Sink::finish() {
   s.finished = true;
 }
 
-std::int64_t Sink::framesWritten() const { return m_impl->written; }
-const std::string& Sink::audioNote() const { return m_impl->audioNote; }
-const fs::path& Sink::destination() const { return m_impl->destination; }
 
 // ---------------------------------------------------------------------------
 // Concatenation: packets copied from consecutive parts.
@@ -268,7 +257,7 @@ InputPtr openPart(const fs::path& path) {
 }
 }  // namespace
 
-std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destination) {
+std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& destination) {
   initFfmpeg();
   if (parts.empty()) fail(ErrorKind::Usage, "concatenate: no parts given");
   std::vector<InputPtr> inputs;
@@ -337,9 +326,13 @@ std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destin
         fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(w));
       }
     }
-    // A part must begin where the previous one ended (within a tick of rounding).
-    if (k > 0 && previousEnd != kNoTimestamp && partStart != kNoTimestamp && std::abs(partStart - previousEnd) > 1) {
-      const double gap = double(partStart - previousEnd) * av_q2d(output->streams[video]->time_base);
+    // A part must begin where the previous one ended: within half a frame (containers
+    // round timestamps and last-packet durations to their own time bases).
+    const AVRational tb = output->streams[video]->time_base;
+    const AVRational rate = output->streams[video]->avg_frame_rate;
+    const std::int64_t slack = rate.num > 0 ? std::max<std::int64_t>(1, av_rescale_q(1, av_inv_q(rate), tb) / 2) : 1;
+    if (k > 0 && previousEnd != kNoTimestamp && partStart != kNoTimestamp && std::abs(partStart - previousEnd) > slack) {
+      const double gap = double(partStart - previousEnd) * av_q2d(tb);
       fail(ErrorKind::Input, "'{}' does not start where '{}' ends ({:+.3f} s): not consecutive --frames ranges",
            parts[k].string(), parts[k - 1].string(), gap);
     }
@@ -352,5 +345,34 @@ std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destin
   file.commit();
   return frames;
 }
+
+// ---------------------------------------------------------------------------
+// The module's entry points (backend.h).
+namespace backend {
+namespace {
+FfmpegSink& cast(SinkHandle* h) { return *reinterpret_cast<FfmpegSink*>(h); }
+const FfmpegSink& cast(const SinkHandle* h) { return *reinterpret_cast<const FfmpegSink*>(h); }
+}  // namespace
+
+SinkHandle* openSink(const fs::path& destination, const SinkOptions& options, Status& status) {
+  return guarded(status, [&] { return reinterpret_cast<SinkHandle*>(new FfmpegSink(destination, options)); },
+                 static_cast<SinkHandle*>(nullptr));
+}
+void closeSink(SinkHandle* h) { delete &cast(h); }  // AtomicFile removes an unfinished file
+void write(SinkHandle* h, const Frame& frame, Status& status) {
+  guarded(status, [&] { cast(h).write(frame); return true; }, false);
+}
+void writeAudio(SinkHandle* h, Packet& packet, Status& status) {
+  guarded(status, [&] { cast(h).writeAudio(std::move(packet)); return true; }, false);
+}
+void finish(SinkHandle* h, Status& status) {
+  guarded(status, [&] { cast(h).finish(); return true; }, false);
+}
+std::int64_t framesWritten(const SinkHandle* h) { return cast(h).written; }
+const std::string* audioNote(const SinkHandle* h) { return &cast(h).audioNote; }
+std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destination, Status& status) {
+  return guarded(status, [&] { return concatenateFiles(parts, destination); }, std::int64_t(0));
+}
+}  // namespace backend
 
 }  // namespace glint::video

@@ -1,12 +1,9 @@
-#include "glint/video/source.h"
-
 #include "ffmpeg.h"
 
 #include "glint/core/error.h"
 #include "glint/core/log.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -33,15 +30,7 @@ std::string describe(const std::string& name, SourceKind kind) {
 }
 }  // namespace
 
-bool isImagePath(const std::string& name) {
-  std::string ext = std::filesystem::path(name).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  static constexpr std::array<std::string_view, 10> kImages = {".png", ".jpg", ".jpeg", ".tga", ".tif",
-                                                               ".tiff", ".exr", ".hdr", ".bmp", ".webp"};
-  return std::find(kImages.begin(), kImages.end(), ext) != kImages.end();
-}
-
-struct Source::Impl {
+struct FfmpegSource {
   SourceOptions options;
   SourceInfo info;
   std::string what;  // for messages: "'clip.mp4'", "camera '/dev/video0'"
@@ -78,9 +67,10 @@ struct Source::Impl {
   bool decodeOne(Frame& frame);  // the next decoded frame, any index
   void keepAudio(AVPacket& packet);
   void pace(double seconds);
+  bool read(Frame& frame);
 };
 
-void Source::Impl::open(const std::string& name) {
+void FfmpegSource::open(const std::string& name) {
   initFfmpeg();
   const AVInputFormat* inputFormat = nullptr;
   std::string url = name;
@@ -174,7 +164,7 @@ void Source::Impl::open(const std::string& name) {
   if (options.firstFrame > 0) seekTo(options.firstFrame);
 }
 
-void Source::Impl::seekTo(std::int64_t frameIndex) {
+void FfmpegSource::seekTo(std::int64_t frameIndex) {
   if (info.kind != SourceKind::File || !info.frameRate.valid()) return;  // decode and skip instead
   if (startPts == kNoTimestamp) return;
   const AVRational tb = format->streams[videoStream]->time_base;
@@ -188,7 +178,7 @@ void Source::Impl::seekTo(std::int64_t frameIndex) {
   }
 }
 
-void Source::Impl::keepAudio(AVPacket& p) {
+void FfmpegSource::keepAudio(AVPacket& p) {
   if (!audio) return;
   // Keep the audio of the selected frames: [first, last) in time.
   if (p.pts != AV_NOPTS_VALUE && info.frameRate.valid() && startPts != kNoTimestamp) {
@@ -201,7 +191,7 @@ void Source::Impl::keepAudio(AVPacket& p) {
   if (copy) audioPackets.emplace_back(copy);
 }
 
-void Source::Impl::pace(double seconds) {
+void FfmpegSource::pace(double seconds) {
   if (!paceStarted) {
     paceStarted = true;
     paceWall = std::chrono::steady_clock::now();
@@ -213,7 +203,7 @@ void Source::Impl::pace(double seconds) {
   std::this_thread::sleep_until(due);
 }
 
-bool Source::Impl::decodeOne(Frame& out) {
+bool FfmpegSource::decodeOne(Frame& out) {
   while (true) {
     const int r = avcodec_receive_frame(decoder.get(), frame.get());
     if (r == 0) {
@@ -268,38 +258,46 @@ bool Source::Impl::decodeOne(Frame& out) {
 }
 
 // ---------------------------------------------------------------------------
-Source::Source(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
-Source::Source(Source&&) noexcept = default;
-Source& Source::operator=(Source&&) noexcept = default;
-Source::~Source() = default;
-
-Source Source::open(const std::string& name, const SourceOptions& options) {
-  auto impl = std::make_unique<Impl>();
-  impl->options = options;
-  impl->open(name);
-  return Source(std::move(impl));
-}
-
-const SourceInfo& Source::info() const { return m_impl->info; }
-
-bool Source::read(Frame& frame) {
-  Impl& s = *m_impl;
-  if (s.done) return false;
-  while (s.decodeOne(frame)) {
-    if (frame.index < s.options.firstFrame) continue;  // decoded from the keyframe before it
-    if (s.options.lastFrame >= 0 && frame.index >= s.options.lastFrame) break;
-    if (s.options.realtime && s.info.kind != SourceKind::Camera) s.pace(frame.seconds);
-    ++s.delivered;
+bool FfmpegSource::read(Frame& frame) {
+  if (done) return false;
+  while (decodeOne(frame)) {
+    if (frame.index < options.firstFrame) continue;  // decoded from the keyframe before it
+    if (options.lastFrame >= 0 && frame.index >= options.lastFrame) break;
+    if (options.realtime && info.kind != SourceKind::Camera) pace(frame.seconds);
+    ++delivered;
     return true;
   }
-  s.done = true;
+  done = true;
   return false;
 }
 
-std::deque<Packet> Source::takeAudio() { return std::exchange(m_impl->audioPackets, {}); }
-const AudioTrack* Source::audio() const { return m_impl->audio.get(); }
-std::int64_t Source::droppedFrames() const { return m_impl->dropped; }
-std::int64_t Source::corruptPackets() const { return m_impl->corrupt; }
-std::int64_t Source::framesRead() const { return m_impl->delivered; }
+// The module's entry points (backend.h): FfmpegSource behind an opaque handle.
+namespace backend {
+namespace {
+FfmpegSource& cast(SourceHandle* h) { return *reinterpret_cast<FfmpegSource*>(h); }
+const FfmpegSource& cast(const SourceHandle* h) { return *reinterpret_cast<const FfmpegSource*>(h); }
+}  // namespace
+
+SourceHandle* openSource(const std::string& name, const SourceOptions& options, Status& status) {
+  return guarded(status, [&] {
+    auto source = std::make_unique<FfmpegSource>();
+    source->options = options;
+    source->open(name);
+    return reinterpret_cast<SourceHandle*>(source.release());
+  }, static_cast<SourceHandle*>(nullptr));
+}
+void closeSource(SourceHandle* h) { delete &cast(h); }
+const SourceInfo* sourceInfo(const SourceHandle* h) { return &cast(h).info; }
+bool read(SourceHandle* h, Frame& frame, Status& status) {
+  return guarded(status, [&] { return cast(h).read(frame); }, false);
+}
+void takeAudio(SourceHandle* h, std::deque<Packet>& packets) { packets = std::exchange(cast(h).audioPackets, {}); }
+const AudioTrack* audio(const SourceHandle* h) { return cast(h).audio.get(); }
+void counters(const SourceHandle* h, std::int64_t out[3]) {
+  out[0] = cast(h).dropped;
+  out[1] = cast(h).corrupt;
+  out[2] = cast(h).delivered;
+}
+}  // namespace backend
 
 }  // namespace glint::video
