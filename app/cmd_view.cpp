@@ -1,7 +1,8 @@
 // glint view — the interactive viewer: a GLFW window, a Dear ImGui panel, every scene.
 //
 // Keys: ←/→ previous/next variant, ↑/↓ previous/next scene, Space pause time,
-// R reload shaders, Tab hide/show the panel, Esc quit. Run from a source checkout,
+// R reload shaders, Tab hide/show the panel, Esc quit; a scene's own keys (Option::key)
+// are shown beside its options. Run from a source checkout,
 // shaders are re-read from shaders/ whenever a file changes (hot reload).
 #include "common.h"
 
@@ -19,7 +20,11 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -33,6 +38,7 @@ struct ViewArgs {
   std::string screenshot;
   int frames = 0;
   std::string shaderDir;
+  std::vector<std::string> settings;  // --set name=value, applied to every scene that has the option
 };
 
 // Newest modification time of any file under dir (0 when dir is not set).
@@ -109,6 +115,7 @@ private:
     }
     try {
       auto scene = ref.scene->create(ref.variant);
+      applySettings(*scene);
       m_scene = std::move(scene);
       m_error.clear();
     } catch (const Error& e) {
@@ -118,6 +125,26 @@ private:
     if (index != m_current) m_time = ref.scene->defaultTime;
     m_current = index;
     updateTitle();
+  }
+
+  // --set: each assignment goes to every scene that has such an option (others ignore it).
+  void applySettings(scenes::Scene& scene) const {
+    for (const auto& assignment : m_args.settings) {
+      const std::string name = assignment.substr(0, assignment.find('='));
+      const auto options = scene.options();
+      if (std::any_of(options.begin(), options.end(), [&](const scenes::Option& o) { return o.name == name; }))
+        scenes::setOption(scene, assignment);
+    }
+  }
+
+  // Options with a key (Option::key): a bool toggles, an int steps through its range.
+  void handleOptionKeys() {
+    if (!m_scene) return;
+    for (auto& o : m_scene->options()) {
+      if (!o.key || !pressed(int(o.key))) continue;  // GLFW's key codes for A-Z and 0-9 are their ASCII codes
+      if (auto* b = std::get_if<bool*>(&o.value)) **b = !**b;
+      if (auto* i = std::get_if<int*>(&o.value)) **i = **i >= int(o.max) ? int(o.min) : **i + 1;
+    }
   }
 
   void updateTitle() { m_window.setTitle("glint — " + m_variants[m_current].fullName()); }
@@ -155,6 +182,7 @@ private:
     if (pressed(GLFW_KEY_SPACE)) m_paused = !m_paused;
     if (pressed(GLFW_KEY_R)) load(m_current);
     if (pressed(GLFW_KEY_TAB)) m_showPanel = !m_showPanel;
+    handleOptionKeys();
   }
 
   void checkHotReload() {
@@ -225,9 +253,11 @@ private:
         ImGui::Text("options");
       }
       for (auto& o : options) {
-        if (auto* f = std::get_if<float*>(&o.value)) ImGui::SliderFloat(o.name.c_str(), *f, o.min, o.max);
-        if (auto* i = std::get_if<int*>(&o.value)) ImGui::SliderInt(o.name.c_str(), *i, int(o.min), int(o.max));
-        if (auto* b = std::get_if<bool*>(&o.value)) ImGui::Checkbox(o.name.c_str(), *b);
+        const std::string label = o.key ? fmt::format("{} [{}]", o.name, o.key) : o.name;
+        if (auto* f = std::get_if<float*>(&o.value)) ImGui::SliderFloat(label.c_str(), *f, o.min, o.max);
+        if (auto* i = std::get_if<int*>(&o.value)) ImGui::SliderInt(label.c_str(), *i, int(o.min), int(o.max));
+        if (auto* b = std::get_if<bool*>(&o.value)) ImGui::Checkbox(label.c_str(), *b);
+        if (auto* text = std::get_if<std::string*>(&o.value)) ImGui::InputText(label.c_str(), *text);
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", o.description.c_str());
       }
       const auto notes = m_scene->notes();
@@ -272,6 +302,8 @@ Command viewCommand(CLI::App& app, const GlobalOptions& global) {
                   "Directory to hot-reload shaders from (default: the source tree's shaders/ when it exists)");
   cmd->add_option("--screenshot", args->screenshot, "Save the window (scene + panel) to this image after --frames frames and exit");
   cmd->add_option("--frames", args->frames, "Frames to draw before --screenshot (default 2)");
+  cmd->add_option("--set", args->settings, "name=value: set a scene option (as glint render --set), in every scene "
+                                           "that has it, e.g. --set input=/dev/video0 for post/camera");
   return Command{.run = [args, &global] {
     if (!args->scene.empty()) scenes::Registry::builtin().resolve(args->scene);  // fail fast on a typo
     fs::path dir = args->shaderDir.empty() ? fs::path(GLINT_SOURCE_SHADER_DIR) : fs::path(args->shaderDir);

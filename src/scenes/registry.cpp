@@ -23,6 +23,8 @@ void registerBumpDot3(Registry& registry);
 void registerBumpNormalMap(Registry& registry);
 void registerBakeResult(Registry& registry);
 void registerWaterScenes(Registry& registry);
+void registerPostScenes(Registry& registry);
+void registerPostCamera(Registry& registry);
 
 const Registry& Registry::builtin() {
   static const Registry registry = [] {
@@ -42,6 +44,8 @@ const Registry& Registry::builtin() {
     registerBumpNormalMap(r);
     registerBakeResult(r);
     registerWaterScenes(r);
+    registerPostScenes(r);
+    registerPostCamera(r);
     return r;
   }();
   return registry;
@@ -120,6 +124,8 @@ void setOption(Scene& scene, const std::string& assignment) {
     if (value == "1" || value == "true" || value == "on") **b = true;
     else if (value == "0" || value == "false" || value == "off") **b = false;
     else bad();
+  } else if (auto* text = std::get_if<std::string*>(&it->value)) {
+    **text = value;
   }
 }
 

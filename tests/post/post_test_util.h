@@ -17,7 +17,7 @@ namespace glint::testing {
 /// textures, sky and shadows. The same view as the post/* scenes' photograph, smaller.
 inline const Image& photograph() {
   static const Image photo = perspectiveView(loadImage(findDataFile("env/courtyard.exr", "environment 'courtyard'")),
-                                             {320, 240}, 0.6f, 0.05f, 60.0f);
+                                             {320, 240}, 0.0f, 0.05f, 70.0f, 0.5f);
   return photo;
 }
 

@@ -105,6 +105,27 @@ Image Chain::run(const Image& input) {
   return readFrame(run(texture));
 }
 
+void Chain::setEffects(std::vector<Effect> effects) {
+  Impl& c = *m_impl;
+  for (const auto& e : effects) validateEffect(e, c.size);
+  if (c.stages.size() > effects.size()) c.stages.erase(c.stages.begin() + std::ptrdiff_t(effects.size()), c.stages.end());
+  for (std::size_t i = 0; i < effects.size(); ++i) {
+    if (i < c.stages.size() && c.stages[i].effect.kind == effects[i].kind) {
+      c.stages[i].effect = effects[i];
+    } else if (i < c.stages.size()) {
+      c.stages[i] = Stage(effects[i]);
+    } else {
+      c.stages.emplace_back(effects[i]);
+    }
+  }
+  for (int i = 0; i < 2 && i < int(effects.size()); ++i) {
+    if (c.targets[i]) continue;
+    c.targets[i] = gl::Texture(GL_TEXTURE_2D, i == 0 ? "post-ping" : "post-pong");
+    c.targets[i].storage(GL_RGBA8, c.size.x, c.size.y);
+  }
+  c.effects = std::move(effects);
+}
+
 ivec2 Chain::size() const { return m_impl->size; }
 const std::vector<Effect>& Chain::effects() const { return m_impl->effects; }
 

@@ -53,6 +53,11 @@ public:
   /// The same with an Image in and out (uploads, runs, reads back).
   Image run(const Image& input);
 
+  /// Replaces the effects (a viewer changing parameters or switching effects). Stages
+  /// whose kind is unchanged keep their GL objects and take the new parameters on the next
+  /// run; the others are rebuilt. Error(Usage) as the constructor.
+  void setEffects(std::vector<Effect> effects);
+
   ivec2 size() const;
   const std::vector<Effect>& effects() const;
   /// "kuwahara(size=3) → edges(scale=2,threshold=0.25)"
