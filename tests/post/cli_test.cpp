@@ -202,3 +202,21 @@ TEST(PostCli, BadInputIsOneLineWithTheRightStatus) {
   }
   EXPECT_EQ(fileCount(d), 3u) << "only the three inputs: no output, no temporary file";
 }
+
+TEST(PostCli, TheViewerShowsTheCameraSceneWithOptionsFromTheCommandLine) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run not installed (scripts/setup --test)";
+  const fs::path d = dir("viewer");
+  const fs::path shot = d / "view.png";
+  // --set effect=0 (no effect) and a split: the right part of the window is the test pattern
+  // itself; the panel covers the top left.
+  const auto r = runGlint("view post/camera/sepia --size 640x480 --set effect=0 --set before-after=1 --frames 3 "
+                          "--screenshot " + shot.string(),
+                          "xvfb-run -a -s '-screen 0 1024x768x24'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Image window = loadImage(shot);
+  ASSERT_EQ(window.width(), 640);
+  // The bottom-right corner of testsrc2 is its cyan bar: unprocessed (effect 0), not sepia.
+  EXPECT_NEAR(window.at(630, 470, 0), 0.0f, 0.05f);
+  EXPECT_NEAR(window.at(630, 470, 1), 1.0f, 0.05f);
+  EXPECT_NEAR(window.at(630, 470, 2), 1.0f, 0.05f);
+}
