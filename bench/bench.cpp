@@ -18,6 +18,7 @@ void registerBakeSuite(Suites& suites);
 void registerRttSuite(Suites& suites);
 void registerShadowsSuite(Suites& suites);
 void registerWaterSuite(Suites& suites);
+void registerPostSuite(Suites& suites);
 
 Suites& Suites::builtin() {
   static Suites suites = [] {
@@ -26,6 +27,7 @@ Suites& Suites::builtin() {
     registerRttSuite(s);
     registerShadowsSuite(s);
     registerWaterSuite(s);
+    registerPostSuite(s);
     return s;
   }();
   return suites;

@@ -4,6 +4,7 @@
 # targets exist in both:
 #
 #   PkgConfig::FFTW      fftw3 (double: the tests' oracle) and fftw3f (float: the bench's peer)
+#   glint_deps::fftw_threads  fftw3f_threads (the bench's FFTW on every core; not in fftw3f.pc)
 #   glint_deps::opencv   OpenCV core + imgproc (the bench's peers, the tests' oracles)
 #
 # Debian's split libopencv-core-dev and libopencv-imgproc-dev ship neither opencv4.pc nor
@@ -21,6 +22,18 @@ if(NOT TARGET PkgConfig::FFTW)
   if(NOT FFTW_FOUND)
     set(GLINT_PEER_DEPENDENCIES_FOUND FALSE)
     string(APPEND GLINT_PEER_DEPENDENCIES_MISSING " FFTW (Debian: libfftw3-dev)")
+  endif()
+endif()
+
+if(NOT TARGET glint_deps::fftw_threads)
+  find_library(GLINT_FFTW3F_THREADS_LIBRARY fftw3f_threads)
+  mark_as_advanced(GLINT_FFTW3F_THREADS_LIBRARY)
+  if(GLINT_FFTW3F_THREADS_LIBRARY)
+    add_library(glint_deps::fftw_threads INTERFACE IMPORTED)
+    set_target_properties(glint_deps::fftw_threads PROPERTIES INTERFACE_LINK_LIBRARIES "${GLINT_FFTW3F_THREADS_LIBRARY}")
+  else()
+    set(GLINT_PEER_DEPENDENCIES_FOUND FALSE)
+    string(APPEND GLINT_PEER_DEPENDENCIES_MISSING " FFTW's threads library (Debian: libfftw3-dev)")
   endif()
 endif()
 
