@@ -236,6 +236,12 @@ int runVideo(const PostArgs& a, const std::vector<render::post::Effect>& effects
   if (stats.droppedFrames > 0) {
     run.warn(fmt::format("{} live frame(s) dropped: the source delivered faster than glint could process", stats.droppedFrames));
   }
+  // A file that ends before the frames its container announces (truncated, damaged): said, not silent.
+  const std::int64_t expected = info.frameCount >= 0 && options.lastFrame < 0 ? info.frameCount - options.firstFrame : -1;
+  if (!stats.interrupted && !stats.inputError && expected > 0 && stats.framesRead + 1 < expected) {
+    run.warn(fmt::format("{} ended after {} of the {} frames its container announces (truncated or damaged?)", name,
+                         stats.framesRead, expected));
+  }
   if (source.corruptPackets() > 0) {
     run.recordWarning(fmt::format("{} corrupt packet(s) could not be decoded; those frames are missing", source.corruptPackets()));
   }
@@ -252,6 +258,7 @@ int runVideo(const PostArgs& a, const std::vector<render::post::Effect>& effects
   report["first_frame"] = options.firstFrame;
   report["frames_read"] = stats.framesRead;
   report["frames_written"] = stats.framesWritten;
+  report["frames_expected"] = expected;
   report["dropped_frames"] = stats.droppedFrames;
   report["corrupt_packets"] = source.corruptPackets();
   report["audio"] = !info.hasAudio ? "none" : a.noAudio ? "dropped (--no-audio)" : sink.audioNote().empty() ? "copied" : "dropped";

@@ -128,6 +128,14 @@ TEST(PostCli, FramePartsConcatenateLosslessly) {
   EXPECT_EQ(wrong.status, 3) << wrong.output;
   EXPECT_TRUE(oneLine(wrong.output)) << wrong.output;
   EXPECT_FALSE(fs::exists(d / "wrong.mkv"));
+
+  // A truncated file: the frames before the cut are processed, and the shortfall is said.
+  fs::copy_file(d / "src.mkv", d / "cut.mkv");
+  fs::resize_file(d / "cut.mkv", fs::file_size(d / "src.mkv") / 2);
+  const auto cut = runGlint("post " + (d / "cut.mkv").string() + " -o " + (d / "cut-out.mkv").string() + " --codec ffv1");
+  EXPECT_EQ(cut.status, 0) << cut.output;
+  EXPECT_NE(cut.output.find("of the 48 frames its container announces"), std::string::npos) << cut.output;
+  EXPECT_LT(readAll((d / "cut-out.mkv").string()).size(), 48u);
 }
 
 TEST(PostCli, CtrlCFinishesAPlayablePartialVideo) {

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cstdio>
 
 using namespace glint;
 using namespace glint::render::post;
@@ -57,6 +58,8 @@ TEST_F(PostGpu, SepiaMatchesTheYiqReferenceAndKeepsLuma) {
           worst = std::max(worst, std::abs(in - out));
         }
       EXPECT_LE(worst * 255.0, 0.5 + 1e-3) << name << ": luma moved by " << worst * 255.0 << " steps";
+      std::printf("[figure] sepia %s i=%g q=%g: max %d step(s) from the YIQ reference; luma within %.3f steps\n",
+                  name.c_str(), options.i, options.q, d.maxSteps, worst * 255.0);
     }
   }
 }
@@ -98,6 +101,8 @@ TEST_F(PostGpu, KuwaharaChoosesTheReferenceQuadrantExactly) {
       // digits without being equal. None occurs on these inputs, at any size: exact match,
       // exact ties (ties counts them) broken the same way.
       EXPECT_EQ(differ, 0u) << name << " s=" << size << " (" << ties << " exact ties)";
+      std::printf("[figure] kuwahara %s %dx%d s=%d: %zu of %zu quadrant choices differ from the brute force "
+                  "(%zu exact ties)\n", name.c_str(), image.width(), image.height(), size, differ, image.pixelCount(), ties);
       const auto d = compareSteps(gpu, reference.image);
       EXPECT_LE(d.maxSteps, 1) << name << " s=" << size;
     }
@@ -122,6 +127,7 @@ TEST_F(PostGpu, SpectrumAndFiltersMatchTheDftReference) {
     const Image gpu = runPass(image, [&](auto& in, auto& out) { filter.run(in, out, f); });
     const auto d = compareSteps(gpu, frequencyFilterReference(image, f));
     EXPECT_LE(d.maxSteps, 1) << name << " at " << d.worstX << "," << d.worstY;
+    std::printf("[figure] %s 60x44 vs the direct DFT in double: max %d step(s), mean %.4f\n", name, d.maxSteps, d.meanSteps);
   }
 }
 
