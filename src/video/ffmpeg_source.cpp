@@ -144,13 +144,14 @@ void FfmpegSource::open(const std::string& name) {
   }
   startPts = stream->start_time != AV_NOPTS_VALUE ? stream->start_time : kNoTimestamp;
 
-  if (options.keepAudio) {
-    audioStream = av_find_best_stream(format.get(), AVMEDIA_TYPE_AUDIO, -1, videoStream, nullptr, 0);
-    if (audioStream >= 0) {
-      AVStream* a = format->streams[audioStream];
+  // Found even when not kept, so a report can say "dropped (--no-audio)" rather than "none".
+  if (const int found = av_find_best_stream(format.get(), AVMEDIA_TYPE_AUDIO, -1, videoStream, nullptr, 0); found >= 0) {
+    AVStream* a = format->streams[found];
+    info.hasAudio = true;
+    info.audioCodec = avcodec_get_name(a->codecpar->codec_id);
+    if (options.keepAudio) {
+      audioStream = found;
       audio = std::make_unique<AudioTrack>(*a->codecpar, a->time_base);
-      info.hasAudio = true;
-      info.audioCodec = avcodec_get_name(a->codecpar->codec_id);
     }
   }
   // Only the streams glint reads are demuxed.
