@@ -236,14 +236,23 @@ int runVideo(const PostArgs& a, const std::vector<render::post::Effect>& effects
   if (stats.droppedFrames > 0) {
     run.warn(fmt::format("{} live frame(s) dropped: the source delivered faster than glint could process", stats.droppedFrames));
   }
-  // A file that ends before the frames its container announces (truncated, damaged): said, not silent.
+  // A file that ends before the frames its container announces (truncated, damaged): said, not
+  // silent. Frames lost to corrupt packets are warned about already; one frame of slack for
+  // containers that only know a rounded duration.
   const std::int64_t expected = info.frameCount >= 0 && options.lastFrame < 0 ? info.frameCount - options.firstFrame : -1;
-  if (!stats.interrupted && !stats.inputError && expected > 0 && stats.framesRead + 1 < expected) {
-    run.warn(fmt::format("{} ended after {} of the {} frames its container announces (truncated or damaged?)", name,
+  if (!stats.interrupted && !stats.inputError && expected > 0 &&
+      stats.framesRead + source.corruptPackets() + 1 < expected) {
+    run.warn(fmt::format("'{}' ended after {} of the {} frames its container announces (truncated or damaged?)", name,
                          stats.framesRead, expected));
   }
   if (source.corruptPackets() > 0) {
     run.recordWarning(fmt::format("{} corrupt packet(s) could not be decoded; those frames are missing", source.corruptPackets()));
+  }
+  // Damage the decoder concealed: the frames are there, some possibly wrong.
+  const video::DecoderErrors decoderErrors = source.decoderErrors();
+  if (decoderErrors.count > 0) {
+    run.warn(fmt::format("'{}': the decoder reported {} error(s), the first '{}': some frames were damaged and "
+                         "concealed by the decoder", name, decoderErrors.count, decoderErrors.first));
   }
 
   auto& report = run.report();
@@ -261,6 +270,7 @@ int runVideo(const PostArgs& a, const std::vector<render::post::Effect>& effects
   report["frames_expected"] = expected;
   report["dropped_frames"] = stats.droppedFrames;
   report["corrupt_packets"] = source.corruptPackets();
+  report["decoder_errors"] = decoderErrors.count;
   report["audio"] = !info.hasAudio ? "none" : a.noAudio ? "dropped (--no-audio)" : sink.audioNote().empty() ? "copied" : "dropped";
   report["audio_packets"] = stats.audioPackets;
   report["fps"] = fps;

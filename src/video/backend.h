@@ -23,7 +23,7 @@
 
 namespace glint::video::backend {
 
-constexpr int kVideoAbiVersion = 1;
+constexpr int kVideoAbiVersion = 2;
 
 /// An entry point's outcome: ok, or the Error it would have thrown.
 struct Status {
@@ -46,8 +46,10 @@ struct Api {
   bool (*read)(SourceHandle* source, Frame& frame, Status& status) = nullptr;
   void (*takeAudio)(SourceHandle* source, std::deque<Packet>& packets) = nullptr;
   const AudioTrack* (*audio)(const SourceHandle* source) = nullptr;
-  /// dropped, corrupt, delivered
-  void (*counters)(const SourceHandle* source, std::int64_t out[3]) = nullptr;
+  /// dropped, corrupt, delivered, decoder error lines
+  void (*counters)(const SourceHandle* source, std::int64_t out[4]) = nullptr;
+  /// The first error line the decoder logged ("" when none).
+  std::string (*firstDecoderError)(const SourceHandle* source) = nullptr;
 
   SinkHandle* (*openSink)(const std::filesystem::path& destination, const SinkOptions& options, Status& status) = nullptr;
   void (*closeSink)(SinkHandle* sink) = nullptr;

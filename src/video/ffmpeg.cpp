@@ -3,17 +3,43 @@
 #include "glint/core/error.h"
 #include "glint/core/log.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdarg>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
 #include <utility>
 #include <thread>
+#include <vector>
 
 namespace glint::video {
 
 namespace {
+// The live watches: the log callback only trusts an AVCodecContext's opaque once it is found
+// here (other code in the process, OpenImageIO's FFmpeg reader, may decode too).
+std::mutex g_watchMutex;
+std::vector<DecoderErrorWatch*> g_watches;
+
+bool isCodecContext(void* avcl) {
+  if (!avcl) return false;
+  const AVClass* c = *static_cast<const AVClass* const*>(avcl);
+  return c && c->class_name && std::strcmp(c->class_name, "AVCodecContext") == 0;
+}
+
 extern "C" void routeFfmpegLog(void* avcl, int level, const char* format, va_list args) {
-  if (level > AV_LOG_WARNING || log::level() > log::Level::Debug) return;
+  const bool debug = level <= AV_LOG_WARNING && log::level() <= log::Level::Debug;
+  const bool watched = level <= AV_LOG_ERROR && isCodecContext(avcl);
+  if (!debug && !watched) return;
+  if (watched) {
+    va_list copy;
+    va_copy(copy, args);
+    char plain[1024];
+    std::vsnprintf(plain, sizeof plain, format, copy);
+    va_end(copy);
+    DecoderErrorWatch::record(static_cast<AVCodecContext*>(avcl)->opaque, plain);
+  }
+  if (!debug) return;
   char line[1024];
   static int printPrefix = 1;
   av_log_format_line(avcl, level, format, args, line, sizeof line, &printPrefix);
@@ -22,6 +48,47 @@ extern "C" void routeFfmpegLog(void* avcl, int level, const char* format, va_lis
   if (!text.empty()) log::debug("ffmpeg: {}", text);
 }
 }  // namespace
+
+DecoderErrorWatch::DecoderErrorWatch() {
+  std::lock_guard lock(g_watchMutex);
+  g_watches.push_back(this);
+}
+
+DecoderErrorWatch::~DecoderErrorWatch() {
+  std::lock_guard lock(g_watchMutex);
+  std::erase(g_watches, this);
+}
+
+std::int64_t DecoderErrorWatch::count() const {
+  std::lock_guard lock(m_mutex);
+  return m_count;
+}
+
+std::string DecoderErrorWatch::first() const {
+  std::lock_guard lock(m_mutex);
+  return m_first;
+}
+
+void DecoderErrorWatch::record(void* opaque, const char* text) {
+  std::lock_guard registry(g_watchMutex);  // held: the watch cannot go away meanwhile
+  const auto found = std::find(g_watches.begin(), g_watches.end(), static_cast<DecoderErrorWatch*>(opaque));
+  if (!opaque || found == g_watches.end()) return;
+  DecoderErrorWatch& w = **found;
+  std::lock_guard lock(w.m_mutex);
+  // FFmpeg logs a line in pieces ("slice CRC mismatch 1A2B!", then "at 1.0 seconds\n"): a
+  // line counts once, when its newline arrives.
+  if (!w.m_pending.empty() && !std::isspace(static_cast<unsigned char>(w.m_pending.back())) && *text != '\n') {
+    w.m_pending += ' ';
+  }
+  w.m_pending += text;
+  for (std::size_t end; (end = w.m_pending.find('\n')) != std::string::npos;) {
+    std::string line = w.m_pending.substr(0, end);
+    w.m_pending.erase(0, end + 1);
+    if (line.empty()) continue;
+    ++w.m_count;
+    if (w.m_first.empty()) w.m_first = std::move(line);
+  }
+}
 
 void initFfmpeg() {
   static std::once_flag once;

@@ -16,6 +16,7 @@ extern "C" {
 #include "glint/video/frame.h"
 
 #include <memory>
+#include <mutex>
 #include <string>
 
 namespace glint::video {
@@ -26,6 +27,32 @@ void initFfmpeg();
 
 /// av_strerror's text for an FFmpeg error code.
 std::string ffmpegError(int code);
+
+/// Error lines a decoder logged while still returning frames. Decoders conceal damage
+/// rather than fail (FFV1 copies a slice whose CRC does not match from the previous frame,
+/// H.264 hides broken macroblocks) and flag nothing on the frame, so their log is the only
+/// trace: FFmpeg's log callback counts the error-level lines of every decoder that has a
+/// watch, including its frame-thread copies (they share `opaque`).
+class DecoderErrorWatch {
+public:
+  DecoderErrorWatch();
+  ~DecoderErrorWatch();
+  DecoderErrorWatch(const DecoderErrorWatch&) = delete;
+  DecoderErrorWatch& operator=(const DecoderErrorWatch&) = delete;
+
+  /// Watches `decoder`; call before avcodec_open2 (which makes the thread copies).
+  void attach(AVCodecContext& decoder) { decoder.opaque = this; }
+  std::int64_t count() const;
+  std::string first() const;
+
+  /// From the log callback: a fragment of a line the watched decoder logged at error level.
+  static void record(void* opaque, const char* text);
+
+private:
+  mutable std::mutex m_mutex;
+  std::string m_pending, m_first;
+  std::int64_t m_count = 0;
+};
 
 inline Rational toRational(AVRational r) { return {r.num, r.den}; }
 inline AVRational toAv(Rational r) { return {r.num, r.den}; }

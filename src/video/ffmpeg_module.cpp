@@ -11,7 +11,8 @@ const SourceInfo* sourceInfo(const SourceHandle* source);
 bool read(SourceHandle* source, Frame& frame, Status& status);
 void takeAudio(SourceHandle* source, std::deque<Packet>& packets);
 const AudioTrack* audio(const SourceHandle* source);
-void counters(const SourceHandle* source, std::int64_t out[3]);
+void counters(const SourceHandle* source, std::int64_t out[4]);
+std::string firstDecoderError(const SourceHandle* source);
 SinkHandle* openSink(const std::filesystem::path& destination, const SinkOptions& options, Status& status);
 void closeSink(SinkHandle* sink);
 void write(SinkHandle* sink, const Frame& frame, Status& status);
@@ -36,6 +37,7 @@ extern "C" __attribute__((visibility("default"))) const glint::video::backend::A
     a.takeAudio = takeAudio;
     a.audio = audio;
     a.counters = counters;
+    a.firstDecoderError = firstDecoderError;
     a.openSink = openSink;
     a.closeSink = closeSink;
     a.write = write;

@@ -35,6 +35,7 @@ struct FfmpegSource {
   SourceInfo info;
   std::string what;  // for messages: "'clip.mp4'", "camera '/dev/video0'"
   FormatPtr format;
+  DecoderErrorWatch decoderErrors;  // before decoder: outlives it (and its threads)
   CodecContextPtr decoder;
   RgbaConverter converter;
   FramePtr frame{av_frame_alloc()};
@@ -121,6 +122,7 @@ void FfmpegSource::open(const std::string& name) {
   decoder->thread_count = options.threads;
   decoder->thread_type = FF_THREAD_FRAME | FF_THREAD_SLICE;
   decoder->pkt_timebase = stream->time_base;
+  decoderErrors.attach(*decoder);
   if (const int o = avcodec_open2(decoder.get(), codec, nullptr); o < 0) {
     fail(ErrorKind::Input, "{}: cannot decode its {} video: {}", what, codec->name, ffmpegError(o));
   }
@@ -294,11 +296,13 @@ bool read(SourceHandle* h, Frame& frame, Status& status) {
 }
 void takeAudio(SourceHandle* h, std::deque<Packet>& packets) { packets = std::exchange(cast(h).audioPackets, {}); }
 const AudioTrack* audio(const SourceHandle* h) { return cast(h).audio.get(); }
-void counters(const SourceHandle* h, std::int64_t out[3]) {
+void counters(const SourceHandle* h, std::int64_t out[4]) {
   out[0] = cast(h).dropped;
   out[1] = cast(h).corrupt;
   out[2] = cast(h).delivered;
+  out[3] = cast(h).decoderErrors.count();
 }
+std::string firstDecoderError(const SourceHandle* h) { return cast(h).decoderErrors.first(); }
 }  // namespace backend
 
 }  // namespace glint::video

@@ -134,7 +134,7 @@ const AudioTrack* Source::audio() const { return api().audio(m_impl->handle); }
 
 namespace {
 std::int64_t counter(const backend::SourceHandle* handle, int which) {
-  std::int64_t values[3] = {};
+  std::int64_t values[4] = {};
   api().counters(handle, values);
   return values[which];
 }
@@ -143,6 +143,9 @@ std::int64_t counter(const backend::SourceHandle* handle, int which) {
 std::int64_t Source::droppedFrames() const { return counter(m_impl->handle, 0); }
 std::int64_t Source::corruptPackets() const { return counter(m_impl->handle, 1); }
 std::int64_t Source::framesRead() const { return counter(m_impl->handle, 2); }
+DecoderErrors Source::decoderErrors() const {
+  return {.count = counter(m_impl->handle, 3), .first = api().firstDecoderError(m_impl->handle)};
+}
 
 // ---------------------------------------------------------------------------
 struct Sink::Impl {

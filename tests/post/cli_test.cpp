@@ -138,6 +138,21 @@ TEST(PostCli, FramePartsConcatenateLosslessly) {
   const auto cutFrames = readAll((d / "cut-out.mkv").string()).size();
   EXPECT_GT(cutFrames, 0u);
   EXPECT_LT(cutFrames, 48u);
+
+  // Damage inside a frame (FFV1 slices carry CRCs): the decoder conceals it and flags nothing
+  // on the frame, so its error log is counted, and said.
+  {
+    std::fstream damaged((d / "src.mkv").string(), std::ios::in | std::ios::out | std::ios::binary);
+    damaged.seekp(std::streamoff(fs::file_size(d / "src.mkv") / 2));
+    for (int i = 0; i < 4000; ++i) damaged.put(char(i * 131));
+  }
+  const auto hurt = runGlint("post " + (d / "src.mkv").string() + " -o " + (d / "hurt.mkv").string() +
+                             " --codec ffv1 --json " + (d / "hurt.json").string());
+  EXPECT_EQ(hurt.status, 0) << hurt.output;
+  EXPECT_NE(hurt.output.find("the decoder reported 1 error(s), the first 'slice CRC mismatch"), std::string::npos)
+      << hurt.output;
+  EXPECT_EQ(readJson(d / "hurt.json")["decoder_errors"], 1);
+  EXPECT_EQ(readAll((d / "hurt.mkv").string()).size(), 48u) << "concealed, not dropped";
 }
 
 TEST(PostCli, AudioIsCopiedDroppedWithAWarningOrDroppedOnRequest) {

@@ -14,7 +14,9 @@
 //     full). Packed RGB sources (FFV1 in bgr0, PNG, lavfi's rgb formats) convert exactly.
 //   - Sources are one of three kinds. A *file* is read to its end, every frame in order:
 //     none is skipped (a packet the decoder rejects is counted in corruptPackets(), and
-//     read() says so through a warning). A *camera* (V4L2, libavdevice) and any source
+//     read() says so through a warning; damage the decoder conceals is counted in
+//     decoderErrors(); a file that ends early just ends, info().frameCount tells by how
+//     much). A *camera* (V4L2, libavdevice) and any source
 //     opened with `realtime` are *live*: frames come at their own pace, and the layer
 //     above drops what it cannot keep up with; gaps in the source's own timestamps (frames
 //     the device dropped before we saw them) are counted in droppedFrames(). A *lavfi*
@@ -26,8 +28,8 @@
 //     the timestamps, so the parts of a split video keep their numbers and times.
 //   - Audio: the first audio stream's packets are kept (not decoded) for a Sink to copy.
 //
-// Errors are glint::Error with one line: Input for a missing, unreadable or truncated
-// file, a stream without video, a codec FFmpeg cannot decode, no such camera or a camera
+// Errors are glint::Error with one line: Input for a missing or unreadable file (an MP4
+// cut before its index), a stream without video, a codec FFmpeg cannot decode, no such camera or a camera
 // that stops answering.
 
 #include "glint/core/math.h"
@@ -73,6 +75,12 @@ struct SourceInfo {
   std::string audioCodec;      ///< e.g. "aac", "pcm_s16le"
 };
 
+/// Source::decoderErrors(): how many error lines the decoder logged, and the first.
+struct DecoderErrors {
+  std::int64_t count = 0;
+  std::string first;  ///< e.g. "slice CRC mismatch 22998C7A! at 1.000000 seconds"
+};
+
 class AudioTrack;  // opaque: the audio stream's parameters, for Sink
 
 class Source {
@@ -104,6 +112,10 @@ public:
   std::int64_t corruptPackets() const;
   /// Frames delivered so far.
   std::int64_t framesRead() const;
+  /// Errors the decoder reported while still delivering frames: damage it concealed (an
+  /// FFV1 slice whose CRC does not match, broken H.264 macroblocks). Those frames are in
+  /// the output, possibly wrong; nothing on the frame itself says which.
+  DecoderErrors decoderErrors() const;
 
 private:
   struct Impl;
