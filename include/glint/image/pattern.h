@@ -31,8 +31,9 @@ Image makeTestChart(int size = 512);
 
 /// A size × size zone plate: 0.5 + 0.5·cos(π·r²/(√2·size)), r in pixels from the centre, so
 /// the local frequency grows linearly from 0 at the centre to 0.5 cycles/pixel (Nyquist) in
-/// the corners: no aliasing. Its spectrum is again a zone plate; a low-pass filter keeps the
-/// middle rings and greys out the rest.
+/// the corners: no aliasing. Its Fourier transform is again a chirp (the rings are in the
+/// phase; the magnitude is roughly even); a low-pass filter keeps the middle rings and greys
+/// out the rest.
 Image makeZonePlate(int size = 256);
 
 /// A size × size black image with a white w × h rectangle in the middle (pixel-aligned):

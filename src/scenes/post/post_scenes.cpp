@@ -278,8 +278,8 @@ const std::vector<EffectVariant>& renderedVariants() {
     std::vector<EffectVariant> out;
     for (const auto& p : photoVariants()) {
       const std::string n = p.name;
-      if (n == "original" || n == "sepia" || n == "sobel" || n == "posterize" || n == "spectrum" || n == "bokeh")
-        out.push_back(p);
+      if (n == "original") out.push_back({p.name, "the rendered frame, no effect (shadows/bunny/closed)", p.specs});
+      if (n == "sepia" || n == "sobel" || n == "posterize" || n == "spectrum" || n == "bokeh") out.push_back(p);
     }
     return out;
   }();
@@ -305,7 +305,8 @@ void registerPostScenes(Registry& registry) {
                 .summary = "the FFT on its classic test patterns: spatial domain left, frequency domain (or a filtered "
                            "result) right",
                 .variants = describe(patternVariants()),
-                .defaultSize = {640, 340},
+                // Two square 304² panels (cells of 320², 8-pixel gaps): the square patterns fill them, no bars.
+                .defaultSize = {640, 320},
                 .create = [](int v) { return std::make_unique<PatternScene>(patternVariants()[std::size_t(v)]); }});
 }
 
