@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <sstream>
+#include <string_view>
 
 namespace glint::render::post {
 
@@ -64,7 +65,7 @@ Param floatParam(const char* name, const char* help, FloatField field) {
 std::vector<Param> filterParams(bool band, bool kernel, const char* sizeName) {
   std::vector<Param> p;
   if (kernel) {
-    p.push_back(floatParam(sizeName, "kernel size in pixels (Gaussian σ or disk radius)",
+    p.push_back(floatParam(sizeName, std::string_view(sizeName) == "radius" ? "disk radius in pixels" : "Gaussian σ in pixels",
                            GLINT_FIELD(e.filter.size)));
     return p;
   }
@@ -78,7 +79,7 @@ std::vector<Param> filterParams(bool band, bool kernel, const char* sizeName) {
   p.push_back({"order", "Butterworth order (0: ideal brick wall, rings)",
                [](Effect& e, const std::string& v) { e.filter.order = parseInt(v, "order"); },
                [](const Effect& e) { return std::to_string(e.filter.order); }});
-  p.push_back(floatParam("offset", "added to the result (0.5 centres a high-pass on mid-gray)",
+  p.push_back(floatParam("offset", "added to the result (0.5 shows a high- or band-pass around mid-gray)",
                          GLINT_FIELD(e.filter.offset)));
   return p;
 }
