@@ -1,7 +1,8 @@
 // glint view — the interactive viewer: a GLFW window, a Dear ImGui panel, every scene.
 //
 // Keys: ←/→ previous/next variant, ↑/↓ previous/next scene, Space pause time,
-// R reload shaders, F12 screenshot, Tab hide/show the panel, Esc quit. Run from a source
+// R reload shaders, F12 screenshot, Tab hide/show the panel, Esc quit; a scene's own keys
+// (Option::key) are shown beside its options. Run from a source
 // checkout, shaders are re-read from shaders/ whenever a file changes (hot reload).
 //
 // The mouse moves the camera of every 3D scene (the scenes pass their camera through
@@ -27,7 +28,11 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <fmt/format.h>
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -45,6 +50,7 @@ struct ViewArgs {
   int frames = 0;
   std::string shotDir = ".";
   std::string shaderDir;
+  std::vector<std::string> settings;  // --set name=value, applied to every scene that has the option
 };
 
 /// What a mouse drag over the scene does.
@@ -149,6 +155,7 @@ private:
     }
     try {
       auto scene = ref.scene->create(ref.variant);
+      applySettings(*scene);
       m_scene = std::move(scene);
       m_error.clear();
     } catch (const Error& e) {
@@ -160,6 +167,27 @@ private:
     m_defined.reset();  // known again once the new scene has drawn a frame
     m_current = index;
     updateTitle();
+  }
+
+  // --set: each assignment goes to every scene that has such an option (others ignore it).
+  void applySettings(scenes::Scene& scene) const {
+    for (const auto& assignment : m_args.settings) {
+      const std::string name = assignment.substr(0, assignment.find('='));
+      const auto options = scene.options();
+      if (std::any_of(options.begin(), options.end(), [&](const scenes::Option& o) { return o.name == name; }))
+        scenes::setOption(scene, assignment);
+    }
+  }
+
+  // Options with a key (Option::key): a bool toggles, an int steps through its range.
+  /// A scene's own key (Option::key): toggles a bool option, steps an int one through its range.
+  void optionKey(int key) {
+    if (!m_scene) return;
+    for (auto& o : m_scene->options()) {
+      if (!o.key || int(o.key) != key) continue;  // GLFW's key codes for A-Z and 0-9 are their ASCII codes
+      if (auto* b = std::get_if<bool*>(&o.value)) **b = !**b;
+      if (auto* i = std::get_if<int*>(&o.value)) **i = **i >= int(o.max) ? int(o.min) : **i + 1;
+    }
   }
 
   void updateTitle() { m_window.setTitle("glint — " + m_variants[m_current].fullName()); }
@@ -238,7 +266,7 @@ private:
       case GLFW_KEY_C:
       case GLFW_KEY_HOME: resetView(); break;
       case GLFW_KEY_F12: m_shotRequested = true; break;
-      default: break;
+      default: optionKey(key); break;
     }
   }
 
@@ -377,9 +405,11 @@ private:
         ImGui::Text("options");
       }
       for (auto& o : options) {
-        if (auto* f = std::get_if<float*>(&o.value)) ImGui::SliderFloat(o.name.c_str(), *f, o.min, o.max);
-        if (auto* i = std::get_if<int*>(&o.value)) ImGui::SliderInt(o.name.c_str(), *i, int(o.min), int(o.max));
-        if (auto* b = std::get_if<bool*>(&o.value)) ImGui::Checkbox(o.name.c_str(), *b);
+        const std::string label = o.key ? fmt::format("{} [{}]", o.name, o.key) : o.name;
+        if (auto* f = std::get_if<float*>(&o.value)) ImGui::SliderFloat(label.c_str(), *f, o.min, o.max);
+        if (auto* i = std::get_if<int*>(&o.value)) ImGui::SliderInt(label.c_str(), *i, int(o.min), int(o.max));
+        if (auto* b = std::get_if<bool*>(&o.value)) ImGui::Checkbox(label.c_str(), *b);
+        if (auto* text = std::get_if<std::string*>(&o.value)) ImGui::InputText(label.c_str(), *text);
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", o.description.c_str());
       }
       const auto notes = m_scene->notes();
@@ -452,6 +482,8 @@ Command viewCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--frames", args->frames, "Frames to draw before --screenshot (default 2)");
   cmd->add_option("--shot-dir", args->shotDir, "Directory F12 saves screenshots into (glint-view-1.png, -2, ...)")
       ->capture_default_str();
+  cmd->add_option("--set", args->settings, "name=value: set a scene option (as glint render --set), in every scene "
+                                           "that has it, e.g. --set input=/dev/video0 for post/camera");
   return Command{.run = [args, &global] {
     if (!args->scene.empty()) scenes::Registry::builtin().resolve(args->scene);  // fail fast on a typo
     if (std::error_code ec; !fs::is_directory(args->shotDir, ec))

@@ -19,6 +19,7 @@ void registerCutSuite(Suites& suites);
 void registerRttSuite(Suites& suites);
 void registerShadowsSuite(Suites& suites);
 void registerWaterSuite(Suites& suites);
+void registerPostSuite(Suites& suites);
 
 Suites& Suites::builtin() {
   static Suites suites = [] {
@@ -28,6 +29,7 @@ Suites& Suites::builtin() {
     registerRttSuite(s);
     registerShadowsSuite(s);
     registerWaterSuite(s);
+    registerPostSuite(s);
     return s;
   }();
   return suites;

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 namespace glint {
 namespace fs = std::filesystem;
@@ -91,6 +92,28 @@ void writeAtomically(const fs::path& destination, const std::function<void(const
     fs::remove(tmp, ignored);
     throw;
   }
+}
+
+AtomicFile::AtomicFile(const fs::path& destination)
+    : m_destination(destination), m_temporary(temporarySibling(destination)) {
+  checkWritable(destination);
+}
+
+AtomicFile::~AtomicFile() {
+  if (m_committed || m_temporary.empty()) return;
+  std::error_code ignored;
+  fs::remove(m_temporary, ignored);
+}
+
+AtomicFile::AtomicFile(AtomicFile&& other) noexcept
+    : m_destination(std::move(other.m_destination)), m_temporary(std::exchange(other.m_temporary, {})),
+      m_committed(other.m_committed) {}
+
+void AtomicFile::commit() {
+  std::error_code ec;
+  fs::rename(m_temporary, m_destination, ec);
+  if (ec) fail(ErrorKind::Output, "cannot write '{}': {}", m_destination.string(), ec.message());
+  m_committed = true;
 }
 
 void writeTextAtomically(const fs::path& destination, std::string_view contents) {

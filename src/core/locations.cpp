@@ -2,8 +2,13 @@
 
 #include "glint/core/error.h"
 
+#include <dlfcn.h>
+#include <fmt/format.h>
+#include <link.h>
+
 #include <algorithm>
 #include <cstdlib>
+#include <memory>
 #include <string>
 
 // Compiled in by src/core/CMakeLists.txt.
@@ -50,6 +55,66 @@ fs::path findDataFile(const fs::path& relative, std::string_view what) {
   }
   fail(ErrorKind::Input, "{} not found: no {} in {} (run scripts/setup in glint's source tree, and install again "
        "for an installed glint; or set GLINT_DATA_DIR)", what, relative.string(), searched);
+}
+
+namespace {
+const char* overridePath(const ModuleLocation& module) {
+  const char* path = *module.overrideVariable ? std::getenv(module.overrideVariable) : nullptr;
+  return path && *path ? path : nullptr;
+}
+
+// The directories dlopen() would search for a bare file name from the executable:
+// LD_LIBRARY_PATH, its RUNPATH ($ORIGIN expanded) and the system's. Resolving them
+// here, instead of dlopen()ing the bare name, keeps every candidate a path that can be
+// checked without loading it and named in messages.
+std::vector<fs::path> librarySearchPath() {
+  std::vector<fs::path> dirs;
+  void* self = dlopen(nullptr, RTLD_LAZY | RTLD_NOLOAD);
+  if (!self) return dirs;
+  Dl_serinfo size{};
+  if (dlinfo(self, RTLD_DI_SERINFOSIZE, &size) == 0 && size.dls_size >= sizeof(Dl_serinfo)) {
+    auto storage = std::make_unique<std::max_align_t[]>(size.dls_size / sizeof(std::max_align_t) + 1);
+    auto* info = reinterpret_cast<Dl_serinfo*>(storage.get());
+    *info = size;  // RTLD_DI_SERINFO wants dls_size and dls_cnt filled in
+    if (dlinfo(self, RTLD_DI_SERINFO, info) == 0) {
+      for (unsigned i = 0; i < info->dls_cnt; ++i) {
+        // Only absolute directories: an empty or relative entry (CMake pads build-tree
+        // RUNPATHs with empty ones) would make the working directory a candidate.
+        const fs::path dir = info->dls_serpath[i].dls_name ? info->dls_serpath[i].dls_name : "";
+        if (dir.is_absolute()) dirs.push_back(dir);
+      }
+    }
+  }
+  dlclose(self);
+  return dirs;
+}
+}  // namespace
+
+std::vector<fs::path> moduleCandidates(const ModuleLocation& module) {
+  std::error_code ec;
+  if (const char* path = overridePath(module)) {
+    return fs::exists(path, ec) ? std::vector<fs::path>{path} : std::vector<fs::path>{};
+  }
+  const fs::path name = module.built.filename();
+  std::vector<fs::path> candidates;
+  auto add = [&](const fs::path& path) {
+    if (path.empty() || !fs::exists(path, ec)) return;
+    const fs::path normal = path.lexically_normal();
+    if (std::find(candidates.begin(), candidates.end(), normal) == candidates.end()) candidates.push_back(normal);
+  };
+  if (const fs::path exe = executablePath(); !exe.empty()) add(exe.parent_path() / name);
+  for (const fs::path& dir : librarySearchPath()) add(dir / name);
+  add(module.built);
+  add(module.installed);
+  return candidates;
+}
+
+std::string moduleSearchDescription(const ModuleLocation& module) {
+  if (const char* path = overridePath(module)) return fmt::format("{}={}", module.overrideVariable, path);
+  return fmt::format("glint looks beside its executable, in the executable's library path (RUNPATH, "
+                     "LD_LIBRARY_PATH), in {} and in {}; {} overrides",
+                     module.built.parent_path().string(), module.installed.parent_path().string(),
+                     module.overrideVariable);
 }
 
 }  // namespace glint

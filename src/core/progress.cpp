@@ -58,7 +58,9 @@ void Progress::draw(bool force) {
   const int filled = static_cast<int>(fraction * kWidth);
   std::string bar(filled, '#');
   bar.append(kWidth - filled, '.');
-  auto line = fmt::format("\r{} [{}] {}/{} {:5.1f} s", m_label, bar, done, m_total, elapsed);
+  // An unknown total (a camera, an endless generator): the count alone.
+  auto line = m_total ? fmt::format("\r{} [{}] {}/{} {:5.1f} s", m_label, bar, done, m_total, elapsed)
+                      : fmt::format("\r{} {} {:5.1f} s", m_label, m_done.load(), elapsed);
   if (!m_detail.empty()) line += "  " + m_detail;
   // Pad so a shorter line fully overwrites a longer previous one.
   std::fprintf(stderr, "%-100s", line.c_str());

@@ -100,6 +100,32 @@ vec3 displayEncode(vec3 radiance, float exposure) {
   return out;
 }
 
+Image perspectiveView(const Image& equirect, ivec2 size, float yaw, float pitch, float fovY, float exposure) {
+  Image out(size.x, size.y, 4, PixelType::U8);
+  // Camera basis: forward along yaw/pitch, right-handed, +Y up.
+  const vec3 forward(-std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch));
+  const vec3 right = glm::normalize(glm::cross(forward, vec3(0.0f, 1.0f, 0.0f)));
+  const vec3 up = glm::cross(right, forward);
+  const float tanHalf = std::tan(glm::radians(fovY) * 0.5f);
+  const float aspect = float(size.x) / float(size.y);
+  for (int y = 0; y < size.y; ++y) {
+    for (int x = 0; x < size.x; ++x) {
+      vec3 sum(0.0f);
+      for (int sy = 0; sy < 2; ++sy) {
+        for (int sx = 0; sx < 2; ++sx) {
+          const float px = (2.0f * (float(x) + 0.25f + 0.5f * float(sx)) / float(size.x) - 1.0f) * tanHalf * aspect;
+          const float py = (1.0f - 2.0f * (float(y) + 0.25f + 0.5f * float(sy)) / float(size.y)) * tanHalf;
+          sum += sampleEquirect(equirect, forward + px * right + py * up);
+        }
+      }
+      const vec3 c = displayEncode(sum * 0.25f, exposure);
+      for (int k = 0; k < 3; ++k) out.set(x, y, k, c[k]);
+      out.set(x, y, 3, 1.0f);
+    }
+  }
+  return out;
+}
+
 vec2 sphereMapUv(vec3 r) {
   r = glm::normalize(r);
   const float m = 2.0f * std::sqrt(r.x * r.x + r.y * r.y + (r.z + 1.0f) * (r.z + 1.0f));

@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace glint {
@@ -116,6 +117,34 @@ Image makeTestChart(int size) {
   fill(img, 0, 0, size, 2 * unit, blue);
   fill(img, 0, 0, 2 * unit, size, blue);
   return img;
+}
+
+Image makeZonePlate(int size) {
+  Image image(size, size, 4);
+  const float c = 0.5f * float(size);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const float dx = float(x) + 0.5f - c, dy = float(y) + 0.5f - c;
+      // Local frequency k·r with k = 1/(√2·size): 0.5 cycles/pixel at the corners.
+      const float v = 0.5f + 0.5f * std::cos(kPi * (dx * dx + dy * dy) / (std::sqrt(2.0f) * float(size)));
+      for (int k = 0; k < 3; ++k) image.set(x, y, k, v);
+      image.set(x, y, 3, 1.0f);
+    }
+  }
+  return image;
+}
+
+Image makeRectangle(int size, int w, int h) {
+  Image image(size, size, 4);
+  const int x0 = (size - w) / 2, y0 = (size - h) / 2;
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const float v = x >= x0 && x < x0 + w && y >= y0 && y < y0 + h ? 1.0f : 0.0f;
+      for (int k = 0; k < 3; ++k) image.set(x, y, k, v);
+      image.set(x, y, 3, 1.0f);
+    }
+  }
+  return image;
 }
 
 }  // namespace glint

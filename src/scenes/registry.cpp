@@ -24,6 +24,8 @@ void registerBumpNormalMap(Registry& registry);
 void registerBakeResult(Registry& registry);
 void registerCutScenes(Registry& registry);
 void registerWaterScenes(Registry& registry);
+void registerPostScenes(Registry& registry);
+void registerPostCamera(Registry& registry);
 
 const Registry& Registry::builtin() {
   static const Registry registry = [] {
@@ -44,6 +46,8 @@ const Registry& Registry::builtin() {
     registerBakeResult(r);
     registerCutScenes(r);
     registerWaterScenes(r);
+    registerPostScenes(r);
+    registerPostCamera(r);
     return r;
   }();
   return registry;
@@ -122,6 +126,8 @@ void setOption(Scene& scene, const std::string& assignment) {
     if (value == "1" || value == "true" || value == "on") **b = true;
     else if (value == "0" || value == "false" || value == "off") **b = false;
     else bad();
+  } else if (auto* text = std::get_if<std::string*>(&it->value)) {
+    **text = value;
   }
 }
 

@@ -3,7 +3,8 @@
 // against that prefix only, run to render basics/triangle/color, and the picture checked
 // against the lecture's arithmetic and the reference image. The prefix is not the one
 // this build was configured for, so the test also covers a moved install: the consumer
-// and the installed glint command must find the OpenImageIO module inside the prefix.
+// and the installed glint command must find the OpenImageIO module (and glint post the
+// FFmpeg module) inside the prefix.
 //
 // Each test works in its own test-output/install/<test> folder (ctest runs them in
 // parallel processes); nothing is written elsewhere except the install manifest that
@@ -79,6 +80,7 @@ TEST(Install, AConsumerProjectBuildsAgainstTheInstalledTreeAndRendersTheTriangle
            fs::path(GLINT_INSTALL_LIBDIR) / "libglint_core.a",
            fs::path(GLINT_INSTALL_LIBDIR) / "libglint_scenes.a",
            fs::path(GLINT_INSTALL_MODULE_DIR) / moduleName(),
+           fs::path(GLINT_INSTALL_MODULE_DIR) / "libglint_ffmpeg.so",
            fs::path(GLINT_INSTALL_CMAKE_DIR) / "glintConfig.cmake",
            fs::path(GLINT_INSTALL_CMAKE_DIR) / "glintConfigVersion.cmake",
            fs::path(GLINT_INSTALL_CMAKE_DIR) / "glintTargets.cmake",
@@ -154,6 +156,16 @@ TEST(Install, AConsumerProjectBuildsAgainstTheInstalledTreeAndRendersTheTriangle
   EXPECT_TRUE(opened(loaderLog(work / "glint-loader"), prefix / GLINT_INSTALL_MODULE_DIR / moduleName()))
       << "the installed glint did not load the module from its prefix";
   EXPECT_EQ(loadImage(depth).width(), 64);
+
+  // 6. glint post through the installed FFmpeg module, found the same way (core/locations.h).
+  const fs::path video = work / "bars.mkv";
+  const auto post = run(fmt::format("{} {} -q post --input lavfi:testsrc2=size=64x48:rate=10:duration=0.5 -o {} "
+                                    "--codec ffv1 -e sepia", logLoading(work / "post-loader"),
+                                    quote(prefix / GLINT_INSTALL_BINDIR / "glint"), quote(video)));
+  ASSERT_EQ(post.status, 0) << post.output;
+  EXPECT_TRUE(opened(loaderLog(work / "post-loader"), prefix / GLINT_INSTALL_MODULE_DIR / "libglint_ffmpeg.so"))
+      << "the installed glint did not load the video module from its prefix";
+  EXPECT_TRUE(fs::is_regular_file(video));
 }
 
 // GLINT_OIIO_MODULE names the module explicitly: used when set, and the only candidate,

@@ -25,7 +25,9 @@ const std::set<std::string> k2dViews = {
     "bump/object-space/maps", "shadows/map/light-view", "shadows/map/light-depth", "shadows/planar/texture",
 };
 bool is2d(const scenes::VariantRef& ref) {
-  return ref.scene->name.rfind("basics/", 0) == 0 || k2dViews.count(ref.fullName()) > 0;  // basics: NDC geometry
+  // basics: NDC geometry; post: image processing of a fixed photograph, pattern, frame or camera
+  return ref.scene->name.rfind("basics/", 0) == 0 || ref.scene->name.rfind("post/", 0) == 0 ||
+         k2dViews.count(ref.fullName()) > 0;
 }
 
 // Big enough for rtt's 256² copy-to-texture, small enough to render the registry quickly.

@@ -26,6 +26,32 @@ namespace glint {
 void writeAtomically(const std::filesystem::path& destination,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
 
+/// The same for output produced over time (a video encoded frame by frame): write to
+/// temporary(), then commit() renames it to the destination. Destroyed without commit(),
+/// it removes the temporary file. Error(Output) from the constructor as checkWritable.
+///
+///   AtomicFile file("out.mkv");
+///   encodeInto(file.temporary());
+///   file.commit();
+class AtomicFile {
+public:
+  explicit AtomicFile(const std::filesystem::path& destination);
+  ~AtomicFile();
+  AtomicFile(AtomicFile&& other) noexcept;
+  AtomicFile& operator=(AtomicFile&&) = delete;
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  const std::filesystem::path& temporary() const { return m_temporary; }
+  const std::filesystem::path& destination() const { return m_destination; }
+  /// Renames the temporary file to the destination. Error(Output) when that fails.
+  void commit();
+
+private:
+  std::filesystem::path m_destination, m_temporary;
+  bool m_committed = false;
+};
+
 /// Writes `contents` to `destination` atomically.
 void writeTextAtomically(const std::filesystem::path& destination, std::string_view contents);
 

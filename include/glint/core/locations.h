@@ -21,6 +21,7 @@
 // through GLINT_DATA_DIR=P/share/glint; findDataFile's error says so.
 
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -32,6 +33,29 @@ std::filesystem::path executablePath();
 /// The directories findDataFile searches, in order (see above); duplicates removed.
 /// Directories that do not exist are included: the list is where glint looks.
 std::vector<std::filesystem::path> dataDirectories();
+
+/// A module glint dlopen()s instead of linking (a library with hundreds of dependencies
+/// that only some commands need): libglint_oiio.so (OpenImageIO), libglint_ffmpeg.so
+/// (FFmpeg). moduleCandidates() looks, in order, first existing file wins:
+///   $<overrideVariable>      when set, the only candidate (an explicit choice is not
+///                            second-guessed)
+///   beside the executable    a copied glint, next to its modules
+///   the executable's library LD_LIBRARY_PATH and RUNPATH: the installed glint has RUNPATH
+///     search path            $ORIGIN/../lib/glint (a moved prefix still works), programs
+///                            linked through find_package(glint) get <prefix>/lib/glint
+///   `built`                  the build tree's module (tests, build/app/glint)
+///   `installed`              <prefix>/lib/glint as configured at build time
+struct ModuleLocation {
+  std::filesystem::path built;      ///< the module in the build tree (its file name is the module's)
+  std::filesystem::path installed;  ///< the module under the configured install prefix
+  const char* overrideVariable = "";  ///< e.g. "GLINT_OIIO_MODULE"
+};
+
+/// The candidates that exist, in the order above, duplicates removed; with the override
+/// variable set, that path alone (or none).
+std::vector<std::filesystem::path> moduleCandidates(const ModuleLocation& module);
+/// Where moduleCandidates() looks, for error messages: one line.
+std::string moduleSearchDescription(const ModuleLocation& module);
 
 /// The first dataDirectories()/`relative` that is a regular file. Error(Input), one line,
 /// when there is none: `what` (e.g. "environment 'courtyard'"), every directory searched,

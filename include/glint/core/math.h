@@ -11,6 +11,8 @@
 
 namespace glint {
 
+using glm::dvec2;
+using glm::dvec3;
 using glm::ivec2;
 using glm::ivec3;
 using glm::ivec4;

@@ -6,6 +6,8 @@
 // so logs and CI output stay clean. advance() is thread-safe and cheap (an
 // atomic add; redraws are rate-limited), so it may be called from TBB workers.
 //
+// A total of 0 means unknown (a live source): the count is drawn without a bar.
+//
 //   glint::Progress progress("gallery", variants.size());
 //   for (...) { work(); progress.advance(); }
 //   progress.finish();   // also called by the destructor

@@ -69,6 +69,12 @@ vec3 sampleEquirect(const Image& equirect, vec3 direction);
 /// function. Output in [0, 1]. shaders/env/envmap.glsl's displayEncode() is the same code.
 vec3 displayEncode(vec3 radiance, float exposure = 1.0f);
 
+/// A photograph of the environment: a pinhole camera at its centre looking along yaw
+/// (radians about +Y; 0 looks along −Z, π/2 along −X) and pitch (radians up), vertical
+/// field of view `fovY` degrees, 2×2 samples per pixel, display-encoded into U8 RGBA (row 0
+/// at the top). glint post's "real photograph": a view of a real HDR photograph.
+Image perspectiveView(const Image& equirect, ivec2 size, float yaw, float pitch, float fovY, float exposure = 1.0f);
+
 // ---------------------------------------------------------------------------
 // Sphere maps (GL_SPHERE_MAP)
 //

@@ -64,9 +64,13 @@ struct FrameInput {
 struct Option {
   std::string name;         ///< identifier for --set, e.g. "light-height"
   std::string description;  ///< one line for tooltips and --help
-  std::variant<float*, int*, bool*> value;
+  std::variant<float*, int*, bool*, std::string*> value;  ///< a string is a text field (a file, a device)
   float min = 0.0f;  ///< slider range for float and int options
   float max = 1.0f;
+  /// A key for the viewer (an uppercase letter or a digit, e.g. 'B'): it toggles a bool
+  /// option and steps an int option through min..max (wrapping), as the seed's demos
+  /// switched effects on keys. 0: none. R is the viewer's (reload).
+  char key = 0;
 };
 
 class Scene {

@@ -1,0 +1,204 @@
+// bench post — seed 001's effects per frame at the seed's camera size (640×480), 1080p and
+// 4K, each against its CPU equivalent in OpenCV (and the FFT against FFTW) measured in the
+// same run, alternating runs, medians; and `glint post`'s pipeline end to end on a 1080p
+// H.264 file (decode → GPU effects → encode) against the same pipeline without the GPU.
+//
+// Every GPU row's note gives the bytes its passes must move at least (each texel read and
+// written once per pass) and the time that takes at an H100's 3.35 TB/s: the memory-
+// bandwidth bound the issue asks each effect to be compared with on a GPU.
+#include "glint/bench/bench.h"
+#include "glint/gl/timer.h"
+#include "glint/render/post/chain.h"
+#include "glint/render/post/fft.h"
+#include "glint/render/post/passes.h"
+#include "glint/video/sink.h"
+#include "glint/video/source.h"
+#include "glint/video/transcode.h"
+
+#include "post_peers.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <random>
+#include <thread>
+
+#include <unistd.h>
+
+namespace glint::bench {
+namespace {
+namespace post = render::post;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kH100Bandwidth = 3.35e12;  // bytes/s, H100 SXM HBM3
+
+double msOf(const std::function<void()>& work, bool gl) {
+  const auto start = Clock::now();
+  work();
+  if (gl) glFinish();
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// Medians of `rounds` alternating runs of the GPU work (with glFinish) and the peer's, after
+// one warm-up of each: both see the same machine state (clocks, other load).
+std::pair<double, double> alternating(const std::function<void()>& gpu, const std::function<void()>& peer, int rounds) {
+  msOf(gpu, true);
+  if (peer) msOf(peer, false);
+  std::vector<double> a, b;
+  for (int i = 0; i < rounds; ++i) {
+    a.push_back(msOf(gpu, true));
+    if (peer) b.push_back(msOf(peer, false));
+  }
+  return {median(a), peer ? median(b) : 0.0};
+}
+
+Image noise(ivec2 size) {
+  std::mt19937 rng(7);
+  Image image(size.x, size.y, 4);
+  auto px = image.pixels<std::uint8_t>();
+  for (std::size_t i = 0; i < px.size(); ++i) px[i] = std::uint8_t(i % 4 == 3 ? 255 : rng() & 0xFF);
+  return image;
+}
+
+std::string bound(double bytes) {
+  return fmt::format("≥ {:.0f} MB/frame: ≥ {:.0f} µs at 3.35 TB/s", bytes / 1e6, bytes / kH100Bandwidth * 1e6);
+}
+
+// Bytes one FFT pass sequence moves: every radix pass reads and writes each element.
+double fftBytes(const post::Fft2d& fft) {
+  const double elements = double(fft.size().x) * fft.size().y;
+  const double passes = double(fft.radices(0).size() + fft.radices(1).size());
+  return passes * elements * 2.0 * 8.0 * fft.lanes();
+}
+
+void runEffects(Recorder& recorder) {
+  for (const ivec2 size : {ivec2(640, 480), ivec2(1920, 1080), ivec2(3840, 2160)}) {
+    const std::string group = fmt::format("{}x{}", size.x, size.y);
+    const double pixels = double(size.x) * size.y;
+    const int rounds = size.x >= 3840 ? 3 : size.x >= 1920 ? 5 : 9;
+    const Image input = noise(size);  // the cost of these effects does not depend on the content
+    const gl::Texture in = post::uploadFrame(input, "bench-input");
+    gl::Texture out(GL_TEXTURE_2D, "bench-output");
+    out.storage(GL_RGBA8, size.x, size.y);
+
+    const auto row = [&](const std::string& name, const std::function<void()>& gpu, const std::string& peerName,
+                         const peers::Work& peer, const std::string& peerNote, double bytes) {
+      const auto [gpuMs, peerMs] = alternating(gpu, peer, rounds);
+      const double timerMs = gl::GpuTimer::measureMs(gpu, rounds, 1);
+      if (peer) recorder.record({.group = group, .name = peerName, .value = peerMs, .unit = "ms", .note = peerNote});
+      recorder.record({.group = group, .name = name, .value = gpuMs, .unit = "ms", .ratioTo = peer ? peerName : "",
+                       .note = fmt::format("wall incl. glFinish; GL_TIME_ELAPSED {:.3f} ms; {:.0f} Mpixel/s; {}",
+                                           timerMs, pixels / (gpuMs * 1e3), bound(bytes))});
+    };
+    const std::string threads = fmt::format("{} thread(s)", peers::peerThreads());
+
+    post::SepiaPass sepia;
+    row("sepia gpu", [&] { sepia.run(in, out); }, "sepia opencv", peers::opencvSepia(input),
+        "cv::transform, the 4×4 colour-matrix sepia, 8-bit, " + threads, pixels * 8);
+    post::SobelPass sobel;
+    row("sobel gpu", [&] { sobel.run(in, out); }, "sobel opencv", peers::opencvSobel(input),
+        "cvtColor + 2× cv::Sobel + magnitude, float, " + threads, pixels * 8);
+    post::KuwaharaPass kuwahara;
+    row("kuwahara gpu", [&] { kuwahara.run(in, out); }, "kuwahara opencv", peers::opencvKuwahara(input),
+        "cv::boxFilter of I and I² + quadrant selection (parallel_for_), " + threads,
+        pixels * (4 + 16) + pixels * (16 + 4 + 4));
+    post::Chain posterize(size, post::parseEffects(std::vector<std::string>{"posterize"}));
+    const auto kuwaharaPeer = peers::opencvKuwahara(input), sobelPeer = peers::opencvSobel(input);
+    row("posterize gpu", [&] { posterize.run(in); }, "posterize opencv", [&] { kuwaharaPeer(); sobelPeer(); },
+        "the OpenCV Kuwahara and Sobel above, together", pixels * (4 + 16) + pixels * (16 + 4 + 4) + pixels * 8);
+    post::SpectrumPass spectrum;
+    post::Fft2d luma(size, 1), colour(size, 2);
+    row("spectrum gpu", [&] { spectrum.run(in, out); }, "spectrum opencv", peers::opencvSpectrum(input),
+        "cvtColor + cv::dft + magnitude + log, " + threads, pixels * (4 + 8) + fftBytes(luma) + pixels * (8 + 4));
+    post::FrequencyFilterPass lowpass;
+    const FrequencyFilter filter{.kind = FilterKind::LowPass, .cutoff = 0.05f, .order = 2};
+    row("lowpass gpu", [&] { lowpass.run(in, out, filter); }, "lowpass opencv", peers::opencvFrequencyFilter(input),
+        "3× (cv::dft + mulSpectrums + idft), " + threads,
+        pixels * (4 + 16) + 2 * fftBytes(colour) + pixels * (16 + 8 + 16) + pixels * (16 + 4 + 4));
+    row("fft gpu", [&] { luma.run(0, post::FftDirection::Forward); }, "fft fftw", peers::fftwForward(size),
+        fmt::format("fftwf_execute, 2D complex float, FFTW_MEASURE, {} thread(s)", std::max(1u, std::thread::hardware_concurrency())),
+        fftBytes(luma));
+    const auto [dftMs, unused] = alternating(peers::opencvDft(size), {}, rounds);
+    (void)unused;
+    recorder.record({.group = group, .name = "fft opencv", .value = dftMs, .unit = "ms", .ratioTo = "fft fftw",
+                     .note = "cv::dft, 2D complex float, " + threads});
+  }
+}
+
+// An identity stage that does nothing on the GPU: the pipeline's peer (decode → encode).
+class PassThrough final : public video::FrameProcessor {
+public:
+  void process(video::Frame&& frame, const Emit& emit) override { emit(std::move(frame)); }
+  void flush(const Emit&) override {}
+};
+
+void runEndToEnd(Recorder& recorder) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / fmt::format("glint-bench-post-{}", getpid());
+  fs::create_directories(dir);
+  const fs::path clip = dir / "clip.mp4";
+  const ivec2 size(1920, 1080);
+  {  // The input: 48 frames of a moving test pattern, H.264.
+    video::Source pattern = video::Source::open("lavfi:testsrc2=size=1920x1080:rate=24:duration=2");
+    video::Sink sink(clip, {.codec = video::Codec::H264, .size = size, .frameRate = {24, 1},
+                            .timeBase = pattern.info().timeBase, .preset = "ultrafast"});
+    video::Frame f;
+    while (pattern.read(f)) sink.write(f);
+    sink.finish();
+  }
+  const std::string group = "1080p H.264";
+  const std::string preset = "veryfast";
+  // Decoding alone: the ceiling of any pipeline on this file.
+  {
+    const auto start = Clock::now();
+    video::Source source = video::Source::open(clip.string());
+    video::Frame f;
+    std::int64_t n = 0;
+    while (source.read(f)) ++n;
+    const double s = std::chrono::duration<double>(Clock::now() - start).count();
+    recorder.record({.group = group, .name = "decode only", .value = double(n) / s, .unit = "fps",
+                     .note = "libavcodec + swscale to RGBA"});
+  }
+  const auto transcodeFps = [&](video::FrameProcessor& processor) {
+    video::Source source = video::Source::open(clip.string());
+    video::Sink sink(dir / "out.mp4", {.codec = video::Codec::H264, .size = size, .frameRate = source.info().frameRate,
+                                       .timeBase = source.info().timeBase, .preset = preset});
+    const auto stats = video::transcode(source, sink, processor);
+    return double(stats.framesWritten) / stats.seconds;
+  };
+  PassThrough passThrough;
+  recorder.record({.group = group, .name = "decode+encode", .value = transcodeFps(passThrough), .unit = "fps",
+                   .note = fmt::format("the same pipeline without the GPU (x264 preset {})", preset)});
+  for (const char* effect : {"sepia", "posterize"}) {
+    post::FrameStream stream(size, post::parseEffects(std::vector<std::string>{effect}));
+    video::StreamProcessor processor(stream);
+    recorder.record({.group = group, .name = fmt::format("post -e {}", effect), .value = transcodeFps(processor),
+                     .unit = "fps", .ratioTo = "decode+encode",
+                     .note = "decode → PBO upload → effect → PBO readback → encode, overlapped on 3 threads"});
+  }
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+}
+
+void runPost(Recorder& recorder) {
+  runEffects(recorder);
+  runEndToEnd(recorder);
+}
+
+}  // namespace
+
+void registerPostSuite(Suites& suites) {
+  suites.add({.name = "post",
+              .description = "post effects per frame at 640×480, 1080p and 4K vs OpenCV / FFTW; glint post end to end on "
+                             "1080p H.264",
+              .run = runPost});
+}
+
+}  // namespace glint::bench

@@ -1,0 +1,84 @@
+#pragma once
+// glint/render/post/passes.h — seed 001's image-space effects as GPU passes: each a
+// fragment shader on a full-screen triangle (shaders/post/*.frag), texture in, texture out.
+//
+// Contents
+//   SepiaPass      "a dot product and an add" (shaders/post/sepia.frag)
+//   SobelPass      the two 3×3 kernels, eight texel fetches (sobel.frag)
+//   EdgesPass      Sobel lines composited over the image (edges.frag)
+//   KuwaharaPass   the seed's two passes: statistics of every s×s block into a float
+//                  texture (kuwahara_stats.frag), then four fetches and the calmest mean
+//                  (kuwahara_select.frag)
+//
+// Conventions: image/post.h's, exactly — same luma weights, same border rule (texelFetch
+// at clamped coordinates), same arithmetic. Textures hold frames in image orientation:
+// texel row 0 is the picture's TOP row (as decoded video and image files are uploaded
+// without flipping, render/post/chain.h's uploadFrame), so "down" is +y in texel
+// coordinates and the Sobel signs match OpenCV's on the same rows. Inputs and outputs are
+// 2D textures of equal size; outputs must be colour-renderable (RGBA8 in glint post: the
+// result is rounded to 8 bits, one step of the reference at most).
+//
+//   render::post::SepiaPass sepia;
+//   sepia.run(frame, result, {.i = 0.2f, .q = 0.0f});
+//
+// Each run() sets the state it draws with (depth, blend and culling off; the viewport to the
+// output) and leaves framebuffer 0 bound. Cost: one full-screen pass (Kuwahara two), per
+// pixel, independent of what the frame shows — the seed's point about post effects.
+
+#include "glint/gl/objects.h"
+#include "glint/image/post.h"
+#include "glint/render/gpu_mesh.h"
+
+namespace glint::render::post {
+
+class SepiaPass {
+public:
+  SepiaPass();
+  void run(const gl::Texture& input, const gl::Texture& output, const SepiaOptions& options = {});
+
+private:
+  FullscreenPass m_pass;
+  gl::Framebuffer m_framebuffer;
+};
+
+class SobelPass {
+public:
+  SobelPass();
+  void run(const gl::Texture& input, const gl::Texture& output, const SobelOptions& options = {});
+
+private:
+  FullscreenPass m_pass;
+  gl::Framebuffer m_framebuffer;
+};
+
+class EdgesPass {
+public:
+  EdgesPass();
+  void run(const gl::Texture& input, const gl::Texture& output, const EdgesOptions& options = {});
+
+private:
+  FullscreenPass m_pass;
+  gl::Framebuffer m_framebuffer;
+};
+
+class KuwaharaPass {
+public:
+  KuwaharaPass();
+  /// Pass 1 into an RGBA32F statistics texture of (w + s − 1) × (h + s − 1) texels (one per
+  /// block position, including blocks hanging over the border; reallocated when the size or
+  /// s changes), pass 2 into `output`. With `showQuadrant`, pass 2 writes the chosen
+  /// quadrant's number q instead of the mean, as q/255 in every channel (tests read it back).
+  void run(const gl::Texture& input, const gl::Texture& output, const KuwaharaOptions& options = {},
+           bool showQuadrant = false);
+  /// The statistics texture of the last run: RGB = Σk per channel, A = D (image/post.h).
+  const gl::Texture& statistics() const { return m_statistics; }
+
+private:
+  FullscreenPass m_stats;
+  FullscreenPass m_select;
+  gl::Texture m_statistics;
+  gl::Framebuffer m_statsFramebuffer;
+  gl::Framebuffer m_framebuffer;
+};
+
+}  // namespace glint::render::post

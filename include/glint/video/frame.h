@@ -1,0 +1,59 @@
+#pragma once
+// glint/video/frame.h — what flows through glint's video layer: RGBA frames with their
+// timestamps, compressed packets passed through untouched (audio), and rationals.
+//
+// The video layer (glint::video) is GL-free: FFmpeg's libraries read files, cameras (V4L2
+// through libavdevice) and lavfi sources, and write H.264 or FFV1 files; no FFmpeg type
+// appears in its headers, so a program using glint::video needs FFmpeg's libraries only
+// to link. render/post processes the frames on the GPU; app/cmd_post.cpp joins the two.
+
+#include "glint/image/image.h"
+
+#include <cstdint>
+#include <memory>
+
+struct AVPacket;  // FFmpeg's; only pointers to it appear here
+
+namespace glint::video {
+
+/// A rational number: frame rates (30000/1001) and time bases (1/90000).
+struct Rational {
+  int num = 0;
+  int den = 1;
+  double value() const { return den != 0 ? double(num) / double(den) : 0.0; }
+  bool valid() const { return num > 0 && den > 0; }
+  bool operator==(const Rational&) const = default;
+};
+
+/// No timestamp (FFmpeg's AV_NOPTS_VALUE).
+constexpr std::int64_t kNoTimestamp = INT64_MIN;
+
+/// One decoded picture. `image` is U8 RGBA, row 0 at the top, tightly packed
+/// (rowBytes() = 4·width).
+struct Frame {
+  Image image;
+  std::int64_t index = 0;   ///< frame number from the start of the source (its first frame is 0)
+  std::int64_t pts = kNoTimestamp;  ///< presentation timestamp in the source's time base
+  double seconds = 0.0;     ///< pts in seconds from the source's start (0 for its first frame)
+};
+
+/// A compressed packet (audio passed through without decoding). Move-only.
+class Packet {
+public:
+  Packet() = default;
+  /// Takes ownership of `packet` (freed with av_packet_free).
+  explicit Packet(AVPacket* packet);
+  ~Packet();
+  Packet(Packet&& other) noexcept;
+  Packet& operator=(Packet&& other) noexcept;
+  Packet(const Packet&) = delete;
+  Packet& operator=(const Packet&) = delete;
+
+  AVPacket* get() const { return m_packet; }
+  explicit operator bool() const { return m_packet != nullptr; }
+
+private:
+  AVPacket* m_packet = nullptr;
+};
+
+}  // namespace glint::video

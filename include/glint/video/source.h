@@ -1,0 +1,130 @@
+#pragma once
+// glint/video/source.h — frames from a video file, a camera or an FFmpeg lavfi graph.
+//
+//   auto source = video::Source::open("clip.mp4");                 // a file
+//   auto camera = video::Source::open("/dev/video0", {.camera = true, .size = {640, 480}});
+//   auto bars = video::Source::open("lavfi:testsrc2=size=1280x720:rate=30:duration=2");
+//   video::Frame frame;
+//   while (source.read(frame)) process(frame.image);               // RGBA8, top row first
+//
+// What it does
+//   - Demuxes and decodes with libavformat/libavcodec (frame-threaded decoders), converts
+//     every frame to RGBA8 with libswscale, honouring the stream's colour matrix (BT.601 or
+//     BT.709; unspecified: 709 from 720 lines up, as players guess) and range (limited or
+//     full). Packed RGB sources (FFV1 in bgr0, PNG, lavfi's rgb formats) convert exactly.
+//   - Sources are one of three kinds. A *file* is read to its end, every frame in order:
+//     none is skipped (a packet the decoder rejects is counted in corruptPackets(), and
+//     read() says so through a warning; damage the decoder conceals is counted in
+//     decoderErrors(); a file that ends early just ends, info().frameCount tells by how
+//     much). A *camera* (V4L2, libavdevice) and any source
+//     opened with `realtime` are *live*: frames come at their own pace, and the layer
+//     above drops what it cannot keep up with; gaps in the source's own timestamps (frames
+//     the device dropped before we saw them) are counted in droppedFrames(). A *lavfi*
+//     source ("lavfi:GRAPH", FFmpeg's filter-graph syntax: testsrc2, smptehdbars, mandelbrot,
+//     ...) is a generator; it is live only when opened with `realtime`, which paces it at
+//     its frame rate like a camera — the live path tested without a camera.
+//   - firstFrame/lastFrame select frames [first, last) (`glint post --frames a:b`): a file
+//     seeks to the keyframe before `first` and decodes from there; frame indices come from
+//     the timestamps, so the parts of a split video keep their numbers and times.
+//   - Audio: the first audio stream's packets are kept (not decoded) for a Sink to copy.
+//
+// Errors are glint::Error with one line: Input for a missing or unreadable file (an MP4
+// cut before its index), a stream without video, a codec FFmpeg cannot decode, no such camera or a camera
+// that stops answering.
+
+#include "glint/core/math.h"
+#include "glint/video/frame.h"
+
+#include <deque>
+#include <memory>
+#include <string>
+
+namespace glint::video {
+
+enum class SourceKind {
+  File,    ///< a video file (anything libavformat demuxes)
+  Camera,  ///< a V4L2 device, /dev/videoN
+  Lavfi    ///< an FFmpeg filter graph generating frames ("lavfi:testsrc2=...")
+};
+
+struct SourceOptions {
+  bool camera = false;        ///< the name is a V4L2 device (`glint post --camera /dev/video0`)
+  bool realtime = false;      ///< pace a file or lavfi source at its frame rate and treat it as live
+  ivec2 size{0};              ///< camera: the size to ask for (0: the device's default; the seed's was 640×480)
+  double frameRate = 0.0;     ///< camera: the rate to ask for (0: the device's default)
+  std::int64_t firstFrame = 0;   ///< first frame to deliver
+  std::int64_t lastFrame = -1;   ///< one past the last frame to deliver; -1: to the end
+  bool keepAudio = true;      ///< keep the first audio stream's packets for passthrough
+  int threads = 0;            ///< decoder threads; 0: FFmpeg's choice (one per core)
+};
+
+/// What a source is, as far as the container says.
+struct SourceInfo {
+  SourceKind kind = SourceKind::File;
+  std::string name;            ///< the path, device or graph
+  ivec2 size{0};               ///< frame size in pixels
+  Rational frameRate;          ///< average frame rate (may be invalid for variable-rate streams)
+  Rational timeBase;           ///< the video stream's time base (Frame::pts units)
+  double durationSeconds = 0;  ///< 0 when unknown (cameras, endless generators)
+  std::int64_t frameCount = -1;  ///< frames in the file (container's count or duration × rate); -1 unknown
+  std::string container;       ///< "matroska,webm", "video4linux2,v4l2", "lavfi"
+  std::string codec;           ///< "h264", "ffv1", "rawvideo"
+  std::string pixelFormat;     ///< the decoded format before conversion, "yuv420p"
+  bool live = false;           ///< camera, or opened with realtime
+  bool hasAudio = false;       ///< an audio stream exists (and is kept when keepAudio)
+  std::string audioCodec;      ///< e.g. "aac", "pcm_s16le"
+};
+
+/// Source::decoderErrors(): how many error lines the decoder logged, and the first.
+struct DecoderErrors {
+  std::int64_t count = 0;
+  std::string first;  ///< e.g. "slice CRC mismatch 22998C7A! at 1.000000 seconds"
+};
+
+class AudioTrack;  // opaque: the audio stream's parameters, for Sink
+
+class Source {
+public:
+  /// Opens a file, "lavfi:GRAPH", or with options.camera a V4L2 device. See the header.
+  static Source open(const std::string& name, const SourceOptions& options = {});
+
+  Source(Source&&) noexcept;
+  Source& operator=(Source&&) noexcept;
+  ~Source();
+
+  const SourceInfo& info() const;
+  /// The next frame (reusing frame.image's storage when its size fits). False at the end of
+  /// the stream (or past lastFrame). Error(Input) when the stream breaks: a camera that
+  /// disappears, a read error other than the end of a file.
+  bool read(Frame& frame);
+
+  /// Audio packets demuxed so far (the first audio stream), in file order; empty when
+  /// there is no audio or keepAudio is off. Packets before firstFrame's time or from
+  /// lastFrame's time on are not kept.
+  std::deque<Packet> takeAudio();
+  /// The audio stream's parameters (null without audio).
+  const AudioTrack* audio() const;
+
+  /// Live sources: frames missing from the source's own timestamp sequence (gaps longer
+  /// than 1.5 frame intervals), i.e. dropped before glint saw them.
+  std::int64_t droppedFrames() const;
+  /// Packets the decoder rejected (corrupt data); those frames are missing from the output.
+  std::int64_t corruptPackets() const;
+  /// Frames delivered so far.
+  std::int64_t framesRead() const;
+  /// Errors the decoder reported while still delivering frames: damage it concealed (an
+  /// FFV1 slice whose CRC does not match, broken H.264 macroblocks). Those frames are in
+  /// the output, possibly wrong; nothing on the frame itself says which.
+  DecoderErrors decoderErrors() const;
+
+private:
+  struct Impl;
+  explicit Source(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> m_impl;
+};
+
+/// Whether `name` looks like a still image glint reads through OpenImageIO (by extension:
+/// .png .jpg .jpeg .tga .tif .tiff .exr .hdr .bmp .webp), not a video.
+bool isImagePath(const std::string& name);
+
+}  // namespace glint::video

@@ -1,0 +1,107 @@
+#pragma once
+// glint/video/transcode.h — decode → process → encode, overlapped on three threads.
+//
+//   video::Source source = video::Source::open("in.mp4");
+//   video::Sink sink("out.mp4", {...});
+//   MyGpuChain chain;                                // a video::FrameProcessor
+//   const auto stats = video::transcode(source, sink, chain, {.cancel = &run.cancelFlag()});
+//
+// Threads: a reader decodes (and converts to RGBA) into a queue; the calling thread runs
+// the processor (it owns the GL context: render/post's FrameStream uploads through pixel
+// buffer objects and reads back asynchronously, so it may hand frames back a few calls
+// later); a writer encodes and muxes, and copies the source's audio packets. Frame images
+// are recycled through a pool, so a long video allocates a handful of frames.
+//
+// Frames are never dropped from a file: a full queue makes the reader wait. A live source
+// (a camera, or realtime) cannot wait: when the processor falls behind, the reader drops
+// the oldest waiting frame and counts it (TranscodeStats::droppedFrames, with the frames
+// the device itself dropped), so the output shows the newest picture with its own time.
+//
+// Stopping: when `cancel` becomes true (Ctrl-C) the reader stops, the frames in flight are
+// processed and encoded, and the sink is finished: a complete, playable, partial video
+// (stats.interrupted says so). When the source breaks mid-stream (a camera unplugged,
+// a truncated file) the same happens and the error is returned in stats.inputError for the
+// caller to report after the output is safe. Errors in the processor or the sink are
+// thrown after the threads are joined; the sink is then not finished (no output file).
+
+#include "glint/video/frame.h"
+
+#include <atomic>
+#include <deque>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace glint::video {
+
+class Source;
+class Sink;
+
+/// The middle stage, run on the thread that called transcode().
+class FrameProcessor {
+public:
+  using Emit = std::function<void(Frame&&)>;
+  virtual ~FrameProcessor() = default;
+  /// Takes a decoded frame (moved in). Finished frames, in input order and with their index
+  /// and pts unchanged, go to emit() — during this call or a later one.
+  virtual void process(Frame&& frame, const Emit& emit) = 0;
+  /// Emits every frame still in flight.
+  virtual void flush(const Emit& emit) = 0;
+};
+
+/// A FrameProcessor around a pipelined stream with render/post's FrameStream interface —
+/// push(const Image&), pop(Image&), full(), empty() — keeping each frame's index and
+/// timestamps and reusing the input frames' images for the results. A template, so the
+/// video layer needs nothing of the GPU side:
+///
+///   render::post::FrameStream stream(size, effects);
+///   video::StreamProcessor processor(stream);
+///   video::transcode(source, sink, processor);
+template <typename Stream>
+class StreamProcessor final : public FrameProcessor {
+public:
+  explicit StreamProcessor(Stream& stream) : m_stream(stream) {}
+  void process(Frame&& frame, const Emit& emit) override {
+    if (m_stream.full()) popOne(emit);
+    m_stream.push(frame.image);
+    m_waiting.push_back(std::move(frame));  // its image becomes a result's storage
+  }
+  void flush(const Emit& emit) override {
+    while (!m_stream.empty()) popOne(emit);
+  }
+
+private:
+  void popOne(const Emit& emit) {
+    Frame out = std::move(m_waiting.front());
+    m_waiting.pop_front();
+    m_stream.pop(out.image);
+    emit(std::move(out));
+  }
+  Stream& m_stream;
+  std::deque<Frame> m_waiting;
+};
+
+struct TranscodeOptions {
+  const std::atomic<bool>* cancel = nullptr;  ///< stop cleanly when it becomes true
+  int queueDepth = 4;                         ///< frames between stages
+  /// Called on the calling thread after each processed frame, with the number of frames
+  /// processed so far (for a progress bar).
+  std::function<void(std::int64_t framesDone)> progress;
+};
+
+struct TranscodeStats {
+  std::int64_t framesRead = 0;
+  std::int64_t framesWritten = 0;
+  std::int64_t droppedFrames = 0;   ///< live sources: dropped by glint (behind) or by the device
+  std::int64_t audioPackets = 0;    ///< audio packets copied
+  bool interrupted = false;         ///< stopped by `cancel`: the output is a partial video
+  std::optional<std::string> inputError;  ///< the source broke mid-stream (output finished up to there)
+  double readSeconds = 0, processSeconds = 0, writeSeconds = 0;  ///< busy time of each stage
+  double seconds = 0;               ///< wall time
+};
+
+/// Runs the pipeline until the source ends (or lastFrame), `cancel` is set or the source
+/// breaks; finishes the sink in those three cases. See above.
+TranscodeStats transcode(Source& source, Sink& sink, FrameProcessor& processor, const TranscodeOptions& options = {});
+
+}  // namespace glint::video

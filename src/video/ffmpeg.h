@@ -1,0 +1,136 @@
+#pragma once
+// Private to src/video: FFmpeg's headers, error text, owners for its objects, and the one
+// RGBA converter both directions use.
+extern "C" {
+#include <libavcodec/avcodec.h>
+#include <libavdevice/avdevice.h>
+#include <libavformat/avformat.h>
+#include <libavutil/imgutils.h>
+#include <libavutil/opt.h>
+#include <libswscale/swscale.h>
+}
+
+#include "backend.h"
+
+#include "glint/core/error.h"
+#include "glint/video/frame.h"
+
+#include <memory>
+#include <mutex>
+#include <string>
+
+namespace glint::video {
+
+/// Registers libavdevice's inputs and routes FFmpeg's log to glint's (Debug level: FFmpeg's
+/// chatter is for -v; glint reports what matters as its own warnings and errors). Once.
+void initFfmpeg();
+
+/// av_strerror's text for an FFmpeg error code.
+std::string ffmpegError(int code);
+
+/// Error lines a decoder logged while still returning frames. Decoders conceal damage
+/// rather than fail (FFV1 copies a slice whose CRC does not match from the previous frame,
+/// H.264 hides broken macroblocks) and flag nothing on the frame, so their log is the only
+/// trace: FFmpeg's log callback counts the error-level lines of every decoder that has a
+/// watch, including its frame-thread copies (they share `opaque`).
+class DecoderErrorWatch {
+public:
+  DecoderErrorWatch();
+  ~DecoderErrorWatch();
+  DecoderErrorWatch(const DecoderErrorWatch&) = delete;
+  DecoderErrorWatch& operator=(const DecoderErrorWatch&) = delete;
+
+  /// Watches `decoder`; call before avcodec_open2 (which makes the thread copies).
+  void attach(AVCodecContext& decoder) { decoder.opaque = this; }
+  std::int64_t count() const;
+  std::string first() const;
+
+  /// From the log callback: a fragment of a line the watched decoder logged at error level.
+  static void record(void* opaque, const char* text);
+
+private:
+  mutable std::mutex m_mutex;
+  std::string m_pending, m_first;
+  std::int64_t m_count = 0;
+};
+
+inline Rational toRational(AVRational r) { return {r.num, r.den}; }
+inline AVRational toAv(Rational r) { return {r.num, r.den}; }
+
+struct FrameDeleter {
+  void operator()(AVFrame* f) const { av_frame_free(&f); }
+};
+using FramePtr = std::unique_ptr<AVFrame, FrameDeleter>;
+struct PacketDeleter {
+  void operator()(AVPacket* p) const { av_packet_free(&p); }
+};
+using PacketPtr = std::unique_ptr<AVPacket, PacketDeleter>;
+struct CodecContextDeleter {
+  void operator()(AVCodecContext* c) const { avcodec_free_context(&c); }
+};
+using CodecContextPtr = std::unique_ptr<AVCodecContext, CodecContextDeleter>;
+
+/// Converts between an AVFrame's pixel format and tightly packed RGBA8, with libswscale's
+/// slice threads. The YUV matrix and range are the frame's (decoding) or the encoder's
+/// (encoding); unspecified matrices are guessed from the height like players do.
+class RgbaConverter {
+public:
+  RgbaConverter() = default;
+  ~RgbaConverter();
+  RgbaConverter(const RgbaConverter&) = delete;
+  RgbaConverter& operator=(const RgbaConverter&) = delete;
+
+  /// `frame` (any format) → `image` (U8 RGBA of the frame's size; reallocated if needed).
+  void toRgba(const AVFrame& frame, Image& image);
+  /// `image` (U8 RGBA) → `frame`, whose format, size, colorspace and range are set and
+  /// whose buffers are allocated.
+  void fromRgba(const Image& image, AVFrame& frame);
+
+private:
+  void prepare(int width, int height, AVPixelFormat from, AVPixelFormat to, int yuvColorspace, bool yuvFullRange,
+               bool toYuv);
+  SwsContext* m_context = nullptr;
+  int m_width = 0, m_height = 0, m_colorspace = -1;
+  AVPixelFormat m_from = AV_PIX_FMT_NONE, m_to = AV_PIX_FMT_NONE;
+  bool m_fullRange = false;
+};
+
+/// The audio stream a Source keeps and a Sink copies: its codec parameters and time base.
+class AudioTrack {
+public:
+  AudioTrack(const AVCodecParameters& parameters, AVRational timeBase);
+  ~AudioTrack();
+  AudioTrack(const AudioTrack&) = delete;
+  AudioTrack& operator=(const AudioTrack&) = delete;
+  const AVCodecParameters& parameters() const { return *m_parameters; }
+  AVRational timeBase() const { return m_timeBase; }
+
+private:
+  AVCodecParameters* m_parameters = nullptr;
+  AVRational m_timeBase;
+};
+
+/// Runs `body` and returns its result; a thrown Error (or anything else) is caught into
+/// `status` instead, with `failed` returned: no exception leaves the module.
+template <typename Body, typename Result>
+Result guarded(backend::Status& status, Body&& body, Result failed) {
+  status = {};
+  try {
+    return body();
+  } catch (const Error& e) {
+    status = {false, e.kind(), e.what()};
+  } catch (const std::exception& e) {
+    status = {false, ErrorKind::Internal, e.what()};
+  } catch (...) {
+    status = {false, ErrorKind::Internal, "unknown exception in the video module"};
+  }
+  return failed;
+}
+
+std::int64_t concatenateFiles(std::span<const std::filesystem::path> parts, const std::filesystem::path& destination);
+
+/// The colorspace libswscale should use for a YUV frame: its own tag, else BT.709 for
+/// 720 lines and up, BT.601 below.
+int swsColorspace(AVColorSpace tagged, int height);
+
+}  // namespace glint::video

@@ -1,0 +1,378 @@
+#include "ffmpeg.h"
+
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+#include "glint/core/log.h"
+
+#include <algorithm>
+#include <optional>
+
+namespace glint::video {
+
+namespace fs = std::filesystem;
+
+namespace {
+struct OutputDeleter {
+  void operator()(AVFormatContext* f) const {
+    if (!f) return;
+    if (f->pb && !(f->oformat->flags & AVFMT_NOFILE)) avio_closep(&f->pb);
+    avformat_free_context(f);
+  }
+};
+using OutputPtr = std::unique_ptr<AVFormatContext, OutputDeleter>;
+
+// The muxer for a destination's extension; Error(Usage) when FFmpeg knows none.
+OutputPtr createOutput(const fs::path& destination, const fs::path& tmp) {
+  const AVOutputFormat* format = av_guess_format(nullptr, destination.filename().c_str(), nullptr);
+  if (!format) {
+    fail(ErrorKind::Usage, "cannot tell the video format of '{}' from its extension (use .mp4, .mkv, .mov, .avi or .nut)",
+         destination.string());
+  }
+  AVFormatContext* raw = nullptr;
+  const int e = avformat_alloc_output_context2(&raw, format, nullptr, tmp.c_str());
+  if (e < 0 || !raw) fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(e));
+  return OutputPtr(raw);
+}
+
+void openFile(AVFormatContext& output, const fs::path& tmp, const fs::path& destination) {
+  if (output.oformat->flags & AVFMT_NOFILE) return;
+  if (const int e = avio_open(&output.pb, tmp.c_str(), AVIO_FLAG_WRITE); e < 0) {
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(e));
+  }
+}
+}  // namespace
+
+struct FfmpegSink {
+  SinkOptions options;
+  fs::path destination;
+  std::optional<AtomicFile> file;
+  OutputPtr output;
+  CodecContextPtr encoder;
+  AVStream* videoStream = nullptr;
+  AVStream* audioStream = nullptr;
+  const AudioTrack* audio = nullptr;
+  std::string audioNote;
+  RgbaConverter converter;
+  FramePtr frame{av_frame_alloc()};
+  PacketPtr packet{av_packet_alloc()};
+  std::int64_t written = 0;
+  std::int64_t lastPts = kNoTimestamp;
+  bool headerWritten = false, finished = false;
+
+  FfmpegSink(const fs::path& destination, const SinkOptions& options);
+  void drain(bool flushing);
+  void writePacket(AVPacket& p);
+  void write(const Frame& frame);
+  void writeAudio(Packet packet);
+  void finish();
+};
+
+void FfmpegSink::writePacket(AVPacket& p) {
+  if (const int e = av_interleaved_write_frame(output.get(), &p); e < 0) {
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(e));
+  }
+}
+
+void FfmpegSink::drain(bool flushing) {
+  while (true) {
+    const int r = avcodec_receive_packet(encoder.get(), packet.get());
+    if (r == AVERROR(EAGAIN) || r == AVERROR_EOF) return;
+    if (r < 0) fail(ErrorKind::Internal, "encoding '{}' failed: {}", destination.string(), ffmpegError(r));
+    av_packet_rescale_ts(packet.get(), encoder->time_base, videoStream->time_base);
+    packet->stream_index = videoStream->index;
+    writePacket(*packet);
+    (void)flushing;
+  }
+}
+
+FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_) {
+  initFfmpeg();
+  FfmpegSink& s = *this;
+  const fs::path& destination = destination_;
+  const SinkOptions& options = options_;
+  s.options = options;
+  s.destination = destination;
+  if (options.size.x <= 0 || options.size.y <= 0) fail(ErrorKind::Usage, "video size must be positive");
+  if (options.codec == Codec::H264 && (options.size.x % 2 || options.size.y % 2)) {
+    fail(ErrorKind::Usage, "H.264 (yuv420p) needs an even width and height, got {}x{}; use --codec ffv1",
+         options.size.x, options.size.y);
+  }
+  if (options.crf < 0 || options.crf > 51) fail(ErrorKind::Usage, "--crf must be 0..51, got {}", options.crf);
+  const Rational rate = options.frameRate.valid() ? options.frameRate : Rational{30, 1};
+  const Rational timeBase = options.timeBase.valid() ? options.timeBase : Rational{rate.den, rate.num};
+
+  // Fail on a format that cannot hold the codec before making any file.
+  const AVOutputFormat* guessed = av_guess_format(nullptr, destination.filename().c_str(), nullptr);
+  const AVCodecID id = options.codec == Codec::H264 ? AV_CODEC_ID_H264 : AV_CODEC_ID_FFV1;
+  if (guessed && avformat_query_codec(guessed, id, FF_COMPLIANCE_NORMAL) != 1) {
+    fail(ErrorKind::Usage, "{} video cannot go into a {} file ({}); use {}", codecName(options.codec),
+         destination.extension().string(), guessed->name, options.codec == Codec::H264 ? ".mp4 or .mkv" : ".mkv");
+  }
+  const AVCodec* codec = options.codec == Codec::H264 ? avcodec_find_encoder_by_name("libx264")
+                                                      : avcodec_find_encoder(AV_CODEC_ID_FFV1);
+  if (!codec) fail(ErrorKind::Internal, "this FFmpeg has no {} encoder", options.codec == Codec::H264 ? "libx264" : "FFV1");
+
+  s.file.emplace(destination);
+  s.output = createOutput(destination, s.file->temporary());
+
+  s.encoder.reset(avcodec_alloc_context3(codec));
+  AVCodecContext& e = *s.encoder;
+  e.width = options.size.x;
+  e.height = options.size.y;
+  e.time_base = toAv(timeBase);
+  e.framerate = toAv(rate);
+  e.sample_aspect_ratio = {1, 1};
+  e.thread_count = options.threads;
+  if (options.codec == Codec::H264) {
+    e.pix_fmt = AV_PIX_FMT_YUV420P;
+    e.colorspace = AVCOL_SPC_BT709;
+    e.color_range = AVCOL_RANGE_MPEG;
+    e.color_primaries = AVCOL_PRI_BT709;
+    e.color_trc = AVCOL_TRC_BT709;
+    av_opt_set(e.priv_data, "preset", options.preset.c_str(), 0);
+    av_opt_set(e.priv_data, "crf", std::to_string(options.crf).c_str(), 0);
+    if (options.noReordering) e.max_b_frames = 0;
+  } else {
+    e.pix_fmt = AV_PIX_FMT_0RGB32;  // bgr0 in memory on little-endian machines: 8-bit RGB
+    e.gop_size = 1;                 // every frame a keyframe: cut and join anywhere
+    e.level = 3;
+    av_opt_set(e.priv_data, "slicecrc", "1", 0);
+  }
+  if (s.output->oformat->flags & AVFMT_GLOBALHEADER) e.flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  if (const int o = avcodec_open2(&e, codec, nullptr); o < 0) {
+    fail(ErrorKind::Internal, "cannot start the {} encoder: {}", codec->name, ffmpegError(o));
+  }
+  s.videoStream = avformat_new_stream(s.output.get(), nullptr);
+  avcodec_parameters_from_context(s.videoStream->codecpar, &e);
+  s.videoStream->time_base = e.time_base;
+  s.videoStream->avg_frame_rate = e.framerate;
+
+  if (options.audio) {
+    const AVCodecParameters& a = options.audio->parameters();
+    if (avformat_query_codec(s.output->oformat, a.codec_id, FF_COMPLIANCE_NORMAL) == 1) {
+      s.audioStream = avformat_new_stream(s.output.get(), nullptr);
+      avcodec_parameters_copy(s.audioStream->codecpar, &a);
+      s.audioStream->codecpar->codec_tag = 0;
+      s.audioStream->time_base = options.audio->timeBase();
+      s.audio = options.audio;
+    } else {
+      s.audioNote = fmt::format("{} audio cannot go into a {} file: dropped (use .mkv to keep it)",
+                                avcodec_get_name(a.codec_id), destination.extension().string());
+    }
+  }
+
+  openFile(*s.output, s.file->temporary(), destination);
+  if (const int h = avformat_write_header(s.output.get(), nullptr); h < 0) {
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(h));
+  }
+  s.headerWritten = true;
+
+  s.frame->format = e.pix_fmt;
+  s.frame->width = e.width;
+  s.frame->height = e.height;
+  s.frame->colorspace = e.colorspace;
+  s.frame->color_range = e.color_range;
+}
+
+void FfmpegSink::write(const Frame& frame) {
+  FfmpegSink& s = *this;
+  if (s.finished) fail(ErrorKind::Internal, "Sink::write after finish()");
+  if (frame.image.width() != s.encoder->width || frame.image.height() != s.encoder->height) {
+    fail(ErrorKind::Internal, "frame {}x{} does not match the video's {}x{}", frame.image.width(),
+         frame.image.height(), s.encoder->width, s.encoder->height);
+  }
+  // Encoders keep references to frames they have not finished: write into a fresh buffer
+  // when the previous one is still in use.
+  if (const int w = av_frame_make_writable(s.frame.get()); w < 0 || !s.frame->data[0]) {
+    av_frame_unref(s.frame.get());
+    s.frame->format = s.encoder->pix_fmt;
+    s.frame->width = s.encoder->width;
+    s.frame->height = s.encoder->height;
+    s.frame->colorspace = s.encoder->colorspace;
+    s.frame->color_range = s.encoder->color_range;
+    if (const int b = av_frame_get_buffer(s.frame.get(), 0); b < 0) {
+      fail(ErrorKind::Internal, "out of memory for a video frame: {}", ffmpegError(b));
+    }
+  }
+  s.converter.fromRgba(frame.image, *s.frame);
+  std::int64_t pts = frame.pts != kNoTimestamp ? frame.pts : (s.lastPts == kNoTimestamp ? 0 : s.lastPts + 1);
+  if (s.lastPts != kNoTimestamp && pts <= s.lastPts) pts = s.lastPts + 1;  // encoders need increasing pts
+  s.lastPts = pts;
+  s.frame->pts = pts;
+  s.frame->pict_type = AV_PICTURE_TYPE_NONE;
+  if (const int r = avcodec_send_frame(s.encoder.get(), s.frame.get()); r < 0) {
+    fail(ErrorKind::Internal, "encoding '{}' failed: {}", s.destination.string(), ffmpegError(r));
+  }
+  s.drain(false);
+  ++s.written;
+}
+
+void FfmpegSink::writeAudio(Packet packet) {
+  FfmpegSink& s = *this;
+  if (!s.audioStream || !packet) return;
+  AVPacket* p = packet.get();
+  av_packet_rescale_ts(p, s.audio->timeBase(), s.audioStream->time_base);
+  p->stream_index = s.audioStream->index;
+  p->pos = -1;
+  s.writePacket(*p);
+}
+
+void FfmpegSink::finish() {
+  FfmpegSink& s = *this;
+  if (s.finished) return;
+  if (const int r = avcodec_send_frame(s.encoder.get(), nullptr); r < 0 && r != AVERROR_EOF) {
+    fail(ErrorKind::Internal, "encoding '{}' failed: {}", s.destination.string(), ffmpegError(r));
+  }
+  s.drain(true);
+  if (const int t = av_write_trailer(s.output.get()); t < 0) {
+    fail(ErrorKind::Output, "cannot write '{}': {}", s.destination.string(), ffmpegError(t));
+  }
+  if (!(s.output->oformat->flags & AVFMT_NOFILE)) avio_closep(&s.output->pb);
+  s.file->commit();
+  s.finished = true;
+}
+
+
+// ---------------------------------------------------------------------------
+// Concatenation: packets copied from consecutive parts.
+
+namespace {
+struct InputDeleter {
+  void operator()(AVFormatContext* f) const { avformat_close_input(&f); }
+};
+using InputPtr = std::unique_ptr<AVFormatContext, InputDeleter>;
+
+InputPtr openPart(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", path.string());
+  AVFormatContext* raw = nullptr;
+  if (const int e = avformat_open_input(&raw, path.c_str(), nullptr, nullptr); e < 0) {
+    fail(ErrorKind::Input, "cannot read '{}': {}", path.string(), ffmpegError(e));
+  }
+  InputPtr input(raw);
+  if (const int e = avformat_find_stream_info(input.get(), nullptr); e < 0) {
+    fail(ErrorKind::Input, "cannot read '{}': {}", path.string(), ffmpegError(e));
+  }
+  return input;
+}
+}  // namespace
+
+std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& destination) {
+  initFfmpeg();
+  if (parts.empty()) fail(ErrorKind::Usage, "concatenate: no parts given");
+  std::vector<InputPtr> inputs;
+  for (const auto& p : parts) inputs.push_back(openPart(p));
+  const AVFormatContext& first = *inputs.front();
+  for (std::size_t k = 1; k < inputs.size(); ++k) {
+    const AVFormatContext& other = *inputs[k];
+    bool same = other.nb_streams == first.nb_streams;
+    for (unsigned i = 0; same && i < first.nb_streams; ++i) {
+      const AVCodecParameters& a = *first.streams[i]->codecpar;
+      const AVCodecParameters& b = *other.streams[i]->codecpar;
+      same = a.codec_type == b.codec_type && a.codec_id == b.codec_id && a.width == b.width && a.height == b.height;
+    }
+    if (!same) {
+      fail(ErrorKind::Input, "'{}' does not match '{}' (streams, codecs or size differ): not parts of one video",
+           parts[k].string(), parts[0].string());
+    }
+  }
+  int video = av_find_best_stream(inputs.front().get(), AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
+  if (video < 0) fail(ErrorKind::Input, "'{}' has no video stream", parts[0].string());
+
+  AtomicFile file(destination);
+  OutputPtr output = createOutput(destination, file.temporary());
+  for (unsigned i = 0; i < first.nb_streams; ++i) {
+    AVStream* out = avformat_new_stream(output.get(), nullptr);
+    avcodec_parameters_copy(out->codecpar, first.streams[i]->codecpar);
+    out->codecpar->codec_tag = 0;
+    out->time_base = first.streams[i]->time_base;
+    out->avg_frame_rate = first.streams[i]->avg_frame_rate;
+  }
+  openFile(*output, file.temporary(), destination);
+  if (const int h = avformat_write_header(output.get(), nullptr); h < 0) {
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(h));
+  }
+
+  PacketPtr packet(av_packet_alloc());
+  std::int64_t frames = 0;
+  std::int64_t previousEnd = kNoTimestamp;  // in the output video stream's time base
+  std::vector<std::int64_t> lastDts(first.nb_streams, kNoTimestamp);
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    AVFormatContext& in = *inputs[k];
+    std::int64_t partStart = kNoTimestamp, partEnd = kNoTimestamp;
+    while (true) {
+      const int r = av_read_frame(&in, packet.get());
+      if (r == AVERROR_EOF) break;
+      if (r < 0) fail(ErrorKind::Input, "cannot read '{}': {}", parts[k].string(), ffmpegError(r));
+      const int index = packet->stream_index;
+      AVStream* out = output->streams[index];
+      av_packet_rescale_ts(packet.get(), in.streams[index]->time_base, out->time_base);
+      if (index == video) {
+        ++frames;
+        if (packet->pts != AV_NOPTS_VALUE) {
+          if (partStart == kNoTimestamp || packet->pts < partStart) partStart = packet->pts;
+          const std::int64_t end = packet->pts + std::max<std::int64_t>(packet->duration, 0);
+          if (partEnd == kNoTimestamp || end > partEnd) partEnd = end;
+        }
+      }
+      if (packet->dts != AV_NOPTS_VALUE && lastDts[std::size_t(index)] != kNoTimestamp &&
+          packet->dts <= lastDts[std::size_t(index)]) {
+        fail(ErrorKind::Input, "'{}' overlaps the part before it in time: not the next range of frames",
+             parts[k].string());
+      }
+      if (packet->dts != AV_NOPTS_VALUE) lastDts[std::size_t(index)] = packet->dts;
+      packet->pos = -1;
+      if (const int w = av_interleaved_write_frame(output.get(), packet.get()); w < 0) {
+        fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(w));
+      }
+    }
+    // A part must begin where the previous one ended: within half a frame (containers
+    // round timestamps and last-packet durations to their own time bases).
+    const AVRational tb = output->streams[video]->time_base;
+    const AVRational rate = output->streams[video]->avg_frame_rate;
+    const std::int64_t slack = rate.num > 0 ? std::max<std::int64_t>(1, av_rescale_q(1, av_inv_q(rate), tb) / 2) : 1;
+    if (k > 0 && previousEnd != kNoTimestamp && partStart != kNoTimestamp && std::abs(partStart - previousEnd) > slack) {
+      const double gap = double(partStart - previousEnd) * av_q2d(tb);
+      fail(ErrorKind::Input, "'{}' does not start where '{}' ends ({:+.3f} s): not consecutive --frames ranges",
+           parts[k].string(), parts[k - 1].string(), gap);
+    }
+    previousEnd = partEnd;
+  }
+  if (const int t = av_write_trailer(output.get()); t < 0) {
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(t));
+  }
+  if (!(output->oformat->flags & AVFMT_NOFILE)) avio_closep(&output->pb);
+  file.commit();
+  return frames;
+}
+
+// ---------------------------------------------------------------------------
+// The module's entry points (backend.h).
+namespace backend {
+namespace {
+FfmpegSink& cast(SinkHandle* h) { return *reinterpret_cast<FfmpegSink*>(h); }
+const FfmpegSink& cast(const SinkHandle* h) { return *reinterpret_cast<const FfmpegSink*>(h); }
+}  // namespace
+
+SinkHandle* openSink(const fs::path& destination, const SinkOptions& options, Status& status) {
+  return guarded(status, [&] { return reinterpret_cast<SinkHandle*>(new FfmpegSink(destination, options)); },
+                 static_cast<SinkHandle*>(nullptr));
+}
+void closeSink(SinkHandle* h) { delete &cast(h); }  // AtomicFile removes an unfinished file
+void write(SinkHandle* h, const Frame& frame, Status& status) {
+  guarded(status, [&] { cast(h).write(frame); return true; }, false);
+}
+void writeAudio(SinkHandle* h, Packet& packet, Status& status) {
+  guarded(status, [&] { cast(h).writeAudio(std::move(packet)); return true; }, false);
+}
+void finish(SinkHandle* h, Status& status) {
+  guarded(status, [&] { cast(h).finish(); return true; }, false);
+}
+std::int64_t framesWritten(const SinkHandle* h) { return cast(h).written; }
+const std::string* audioNote(const SinkHandle* h) { return &cast(h).audioNote; }
+std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destination, Status& status) {
+  return guarded(status, [&] { return concatenateFiles(parts, destination); }, std::int64_t(0));
+}
+}  // namespace backend
+
+}  // namespace glint::video

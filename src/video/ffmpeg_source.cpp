@@ -1,0 +1,308 @@
+#include "ffmpeg.h"
+
+#include "glint/core/error.h"
+#include "glint/core/log.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <thread>
+#include <utility>
+
+namespace glint::video {
+
+namespace {
+constexpr std::string_view kLavfiPrefix = "lavfi:";
+
+struct FormatDeleter {
+  void operator()(AVFormatContext* f) const { avformat_close_input(&f); }
+};
+using FormatPtr = std::unique_ptr<AVFormatContext, FormatDeleter>;
+
+std::string describe(const std::string& name, SourceKind kind) {
+  switch (kind) {
+    case SourceKind::Camera: return fmt::format("camera '{}'", name);
+    case SourceKind::Lavfi: return fmt::format("lavfi source '{}'", name);
+    case SourceKind::File: break;
+  }
+  return fmt::format("'{}'", name);
+}
+}  // namespace
+
+struct FfmpegSource {
+  SourceOptions options;
+  SourceInfo info;
+  std::string what;  // for messages: "'clip.mp4'", "camera '/dev/video0'"
+  FormatPtr format;
+  DecoderErrorWatch decoderErrors;  // before decoder: outlives it (and its threads)
+  CodecContextPtr decoder;
+  RgbaConverter converter;
+  FramePtr frame{av_frame_alloc()};
+  PacketPtr packet{av_packet_alloc()};
+  int videoStream = -1, audioStream = -1;
+  std::unique_ptr<AudioTrack> audio;
+  std::deque<Packet> audioPackets;
+  std::int64_t startPts = kNoTimestamp;  // the stream's first timestamp: frame 0
+  std::int64_t lastPts = kNoTimestamp;
+  std::int64_t delivered = 0, dropped = 0, corrupt = 0, counter = 0;
+  bool flushing = false, done = false;
+  // realtime pacing
+  bool paceStarted = false;
+  std::chrono::steady_clock::time_point paceWall;
+  double paceSeconds = 0.0;
+
+  double secondsOf(std::int64_t pts) const {
+    const AVRational tb = format->streams[videoStream]->time_base;
+    return double(pts - startPts) * av_q2d(tb);
+  }
+
+  std::int64_t indexOf(std::int64_t pts) {
+    const Rational rate = info.frameRate;
+    if (info.kind == SourceKind::Camera || !rate.valid() || pts == kNoTimestamp) return counter++;
+    return std::llround(secondsOf(pts) * rate.value());
+  }
+
+  void open(const std::string& name);
+  void seekTo(std::int64_t frameIndex);
+  bool decodeOne(Frame& frame);  // the next decoded frame, any index
+  void keepAudio(AVPacket& packet);
+  void pace(double seconds);
+  bool read(Frame& frame);
+};
+
+void FfmpegSource::open(const std::string& name) {
+  initFfmpeg();
+  const AVInputFormat* inputFormat = nullptr;
+  std::string url = name;
+  AVDictionary* dict = nullptr;
+  if (options.camera) {
+    info.kind = SourceKind::Camera;
+    inputFormat = av_find_input_format("video4linux2");
+    if (!inputFormat) fail(ErrorKind::Input, "this FFmpeg has no V4L2 input (libavdevice without video4linux2)");
+    if (options.size.x > 0) av_dict_set(&dict, "video_size", fmt::format("{}x{}", options.size.x, options.size.y).c_str(), 0);
+    if (options.frameRate > 0) av_dict_set(&dict, "framerate", fmt::format("{}", options.frameRate).c_str(), 0);
+    std::error_code ec;
+    if (!std::filesystem::exists(name, ec)) fail(ErrorKind::Input, "no camera at '{}' (no such device)", name);
+  } else if (name.starts_with(kLavfiPrefix)) {
+    info.kind = SourceKind::Lavfi;
+    url = name.substr(kLavfiPrefix.size());
+    inputFormat = av_find_input_format("lavfi");
+    if (!inputFormat) fail(ErrorKind::Input, "this FFmpeg has no lavfi input (libavdevice)");
+    if (url.empty()) fail(ErrorKind::Usage, "lavfi: needs a filter graph, e.g. lavfi:testsrc2=size=640x480:duration=2");
+  } else {
+    std::error_code ec;
+    if (!std::filesystem::exists(name, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", name);
+    if (std::filesystem::is_directory(name, ec)) fail(ErrorKind::Input, "cannot read '{}': it is a directory", name);
+  }
+  info.name = name;
+  what = describe(name, info.kind);
+
+  AVFormatContext* raw = nullptr;
+  const int e = avformat_open_input(&raw, url.c_str(), inputFormat, &dict);
+  av_dict_free(&dict);
+  if (e < 0) {
+    if (info.kind == SourceKind::Camera) fail(ErrorKind::Input, "cannot open camera '{}': {}", name, ffmpegError(e));
+    if (info.kind == SourceKind::Lavfi) fail(ErrorKind::Usage, "bad lavfi graph '{}': {}", url, ffmpegError(e));
+    fail(ErrorKind::Input, "cannot read '{}': {}", name, ffmpegError(e));
+  }
+  format.reset(raw);
+  if (const int s = avformat_find_stream_info(format.get(), nullptr); s < 0) {
+    fail(ErrorKind::Input, "cannot read {}: {}", what, ffmpegError(s));
+  }
+  videoStream = av_find_best_stream(format.get(), AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
+  if (videoStream < 0) fail(ErrorKind::Input, "{} has no video stream", what);
+  AVStream* stream = format->streams[videoStream];
+  const AVCodec* codec = avcodec_find_decoder(stream->codecpar->codec_id);
+  if (!codec) {
+    fail(ErrorKind::Input, "{}: no decoder for its '{}' video", what, avcodec_get_name(stream->codecpar->codec_id));
+  }
+  decoder.reset(avcodec_alloc_context3(codec));
+  avcodec_parameters_to_context(decoder.get(), stream->codecpar);
+  decoder->thread_count = options.threads;
+  decoder->thread_type = FF_THREAD_FRAME | FF_THREAD_SLICE;
+  decoder->pkt_timebase = stream->time_base;
+  decoderErrors.attach(*decoder);
+  if (const int o = avcodec_open2(decoder.get(), codec, nullptr); o < 0) {
+    fail(ErrorKind::Input, "{}: cannot decode its {} video: {}", what, codec->name, ffmpegError(o));
+  }
+  if (decoder->width <= 0 || decoder->height <= 0) fail(ErrorKind::Input, "{}: the video has no size", what);
+  if (decoder->pix_fmt == AV_PIX_FMT_NONE) fail(ErrorKind::Input, "{}: unknown pixel format", what);
+
+  info.size = {decoder->width, decoder->height};
+  AVRational rate = stream->avg_frame_rate.num > 0 ? stream->avg_frame_rate : stream->r_frame_rate;
+  info.frameRate = toRational(rate);
+  info.timeBase = toRational(stream->time_base);
+  info.container = format->iformat->name;
+  info.codec = codec->name;
+  info.pixelFormat = av_get_pix_fmt_name(decoder->pix_fmt) ? av_get_pix_fmt_name(decoder->pix_fmt) : "?";
+  info.live = info.kind == SourceKind::Camera || options.realtime;
+  if (format->duration > 0 && info.kind == SourceKind::File) info.durationSeconds = double(format->duration) / AV_TIME_BASE;
+  if (stream->duration > 0 && info.kind == SourceKind::File) info.durationSeconds = double(stream->duration) * av_q2d(stream->time_base);
+  if (info.kind == SourceKind::File) {
+    if (stream->nb_frames > 0) info.frameCount = stream->nb_frames;
+    else if (info.durationSeconds > 0 && info.frameRate.valid())
+      info.frameCount = std::llround(info.durationSeconds * info.frameRate.value());
+  }
+  startPts = stream->start_time != AV_NOPTS_VALUE ? stream->start_time : kNoTimestamp;
+
+  // Found even when not kept, so a report can say "dropped (--no-audio)" rather than "none".
+  if (const int found = av_find_best_stream(format.get(), AVMEDIA_TYPE_AUDIO, -1, videoStream, nullptr, 0); found >= 0) {
+    AVStream* a = format->streams[found];
+    info.hasAudio = true;
+    info.audioCodec = avcodec_get_name(a->codecpar->codec_id);
+    if (options.keepAudio) {
+      audioStream = found;
+      audio = std::make_unique<AudioTrack>(*a->codecpar, a->time_base);
+    }
+  }
+  // Only the streams glint reads are demuxed.
+  for (unsigned i = 0; i < format->nb_streams; ++i)
+    if (int(i) != videoStream && int(i) != audioStream) format->streams[i]->discard = AVDISCARD_ALL;
+
+  if (options.firstFrame < 0) fail(ErrorKind::Usage, "--frames: the first frame must not be negative");
+  if (options.lastFrame >= 0 && options.lastFrame <= options.firstFrame) {
+    fail(ErrorKind::Usage, "--frames {}:{} selects no frames", options.firstFrame, options.lastFrame);
+  }
+  if (options.firstFrame > 0) seekTo(options.firstFrame);
+}
+
+void FfmpegSource::seekTo(std::int64_t frameIndex) {
+  if (info.kind != SourceKind::File || !info.frameRate.valid()) return;  // decode and skip instead
+  if (startPts == kNoTimestamp) return;
+  const AVRational tb = format->streams[videoStream]->time_base;
+  // One frame early: the keyframe search is on timestamps, and rounding must not land past it.
+  const double seconds = double(frameIndex - 1) / info.frameRate.value();
+  const std::int64_t target = startPts + std::int64_t(std::floor(seconds / av_q2d(tb)));
+  if (av_seek_frame(format.get(), videoStream, std::max(target, startPts), AVSEEK_FLAG_BACKWARD) >= 0) {
+    avcodec_flush_buffers(decoder.get());
+  } else {
+    log::debug("{}: cannot seek; decoding from the start to frame {}", what, frameIndex);
+  }
+}
+
+void FfmpegSource::keepAudio(AVPacket& p) {
+  if (!audio) return;
+  // Keep the audio of the selected frames: [first, last) in time.
+  if (p.pts != AV_NOPTS_VALUE && info.frameRate.valid() && startPts != kNoTimestamp) {
+    const double t = double(p.pts) * av_q2d(audio->timeBase()) - double(startPts) * av_q2d(format->streams[videoStream]->time_base);
+    const double from = double(options.firstFrame) / info.frameRate.value();
+    const double to = options.lastFrame >= 0 ? double(options.lastFrame) / info.frameRate.value() : INFINITY;
+    if (t < from - 1e-6 || t >= to - 1e-6) return;
+  }
+  AVPacket* copy = av_packet_clone(&p);
+  if (copy) audioPackets.emplace_back(copy);
+}
+
+void FfmpegSource::pace(double seconds) {
+  if (!paceStarted) {
+    paceStarted = true;
+    paceWall = std::chrono::steady_clock::now();
+    paceSeconds = seconds;
+    return;
+  }
+  const auto due = paceWall + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                  std::chrono::duration<double>(seconds - paceSeconds));
+  std::this_thread::sleep_until(due);
+}
+
+bool FfmpegSource::decodeOne(Frame& out) {
+  while (true) {
+    const int r = avcodec_receive_frame(decoder.get(), frame.get());
+    if (r == 0) {
+      std::int64_t pts = frame->best_effort_timestamp;
+      if (pts == AV_NOPTS_VALUE) pts = frame->pts;
+      if (startPts == kNoTimestamp && pts != AV_NOPTS_VALUE) startPts = pts;
+      if (pts == AV_NOPTS_VALUE) pts = kNoTimestamp;
+      converter.toRgba(*frame, out.image);
+      out.pts = pts;
+      out.seconds = pts != kNoTimestamp ? secondsOf(pts) : 0.0;
+      out.index = indexOf(pts);
+      if (info.live && pts != kNoTimestamp && lastPts != kNoTimestamp && info.frameRate.valid()) {
+        const double frames = double(pts - lastPts) * av_q2d(format->streams[videoStream]->time_base) *
+                              info.frameRate.value();
+        if (frames > 1.5) dropped += std::llround(frames) - 1;
+      }
+      if (pts != kNoTimestamp) lastPts = pts;
+      av_frame_unref(frame.get());
+      return true;
+    }
+    if (r == AVERROR_EOF) return false;
+    if (r != AVERROR(EAGAIN)) fail(ErrorKind::Input, "{}: decoding failed: {}", what, ffmpegError(r));
+    if (flushing) return false;
+
+    const int read = av_read_frame(format.get(), packet.get());
+    if (read == AVERROR_EOF || (read < 0 && info.kind != SourceKind::Camera && avio_feof(format->pb))) {
+      flushing = true;
+      avcodec_send_packet(decoder.get(), nullptr);
+      continue;
+    }
+    if (read < 0) {
+      if (info.kind == SourceKind::Camera) {
+        fail(ErrorKind::Input, "camera '{}' stopped delivering frames: {}", info.name, ffmpegError(read));
+      }
+      fail(ErrorKind::Input, "cannot read {}: {}", what, ffmpegError(read));
+    }
+    if (packet->stream_index == videoStream) {
+      const int s = avcodec_send_packet(decoder.get(), packet.get());
+      if (s == AVERROR_INVALIDDATA) {
+        ++corrupt;
+        log::warn("{}: a corrupt video packet at {:.3f} s could not be decoded; its frame is missing", what,
+                  packet->pts != AV_NOPTS_VALUE && startPts != kNoTimestamp ? secondsOf(packet->pts) : -1.0);
+      } else if (s < 0 && s != AVERROR(EAGAIN)) {
+        av_packet_unref(packet.get());
+        fail(ErrorKind::Input, "{}: decoding failed: {}", what, ffmpegError(s));
+      }
+    } else if (packet->stream_index == audioStream) {
+      keepAudio(*packet);
+    }
+    av_packet_unref(packet.get());
+  }
+}
+
+// ---------------------------------------------------------------------------
+bool FfmpegSource::read(Frame& frame) {
+  if (done) return false;
+  while (decodeOne(frame)) {
+    if (frame.index < options.firstFrame) continue;  // decoded from the keyframe before it
+    if (options.lastFrame >= 0 && frame.index >= options.lastFrame) break;
+    if (options.realtime && info.kind != SourceKind::Camera) pace(frame.seconds);
+    ++delivered;
+    return true;
+  }
+  done = true;
+  return false;
+}
+
+// The module's entry points (backend.h): FfmpegSource behind an opaque handle.
+namespace backend {
+namespace {
+FfmpegSource& cast(SourceHandle* h) { return *reinterpret_cast<FfmpegSource*>(h); }
+const FfmpegSource& cast(const SourceHandle* h) { return *reinterpret_cast<const FfmpegSource*>(h); }
+}  // namespace
+
+SourceHandle* openSource(const std::string& name, const SourceOptions& options, Status& status) {
+  return guarded(status, [&] {
+    auto source = std::make_unique<FfmpegSource>();
+    source->options = options;
+    source->open(name);
+    return reinterpret_cast<SourceHandle*>(source.release());
+  }, static_cast<SourceHandle*>(nullptr));
+}
+void closeSource(SourceHandle* h) { delete &cast(h); }
+const SourceInfo* sourceInfo(const SourceHandle* h) { return &cast(h).info; }
+bool read(SourceHandle* h, Frame& frame, Status& status) {
+  return guarded(status, [&] { return cast(h).read(frame); }, false);
+}
+void takeAudio(SourceHandle* h, std::deque<Packet>& packets) { packets = std::exchange(cast(h).audioPackets, {}); }
+const AudioTrack* audio(const SourceHandle* h) { return cast(h).audio.get(); }
+void counters(const SourceHandle* h, std::int64_t out[4]) {
+  out[0] = cast(h).dropped;
+  out[1] = cast(h).corrupt;
+  out[2] = cast(h).delivered;
+  out[3] = cast(h).decoderErrors.count();
+}
+std::string firstDecoderError(const SourceHandle* h) { return cast(h).decoderErrors.first(); }
+}  // namespace backend
+
+}  // namespace glint::video

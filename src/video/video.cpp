@@ -1,0 +1,199 @@
+// The public video classes: thin forwarders to the glint_ffmpeg module (backend.h), which
+// is dlopen()ed on first use so that commands without video never map FFmpeg's ~200
+// libraries.
+#include "backend.h"
+
+#include "glint/core/error.h"
+#include "glint/core/locations.h"
+#include "glint/core/log.h"
+#include "glint/video/sink.h"
+#include "glint/video/source.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <mutex>
+#include <utility>
+
+#if !defined(GLINT_FFMPEG_MODULE) || !defined(GLINT_FFMPEG_MODULE_INSTALLED)
+#error "GLINT_FFMPEG_MODULE and GLINT_FFMPEG_MODULE_INSTALLED (the module's build and install paths) must be defined"
+#endif
+
+namespace glint::video {
+namespace fs = std::filesystem;
+
+namespace {
+const ModuleLocation kModule{GLINT_FFMPEG_MODULE, GLINT_FFMPEG_MODULE_INSTALLED, "GLINT_FFMPEG_MODULE"};
+
+// Loads the module once; never unloaded (objects it made may live until exit).
+const backend::Api& api() {
+  static std::once_flag once;
+  static const backend::Api* loaded = nullptr;
+  static std::string error;
+  std::call_once(once, [] {
+    const auto candidates = moduleCandidates(kModule);
+    if (candidates.empty()) {
+      error = fmt::format("cannot load the video module '{}': not found ({})", fs::path(GLINT_FFMPEG_MODULE).filename().string(),
+                          moduleSearchDescription(kModule));
+      return;
+    }
+    for (const fs::path& path : candidates) {
+      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!handle) {
+        const char* reason = dlerror();
+        if (error.empty()) error = fmt::format("cannot load the video module '{}': {}", path.string(), reason ? reason : "dlopen failed");
+        continue;
+      }
+      auto entry = reinterpret_cast<GlintVideoApiFn>(dlsym(handle, "glint_video_api"));
+      const backend::Api* table = entry ? entry() : nullptr;
+      if (!table || table->abiVersion != backend::kVideoAbiVersion) {
+        if (error.empty()) error = fmt::format("cannot load the video module '{}': not a glint video module of this build", path.string());
+        continue;
+      }
+      loaded = table;
+      return;
+    }
+  });
+  if (!loaded) throw Error(ErrorKind::Internal, error);
+  loaded->setLogLevel(int(log::level()));  // the module's logger follows -q / -v
+  return *loaded;
+}
+
+void check(const backend::Status& status) {
+  if (!status.ok) throw Error(status.kind, status.message);
+}
+}  // namespace
+
+bool isImagePath(const std::string& name) {
+  std::string ext = fs::path(name).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  static constexpr std::array<std::string_view, 10> kImages = {".png", ".jpg", ".jpeg", ".tga", ".tif",
+                                                               ".tiff", ".exr", ".hdr", ".bmp", ".webp"};
+  return std::find(kImages.begin(), kImages.end(), ext) != kImages.end();
+}
+
+Codec parseCodec(const std::string& name) {
+  if (name == "h264" || name == "H264" || name == "x264") return Codec::H264;
+  if (name == "ffv1" || name == "FFV1") return Codec::Ffv1;
+  fail(ErrorKind::Usage, "unknown codec '{}': h264 or ffv1 (lossless)", name);
+}
+
+// ---------------------------------------------------------------------------
+Packet::Packet(AVPacket* packet) : m_packet(packet) {}
+Packet::~Packet() {
+  if (m_packet) api().freePacket(m_packet);
+}
+Packet::Packet(Packet&& other) noexcept : m_packet(std::exchange(other.m_packet, nullptr)) {}
+Packet& Packet::operator=(Packet&& other) noexcept {
+  if (this != &other) {
+    if (m_packet) api().freePacket(m_packet);
+    m_packet = std::exchange(other.m_packet, nullptr);
+  }
+  return *this;
+}
+
+// ---------------------------------------------------------------------------
+struct Source::Impl {
+  backend::SourceHandle* handle = nullptr;
+  ~Impl() {
+    if (handle) api().closeSource(handle);
+  }
+};
+
+Source::Source(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
+Source::Source(Source&&) noexcept = default;
+Source& Source::operator=(Source&&) noexcept = default;
+Source::~Source() = default;
+
+Source Source::open(const std::string& name, const SourceOptions& options) {
+  backend::Status status;
+  auto impl = std::make_unique<Impl>();
+  impl->handle = api().openSource(name, options, status);
+  check(status);
+  return Source(std::move(impl));
+}
+
+const SourceInfo& Source::info() const { return *api().sourceInfo(m_impl->handle); }
+
+bool Source::read(Frame& frame) {
+  backend::Status status;
+  const bool ok = api().read(m_impl->handle, frame, status);
+  check(status);
+  return ok;
+}
+
+std::deque<Packet> Source::takeAudio() {
+  std::deque<Packet> packets;
+  api().takeAudio(m_impl->handle, packets);
+  return packets;
+}
+
+const AudioTrack* Source::audio() const { return api().audio(m_impl->handle); }
+
+namespace {
+std::int64_t counter(const backend::SourceHandle* handle, int which) {
+  std::int64_t values[4] = {};
+  api().counters(handle, values);
+  return values[which];
+}
+}  // namespace
+
+std::int64_t Source::droppedFrames() const { return counter(m_impl->handle, 0); }
+std::int64_t Source::corruptPackets() const { return counter(m_impl->handle, 1); }
+std::int64_t Source::framesRead() const { return counter(m_impl->handle, 2); }
+DecoderErrors Source::decoderErrors() const {
+  return {.count = counter(m_impl->handle, 3), .first = api().firstDecoderError(m_impl->handle)};
+}
+
+// ---------------------------------------------------------------------------
+struct Sink::Impl {
+  backend::SinkHandle* handle = nullptr;
+  fs::path destination;
+  ~Impl() {
+    if (handle) api().closeSink(handle);
+  }
+};
+
+Sink::Sink(const fs::path& destination, const SinkOptions& options) : m_impl(std::make_unique<Impl>()) {
+  backend::Status status;
+  m_impl->destination = destination;
+  m_impl->handle = api().openSink(destination, options, status);
+  check(status);
+}
+
+Sink::Sink(Sink&&) noexcept = default;
+Sink& Sink::operator=(Sink&&) noexcept = default;
+Sink::~Sink() = default;
+
+void Sink::write(const Frame& frame) {
+  backend::Status status;
+  api().write(m_impl->handle, frame, status);
+  check(status);
+}
+
+void Sink::writeAudio(Packet packet) {
+  backend::Status status;
+  api().writeAudio(m_impl->handle, packet, status);
+  check(status);
+}
+
+void Sink::finish() {
+  backend::Status status;
+  api().finish(m_impl->handle, status);
+  check(status);
+}
+
+std::int64_t Sink::framesWritten() const { return api().framesWritten(m_impl->handle); }
+const std::string& Sink::audioNote() const { return *api().audioNote(m_impl->handle); }
+const fs::path& Sink::destination() const { return m_impl->destination; }
+
+std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destination) {
+  backend::Status status;
+  const std::int64_t frames = api().concatenate(parts, destination, status);
+  check(status);
+  return frames;
+}
+
+}  // namespace glint::video

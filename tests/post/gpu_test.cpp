@@ -1,0 +1,189 @@
+// The GPU passes of render/post against their CPU references (image/post.h, image/fourier.h)
+// on a real photograph, on noise and at odd sizes: within one 8-bit step, the Kuwahara
+// quadrant choice exactly, the sepia luma kept, chains and the PBO stream equal to the
+// references applied in turn.
+#include "glint/core/error.h"
+#include "glint/image/fourier.h"
+#include "glint/image/post.h"
+#include "glint/render/post/chain.h"
+#include "glint/render/post/fft.h"
+#include "glint/render/post/passes.h"
+
+#include "post_test_util.h"
+#include "support/gl_test.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdio>
+
+using namespace glint;
+using namespace glint::render::post;
+using glint::testing::compareSteps;
+using glint::testing::crop;
+using glint::testing::noiseImage;
+using glint::testing::photograph;
+
+namespace {
+class PostGpu : public glint::testing::GlTest {};
+
+// The three inputs every pass is checked on.
+std::vector<std::pair<std::string, Image>> inputs() {
+  return {{"photo", photograph()}, {"noise", noiseImage(96, 64, 11)}, {"odd", crop(photograph(), 101, 57, 37, 23)}};
+}
+
+Image runPass(const Image& input, const std::function<void(const gl::Texture&, const gl::Texture&)>& pass) {
+  const gl::Texture in = uploadFrame(input, "test-input");
+  gl::Texture out(GL_TEXTURE_2D, "test-output");
+  out.storage(GL_RGBA8, input.width(), input.height());
+  pass(in, out);
+  return readFrame(out);
+}
+}  // namespace
+
+TEST_F(PostGpu, SepiaMatchesTheYiqReferenceAndKeepsLuma) {
+  SepiaPass sepia;
+  for (const SepiaOptions options : {SepiaOptions{}, SepiaOptions{.i = 0.1f, .q = 0.08f}, SepiaOptions{.i = -0.15f}}) {
+    for (const auto& [name, image] : inputs()) {
+      const Image gpu = runPass(image, [&](auto& in, auto& out) { sepia.run(in, out, options); });
+      const auto d = compareSteps(gpu, sepiaReference(image, options));
+      EXPECT_LE(d.maxSteps, 1) << name << " i=" << options.i << " q=" << options.q;
+      // Luma of the 8-bit result against the input's: each channel is rounded by at most half
+      // a step and the weights sum to 1, so at most half a step (plus float noise).
+      double worst = 0;
+      for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+          const double in = kLumaR * image.at(x, y, 0) + kLumaG * image.at(x, y, 1) + kLumaB * image.at(x, y, 2);
+          const double out = kLumaR * gpu.at(x, y, 0) + kLumaG * gpu.at(x, y, 1) + kLumaB * gpu.at(x, y, 2);
+          worst = std::max(worst, std::abs(in - out));
+        }
+      EXPECT_LE(worst * 255.0, 0.5 + 1e-3) << name << ": luma moved by " << worst * 255.0 << " steps";
+      std::printf("[figure] sepia %s i=%g q=%g: max %d step(s) from the YIQ reference; luma within %.3f steps\n",
+                  name.c_str(), options.i, options.q, d.maxSteps, worst * 255.0);
+    }
+  }
+}
+
+TEST_F(PostGpu, SobelAndEdgesMatchTheirReferences) {
+  SobelPass sobel;
+  EdgesPass edges;
+  for (const auto& [name, image] : inputs()) {
+    for (SobelOutput output : {SobelOutput::Horizontal, SobelOutput::Vertical, SobelOutput::Magnitude,
+                               SobelOutput::SignedX, SobelOutput::SignedY}) {
+      const SobelOptions options{.output = output, .scale = 1.5f};
+      const Image gpu = runPass(image, [&](auto& in, auto& out) { sobel.run(in, out, options); });
+      EXPECT_LE(compareSteps(gpu, sobelReference(image, options)).maxSteps, 1) << name << " output " << int(output);
+    }
+    const Image gpu = runPass(image, [&](auto& in, auto& out) { edges.run(in, out, {}); });
+    EXPECT_LE(compareSteps(gpu, edgesReference(image)).maxSteps, 1) << name;
+  }
+}
+
+TEST_F(PostGpu, KuwaharaChoosesTheReferenceQuadrantExactly) {
+  KuwaharaPass kuwahara;
+  for (int size : {2, 3, 4, 5, 8}) {
+    for (const auto& [name, image] : inputs()) {
+      const KuwaharaOptions options{.size = size};
+      const auto reference = kuwaharaReference(image, options);
+      const Image quadrant = runPass(image, [&](auto& in, auto& out) { kuwahara.run(in, out, options, true); });
+      const Image gpu = runPass(image, [&](auto& in, auto& out) { kuwahara.run(in, out, options); });
+      std::size_t differ = 0, ties = 0;
+      for (int y = 0; y < image.height(); ++y) {
+        for (int x = 0; x < image.width(); ++x) {
+          const std::size_t i = std::size_t(y) * std::size_t(image.width()) + std::size_t(x);
+          const int chosen = int(std::lround(quadrant.at(x, y, 0) * 255.0f));
+          ties += std::popcount(unsigned(reference.tied[i])) > 1;
+          if (chosen != reference.chosen[i]) ++differ;
+        }
+      }
+      // The GPU sums in integers and stores D in a float texture: exact for s ≤ 4, rounded
+      // once (order-preserving) above, so a different choice needs two variances equal to 7
+      // digits without being equal. None occurs on these inputs, at any size: exact match,
+      // exact ties (ties counts them) broken the same way.
+      EXPECT_EQ(differ, 0u) << name << " s=" << size << " (" << ties << " exact ties)";
+      std::printf("[figure] kuwahara %s %dx%d s=%d: %zu of %zu quadrant choices differ from the brute force "
+                  "(%zu exact ties)\n", name.c_str(), image.width(), image.height(), size, differ, image.pixelCount(), ties);
+      const auto d = compareSteps(gpu, reference.image);
+      EXPECT_LE(d.maxSteps, 1) << name << " s=" << size;
+    }
+  }
+}
+
+TEST_F(PostGpu, SpectrumAndFiltersMatchTheDftReference) {
+  // Small sizes: the reference is a direct DFT in double. 60×44 has factors 2, 3, 5, 11.
+  const Image image = crop(photograph(), 130, 80, 60, 44);
+  SpectrumPass spectrum;
+  const Image s = runPass(image, [&](auto& in, auto& out) { spectrum.run(in, out); });
+  EXPECT_LE(compareSteps(s, spectrumReference(image)).maxSteps, 1);
+  FrequencyFilterPass filter;
+  const std::vector<std::pair<const char*, FrequencyFilter>> filters = {
+      {"lowpass", {.kind = FilterKind::LowPass, .cutoff = 0.08f}},
+      {"ideal lowpass", {.kind = FilterKind::LowPass, .cutoff = 0.1f, .order = 0}},
+      {"highpass", {.kind = FilterKind::HighPass, .cutoff = 0.05f, .offset = 0.5f}},
+      {"bandpass", {.kind = FilterKind::BandPass, .cutoff = 0.2f, .low = 0.05f, .offset = 0.5f}},
+      {"gaussian", {.kind = FilterKind::Kernel, .kernel = KernelShape::Gaussian, .size = 2.5f}},
+      {"disk", {.kind = FilterKind::Kernel, .kernel = KernelShape::Disk, .size = 4.0f}}};
+  for (const auto& [name, f] : filters) {
+    const Image gpu = runPass(image, [&](auto& in, auto& out) { filter.run(in, out, f); });
+    const auto d = compareSteps(gpu, frequencyFilterReference(image, f));
+    EXPECT_LE(d.maxSteps, 1) << name << " at " << d.worstX << "," << d.worstY;
+    std::printf("[figure] %s 60x44 vs the direct DFT in double: max %d step(s), mean %.4f\n", name, d.maxSteps, d.meanSteps);
+  }
+}
+
+TEST_F(PostGpu, ChainsAndTheStreamEqualTheReferencesInTurn) {
+  const Image image = photograph();
+  Chain posterize(ivec2(image.width(), image.height()), parseEffects(std::vector<std::string>{"posterize"}));
+  EXPECT_EQ(posterize.effects().size(), 2u);
+  const Image gpu = posterize.run(image);
+  const Image expected = edgesReference(quantizeToU8(kuwaharaReference(image).image));
+  EXPECT_LE(compareSteps(gpu, expected).maxSteps, 1);
+
+  // The stream (PBOs, fences, frames in flight) gives exactly what the chain gives, in order.
+  const auto effects = parseEffects(std::vector<std::string>{"sepia", "sobel:output=vertical"});
+  Chain chain(ivec2(96, 64), effects);
+  for (int depth : {1, 3}) {
+    FrameStream stream(ivec2(96, 64), effects, depth);
+    std::vector<Image> frames, results;
+    for (unsigned i = 0; i < 7; ++i) frames.push_back(noiseImage(96, 64, 100 + i));
+    Image out;
+    for (const auto& f : frames) {
+      if (stream.full()) {
+        ASSERT_TRUE(stream.pop(out));
+        results.push_back(out);
+      }
+      stream.push(f);
+    }
+    while (stream.pop(out)) results.push_back(out);
+    ASSERT_EQ(results.size(), frames.size());
+    for (std::size_t i = 0; i < frames.size(); ++i) EXPECT_EQ(results[i], chain.run(frames[i])) << "depth " << depth << " frame " << i;
+  }
+}
+
+TEST_F(PostGpu, EffectParsingAndValidation) {
+  const auto chain = parseEffects(std::vector<std::string>{"sepia:i=0.3", "sobel", "posterize"},
+                                  std::vector<std::string>{"scale=3", "sobel.output=dx", "size=4"});
+  ASSERT_EQ(chain.size(), 4u);
+  EXPECT_FLOAT_EQ(chain[0].sepia.i, 0.3f);
+  EXPECT_FLOAT_EQ(chain[1].sobel.scale, 3.0f);
+  EXPECT_EQ(chain[1].sobel.output, SobelOutput::SignedX);
+  EXPECT_EQ(chain[2].kuwahara.size, 4);
+  EXPECT_FLOAT_EQ(chain[3].edges.scale, 3.0f);
+  EXPECT_EQ(chain[0].describe(), "sepia(i=0.3,q=0)");
+  const auto usage = [](std::vector<std::string> specs, std::vector<std::string> sets) {
+    try {
+      parseEffects(specs, sets);
+    } catch (const Error& e) {
+      return e.kind() == ErrorKind::Usage && std::string(e.what()).find('\n') == std::string::npos;
+    }
+    return false;
+  };
+  EXPECT_TRUE(usage({"sharpen"}, {}));
+  EXPECT_TRUE(usage({"sepia:x=1"}, {}));
+  EXPECT_TRUE(usage({"sepia:i=abc"}, {}));
+  EXPECT_TRUE(usage({"sepia"}, {"cutoff=0.1"}));
+  EXPECT_TRUE(usage({"sepia"}, {"sobel.scale=2"}));
+  EXPECT_TRUE(usage({"sobel:output=diagonal"}, {}));
+  EXPECT_THROW(Chain(ivec2(64, 64), parseEffects(std::vector<std::string>{"kuwahara:size=9"})), Error);
+  EXPECT_THROW(Chain(ivec2(16, 16), parseEffects(std::vector<std::string>{"blur:sigma=12"})), Error);
+}
