@@ -97,6 +97,7 @@ void writeAtomically(const fs::path& destination, const std::function<void(const
 AtomicFile::AtomicFile(const fs::path& destination)
     : m_destination(destination), m_temporary(temporarySibling(destination)) {
   checkWritable(destination);
+  removeStaleTemporaries(destination.parent_path().empty() ? fs::path(".") : destination.parent_path());
 }
 
 AtomicFile::~AtomicFile() {

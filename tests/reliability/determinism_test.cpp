@@ -69,3 +69,27 @@ TEST(Determinism, CutIsByteIdenticalAt1And2And8Threads) {
     EXPECT_TRUE(p == firstPly) << threads << " threads: the PLY differs from 1 thread's";
   }
 }
+
+// glint post is a GPU pass chain: the same input gives the same bytes on every run (an
+// image and a lossless video; H.264's encoder is deterministic too at a fixed thread count).
+TEST(Determinism, PostIsByteIdenticalRunToRun) {
+  const fs::path d = glint::testing::freshDir("determinism", "post");
+  ASSERT_EQ(runGlint("post --input lavfi:testsrc2=size=320x240:rate=25:duration=1 --codec ffv1 -q -o " + q(d / "clip.mkv")).status, 0);
+  ASSERT_EQ(runGlint("post --input lavfi:testsrc2=size=640x480 --frames 0:1 -q -o " + q(d / "photo.png")).status, 0);
+  for (const char* effect : {"posterize", "lowpass", "sepia"}) {
+    std::string firstImage, firstVideo;
+    for (int run = 0; run < 2; ++run) {
+      const fs::path image = d / fmt::format("{}-{}.png", effect, run), video = d / fmt::format("{}-{}.mkv", effect, run);
+      const auto a = runGlint(fmt::format("post {} -e {} -q -o {}", q(d / "photo.png"), effect, q(image)));
+      ASSERT_EQ(a.status, 0) << a.output;
+      const auto b = runGlint(fmt::format("post {} -e {} --codec ffv1 -q -o {}", q(d / "clip.mkv"), effect, q(video)));
+      ASSERT_EQ(b.status, 0) << b.output;
+      if (run == 0) {
+        firstImage = readBytes(image), firstVideo = readBytes(video);
+        continue;
+      }
+      EXPECT_TRUE(readBytes(image) == firstImage) << effect << ": the image differs between runs";
+      EXPECT_TRUE(readBytes(video) == firstVideo) << effect << ": the video differs between runs";
+    }
+  }
+}

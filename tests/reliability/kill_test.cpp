@@ -173,3 +173,24 @@ TEST(KillNine, GalleryLeavesOnlyWholeFiles) {
                   .variable = {"index.html", "gallery.json"}},
                  kRounds, kSeed + 2);
 }
+
+TEST(KillNine, PostLeavesNoPartialImageOrVideo) {
+  const fs::path d = glint::testing::freshDir("kill", "post");
+  fs::create_directories(d / "out");
+  // The inputs, made by glint post itself from FFmpeg's test pattern.
+  const auto made = glint::testing::runGlint("post --input lavfi:testsrc2=size=320x240:rate=25:duration=2 --codec ffv1 -q -o " +
+                                             q(d / "clip.mkv"));
+  ASSERT_EQ(made.status, 0) << made.output;
+  const auto still = glint::testing::runGlint("post --input lavfi:testsrc2=size=640x480 --frames 0:1 -q -o " + q(d / "photo.png"));
+  ASSERT_EQ(still.status, 0) << still.output;
+  killRepeatedly({.args = "post " + q(d / "photo.png") + " -e kuwahara -e edges -q -o " + q(d / "out" / "photo.png"),
+                  .out = d / "out",
+                  .inputs = {d / "photo.png"}},
+                 kRounds, kSeed + 3);
+  fs::remove_all(d / "out");
+  fs::create_directories(d / "out");
+  killRepeatedly({.args = "post " + q(d / "clip.mkv") + " -e sepia --codec ffv1 -q -o " + q(d / "out" / "clip.mkv"),
+                  .out = d / "out",
+                  .inputs = {d / "clip.mkv"}},
+                 kRounds, kSeed + 4);
+}
