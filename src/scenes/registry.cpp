@@ -23,6 +23,7 @@ void registerBumpDot3(Registry& registry);
 void registerBumpNormalMap(Registry& registry);
 void registerBakeResult(Registry& registry);
 void registerCutScenes(Registry& registry);
+void registerPipeDream(Registry& registry);
 void registerWaterScenes(Registry& registry);
 
 const Registry& Registry::builtin() {
@@ -43,6 +44,7 @@ const Registry& Registry::builtin() {
     registerBumpNormalMap(r);
     registerBakeResult(r);
     registerCutScenes(r);
+    registerPipeDream(r);
     registerWaterScenes(r);
     return r;
   }();
