@@ -73,10 +73,16 @@ float ring(const std::vector<double>& hits, double time, double decay, double fr
 
 BallState ballAt(const BallFlight& f, double t) {
   BallState s;
-  const double toHit = f.hit - f.launch;
+  const double toHit = f.hit - f.launch, toLand = f.land - f.launch;
   if (t < toHit) {
     s.position = along(f.start, f.launchVelocity, float(t));
     s.velocity = f.launchVelocity - vec3(0.0f, kGravity * float(t), 0.0f);
+  } else if (t >= toLand) {
+    // Into the collector: straight down its tube (the tube's wall takes the sideways motion).
+    const float u = float(t - toLand);
+    const float vy = f.reboundVelocity.y - kGravity * float(f.land - f.hit);
+    s.position = along(f.finish, vec3(0.0f, vy, 0.0f), u);
+    s.velocity = vec3(0.0f, vy - kGravity * u, 0.0f);
   } else {
     const float u = float(t - toHit);
     s.position = along(f.strike, f.reboundVelocity, u);
@@ -137,7 +143,7 @@ Score makeScore(const InstrumentMachine& m, std::uint32_t seed, double interval)
     f.launch = double(k) * interval;
     f.hit = f.launch + toHit;
     f.land = f.hit + toLand;
-    // Sinking on along the same parabola until the ball is wholly below the collector's top.
+    // Then straight down the tube until the ball is wholly below the collector's top.
     const float vy = f.reboundVelocity.y - kGravity * float(toLand);  // negative
     const float depth = 2.2f * r;
     const float extra = (vy + std::sqrt(vy * vy + 2.0f * kGravity * depth)) / kGravity;

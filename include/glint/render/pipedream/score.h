@@ -10,9 +10,10 @@
 //
 // A flight: a ball leaves a launcher (from inside its mouth, so it is never seen to
 // appear), flies a ballistic arc to an instrument (a drum skin, a cymbal, a xylophone bar),
-// strikes it at `hit`, rebounds on a second arc into a collector and sinks into it (it is
-// removed once it is inside, at `end`). Both arcs are exact parabolas under gravity
-// through their end points, so velocity is known exactly (the motion blur uses it).
+// strikes it at `hit`, rebounds on a second arc onto a collector's mouth at `land` and drops
+// straight down its tube (it is removed once it is inside, at `end`). Both arcs are exact
+// parabolas under gravity through their end points, so velocity is known exactly (the
+// motion blur uses it).
 // Strikes make drum skins bounce and cymbals wobble (damped sines); mallets swing down
 // onto their drums on the beat. Everything is a function of time: the score loops with
 // `period`, and flights that cross the end of the loop carry over into the next.
