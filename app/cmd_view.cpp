@@ -1,7 +1,8 @@
 // glint view — the interactive viewer: a GLFW window, a Dear ImGui panel, every scene.
 //
 // Keys: ←/→ previous/next variant, ↑/↓ previous/next scene, Space pause time,
-// R reload shaders, F12 screenshot, Tab hide/show the panel, Esc quit. Run from a source
+// R reload shaders, F12 screenshot, Tab hide/show the panel, Esc quit; other letters and
+// digits go to the scene (Scene::keyPressed: pipedream's demo toggles). Run from a source
 // checkout, shaders are re-read from shaders/ whenever a file changes (hot reload).
 //
 // The mouse moves the camera of every 3D scene (the scenes pass their camera through
@@ -238,7 +239,11 @@ private:
       case GLFW_KEY_C:
       case GLFW_KEY_HOME: resetView(); break;
       case GLFW_KEY_F12: m_shotRequested = true; break;
-      default: break;
+      default:
+        // Letters and digits the viewer leaves free go to the scene (GLFW's codes are ASCII).
+        if (m_scene && ((key >= GLFW_KEY_A && key <= GLFW_KEY_Z) || (key >= GLFW_KEY_0 && key <= GLFW_KEY_9)))
+          m_scene->keyPressed(key);
+        break;
     }
   }
 

@@ -482,8 +482,8 @@ InstrumentMachine makeInstrumentMachine(const InstrumentMachineOptions& options)
     for (int col = 0; col < 3; ++col)
       addInstrumentModule(b, out, vec3(-6.4f + 6.4f * float(col), 0.0f, row == 0 ? -3.0f : 3.2f), detail, rng);
 
-  out.lights = {{.position = {-4.137f, 7.213f, 4.371f}, .range = 17.5f, .intensity = 1.0f, .name = "key"},
-                {.position = {6.529f, 5.171f, -0.813f}, .range = 12.0f, .intensity = 0.75f, .name = "fill"}};
+  out.lights = {{.position = {-4.137f, 7.213f, 4.371f}, .range = 17.5f, .intensity = 1.3f, .name = "key"},
+                {.position = {6.529f, 5.171f, -0.813f}, .range = 12.0f, .intensity = 0.85f, .name = "fill"}};
 
   const int round = 8 + 4 * detail;
   {

@@ -23,6 +23,7 @@
 #include "glint/raytrace/raytracer.h"
 #include "glint/render/state.h"
 #include "glint/scenes/pipedream.h"
+#include "glint/scenes/scene.h"
 
 #include <fmt/format.h>
 
@@ -430,4 +431,27 @@ TEST_F(GlTest, PipeDreamBallShaderStretchesAsTheReference) {
     const vec3 expected = rp::stretchVertex(ball.positions[i], ball.rear[i], centre, velocity, radius, shutter);
     ASSERT_LT(glm::length(out[i] - expected), 1e-5f) << i;
   }
+}
+
+TEST_F(GlTest, PipeDreamViewerKeysSwitchViewsWithoutAReload) {
+  // The scene as the viewer holds it: keys toggle the seed's views and pick cameras.
+  const auto ref = scenes::Registry::builtin().resolve("pipedream/full");
+  std::unique_ptr<scenes::Scene> scene = ref.scene->create(ref.variant);
+  scenes::setOption(*scene, fmt::format("detail={}", kDetail));
+  gl::RenderTarget target(kSize);
+  const auto frame = [&] {
+    scene->render({.target = target.target(), .time = 6.35});
+    return gl::readColor(target.framebuffer(), kSize);
+  };
+  const Image full = frame();
+  EXPECT_TRUE(scene->keyPressed('A'));
+  const Image alpha = frame();
+  EXPECT_NE(alpha, full);
+  EXPECT_NE(scene->notes().find("(dest-alpha)"), std::string::npos) << scene->notes();
+  EXPECT_TRUE(scene->keyPressed('A'));  // again: back to the full frame
+  EXPECT_EQ(frame(), full);
+  EXPECT_TRUE(scene->keyPressed('3'));
+  EXPECT_NE(frame(), full);
+  EXPECT_NE(scene->notes().find("camera 'wall'"), std::string::npos) << scene->notes();
+  EXPECT_FALSE(scene->keyPressed('X'));
 }

@@ -78,6 +78,10 @@ public:
   virtual std::vector<Option> options() { return {}; }
   /// Extra text the gallery and viewer show under the picture (measurements, notes).
   virtual std::string notes() const { return {}; }
+  /// A key the viewer does not use itself ('A'..'Z' other than C and R, '0'..'9'; GLFW's
+  /// key codes for them are these characters): true when the scene used it. Scenes with a
+  /// demo's own keys (pipedream: the seed's toggles) switch views without a reload.
+  virtual bool keyPressed(int /*key*/) { return false; }
 };
 
 struct VariantDesc {

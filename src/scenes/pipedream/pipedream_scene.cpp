@@ -26,6 +26,19 @@ const VariantSetup kVariants[] = {
     {rp::Mode::StaticOnly, 0}, {rp::Mode::NoBlur, 4},   {rp::Mode::Naive, 0},
 };
 
+const char* modeName(rp::Mode mode) {
+  switch (mode) {
+    case rp::Mode::Full: return "full";
+    case rp::Mode::Wireframe: return "wireframe";
+    case rp::Mode::DestAlpha: return "dest-alpha";
+    case rp::Mode::Volumes: return "volumes";
+    case rp::Mode::StaticOnly: return "static-only";
+    case rp::Mode::NoBlur: return "no-blur";
+    case rp::Mode::Naive: return "naive";
+  }
+  return "?";
+}
+
 class PipeDreamScene final : public Scene {
 public:
   // The stage is loaded by the first frame, after --set has given the options (a detail
@@ -46,6 +59,27 @@ public:
 
   std::string notes() const override { return m_notes; }
 
+  // The seed's demo toggles, without a reload: F full, W wireframe, A destination alpha,
+  // V volumes, S static only, B blur on/off, N naive; 1–5 the named cameras.
+  bool keyPressed(int key) override {
+    const auto toggle = [&](rp::Mode mode) { m_mode = m_mode == mode ? rp::Mode::Full : mode; };
+    switch (key) {
+      case 'F': m_mode = rp::Mode::Full; return true;
+      case 'W': toggle(rp::Mode::Wireframe); return true;
+      case 'A': toggle(rp::Mode::DestAlpha); return true;
+      case 'V': toggle(rp::Mode::Volumes); return true;
+      case 'S': toggle(rp::Mode::StaticOnly); return true;
+      case 'B': toggle(rp::Mode::NoBlur); return true;
+      case 'N': toggle(rp::Mode::Naive); return true;
+      default: break;
+    }
+    if (key >= '1' && key < '1' + int(pipedream::namedCameras().size())) {
+      m_camera = key - '1';
+      return true;
+    }
+    return false;
+  }
+
   void render(const FrameInput& frame) override {
     if (!m_stage || m_detail != m_stage->detail) load();
     m_renderer->options() = m_options;
@@ -53,9 +87,10 @@ public:
     const render::Camera camera = frame.camera(pipedream::namedCamera(m_camera, frame.target.aspect()));
     m_renderer->render(pose, camera, frame.target, m_mode);
     const rp::FrameStats& s = m_renderer->stats();
-    m_notes = fmt::format("{}. This frame: {} triangles drawn ({} balls); {} volume triangles from {} of {} "
-                          "(caster, light) pairs, {} culled by range; camera '{}'.",
-                          m_stage->describe(), s.sceneTriangles, s.balls, s.volumeTriangles, s.castersDrawn,
+    m_notes = fmt::format("{}. This frame ({}): {} triangles drawn ({} balls); {} volume triangles from {} of {} "
+                          "(caster, light) pairs, {} culled by range; camera '{}'. Keys: F full, W wireframe, A dest "
+                          "alpha, V volumes, S static only, B blur, N naive, 1-5 cameras.",
+                          m_stage->describe(), modeName(m_mode), s.sceneTriangles, s.balls, s.volumeTriangles, s.castersDrawn,
                           s.castersDrawn + s.castersCulled, s.castersCulled,
                           pipedream::namedCameras()[std::size_t(std::clamp(m_camera, 0, int(pipedream::namedCameras().size()) - 1))].name);
   }

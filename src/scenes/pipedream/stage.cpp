@@ -170,9 +170,9 @@ namespace {
 const NamedCamera kCameras[] = {
     {"stage", "the whole machine from the front, a little above", {0.0f, 7.2f, 16.5f}, {0.0f, 2.0f, -0.5f}, 52.0f},
     {"drums", "over the drum machine on the left, looking down", {-9.0f, 5.6f, 8.2f}, {-5.2f, 1.0f, 2.4f}, 48.0f},
-    {"wall", "the back wall: the pipes' baked shadows and the balls' crossing them", {2.5f, 4.2f, 3.5f}, {-0.5f, 3.6f, -6.8f}, 58.0f},
+    {"wall", "the back wall: the pipes' baked shadows and the balls' crossing them", {1.0f, 6.8f, -0.5f}, {-1.0f, 4.6f, -6.8f}, 55.0f},
     {"side", "across the machine from the right, where the volumes overlap most", {10.0f, 4.8f, 6.5f}, {-2.0f, 1.6f, -1.0f}, 58.0f},
-    {"balls", "a close look at balls in flight", {3.5f, 3.6f, 7.5f}, {0.0f, 2.8f, 1.0f}, 40.0f},
+    {"balls", "a close look at balls in flight", {3.0f, 6.2f, 2.5f}, {3.6f, 3.2f, -2.6f}, 48.0f},
 };
 }  // namespace
 

@@ -89,7 +89,7 @@ struct RendererOptions {
   float shutter = 1.0f / 30.0f;  ///< seconds the shutter is open: the streak length per speed
   float minOpacity = 0.25f;      ///< a fast ball's opacity does not drop below this
   float lodScale = 1.5f;         ///< mip levels of blur per doubling of a ball's length
-  float ambient = 0.16f;         ///< the ambient term (what a pixel no light reaches keeps)
+  float ambient = 0.1f;          ///< the ambient term (what a pixel no light reaches keeps)
   bool cullVolumes = true;       ///< skip casters beyond a light's range (exact; see above)
   int cubeSize = 128;            ///< the room's environment map (the balls' reflections)
 };
