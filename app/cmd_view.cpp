@@ -1,8 +1,9 @@
 // glint view — the interactive viewer: a GLFW window, a Dear ImGui panel, every scene.
 //
 // Keys: ←/→ previous/next variant, ↑/↓ previous/next scene, Space pause time,
-// R reload shaders, F12 screenshot, Tab hide/show the panel, Esc quit; a scene's own keys
-// (Option::key) are shown beside its options. Run from a source
+// R reload shaders, F12 screenshot, Tab hide/show the panel, Esc quit; other letters and
+// digits go to the scene (Scene::keyPressed: an option's key, shown beside it, or
+// pipedream's demo toggles). Run from a source
 // checkout, shaders are re-read from shaders/ whenever a file changes (hot reload).
 //
 // The mouse moves the camera of every 3D scene (the scenes pass their camera through
@@ -180,16 +181,6 @@ private:
   }
 
   // Options with a key (Option::key): a bool toggles, an int steps through its range.
-  /// A scene's own key (Option::key): toggles a bool option, steps an int one through its range.
-  void optionKey(int key) {
-    if (!m_scene) return;
-    for (auto& o : m_scene->options()) {
-      if (!o.key || int(o.key) != key) continue;  // GLFW's key codes for A-Z and 0-9 are their ASCII codes
-      if (auto* b = std::get_if<bool*>(&o.value)) **b = !**b;
-      if (auto* i = std::get_if<int*>(&o.value)) **i = **i >= int(o.max) ? int(o.min) : **i + 1;
-    }
-  }
-
   void updateTitle() { m_window.setTitle("glint — " + m_variants[m_current].fullName()); }
 
   void step(int delta, bool wholeScene) {
@@ -266,7 +257,11 @@ private:
       case GLFW_KEY_C:
       case GLFW_KEY_HOME: resetView(); break;
       case GLFW_KEY_F12: m_shotRequested = true; break;
-      default: optionKey(key); break;
+      default:
+        // Letters and digits the viewer leaves free go to the scene (GLFW's codes are ASCII).
+        if (m_scene && ((key >= GLFW_KEY_A && key <= GLFW_KEY_Z) || (key >= GLFW_KEY_0 && key <= GLFW_KEY_9)))
+          m_scene->keyPressed(key);
+        break;
     }
   }
 

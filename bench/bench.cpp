@@ -16,6 +16,7 @@ namespace glint::bench {
 // (Suites add themselves below as they are written.)
 void registerBakeSuite(Suites& suites);
 void registerCutSuite(Suites& suites);
+void registerPipeDreamSuite(Suites& suites);
 void registerRttSuite(Suites& suites);
 void registerShadowsSuite(Suites& suites);
 void registerWaterSuite(Suites& suites);
@@ -26,6 +27,7 @@ Suites& Suites::builtin() {
     Suites s;
     registerBakeSuite(s);
     registerCutSuite(s);
+    registerPipeDreamSuite(s);
     registerRttSuite(s);
     registerShadowsSuite(s);
     registerWaterSuite(s);

@@ -23,6 +23,7 @@ void registerBumpDot3(Registry& registry);
 void registerBumpNormalMap(Registry& registry);
 void registerBakeResult(Registry& registry);
 void registerCutScenes(Registry& registry);
+void registerPipeDream(Registry& registry);
 void registerWaterScenes(Registry& registry);
 void registerPostScenes(Registry& registry);
 void registerPostCamera(Registry& registry);
@@ -45,6 +46,7 @@ const Registry& Registry::builtin() {
     registerBumpNormalMap(r);
     registerBakeResult(r);
     registerCutScenes(r);
+    registerPipeDream(r);
     registerWaterScenes(r);
     registerPostScenes(r);
     registerPostCamera(r);
@@ -93,6 +95,16 @@ VariantRef Registry::resolve(const std::string& name) const {
   }
   if (suggestions.empty()) fail(ErrorKind::Usage, "unknown scene '{}' (`glint list` shows them all)", name);
   fail(ErrorKind::Usage, "unknown scene '{}' (did you mean: {}?)", name, suggestions);
+}
+
+bool Scene::keyPressed(int key) {
+  bool used = false;
+  for (auto& o : options()) {
+    if (!o.key || int(o.key) != key) continue;
+    if (auto* b = std::get_if<bool*>(&o.value)) **b = !**b, used = true;
+    if (auto* i = std::get_if<int*>(&o.value)) **i = **i >= int(o.max) ? int(o.min) : **i + 1, used = true;
+  }
+  return used;
 }
 
 void setOption(Scene& scene, const std::string& assignment) {

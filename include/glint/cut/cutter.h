@@ -59,6 +59,11 @@ namespace glint::cut {
 
 using dvec3 = glm::dvec3;
 
+/// The cutter's version: raised whenever cut() gives different output for the same input
+/// (a fix, a change to merging or rounding), so that cached cuts (cut/cache.h) keyed by it
+/// are rebuilt.
+constexpr std::uint32_t kCutterVersion = 1;
+
 /// Bit l set: light l reaches the piece.
 using LightMask = std::uint32_t;
 /// Lights per run (the bits of a LightMask).

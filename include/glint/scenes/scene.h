@@ -82,6 +82,12 @@ public:
   virtual std::vector<Option> options() { return {}; }
   /// Extra text the gallery and viewer show under the picture (measurements, notes).
   virtual std::string notes() const { return {}; }
+  /// A key the viewer does not use itself ('A'..'Z' other than C and R, '0'..'9'; GLFW's
+  /// key codes for them are these characters): true when the scene used it. The default
+  /// toggles or steps the option whose Option::key it is (post/camera's effects); scenes
+  /// with a demo's own keys (pipedream: the seed's toggles) override it and switch views
+  /// without a reload, falling back to Scene::keyPressed for their options.
+  virtual bool keyPressed(int key);
 };
 
 struct VariantDesc {

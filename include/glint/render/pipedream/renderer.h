@@ -1,0 +1,243 @@
+#pragma once
+// glint/render/pipedream/renderer.h — the `pipedream` scene's frame: seed 001's "Pipe
+// Dream" shadows, static and dynamic, combined through destination alpha.
+//
+// Contents
+//   StaticGeometry    the cut static scene, grouped by light mask (made from glint::cut's
+//                     output by scenes/pipedream.h)
+//   Mode              what a frame shows (the scene's variants)
+//   RendererOptions   shutter, opacity floor, LOD scale, ambient, culling
+//   FrameStats        what the last frame drew: triangles, volumes, culled casters
+//   StencilLayout     how one 8-bit stencil holds a volume count and the lights already done
+//   Renderer          the passes, as one frame or step by step (tests, benchmarks)
+//
+// The frame (Mode::Full), in the order of the seed's talk:
+//   1. Scene pass, into a linear float colour buffer plus a second buffer of per-light
+//      weights. Static pieces come from the cut: each group of one light mask is drawn with
+//      that mask as a uniform, lit by exactly the lights that reach it; pieces no light
+//      reaches go through a cheaper shader (ambient only) — "we know none of our dominant
+//      lights hit those polygons". Dynamic parts (skins, cymbals, mallets) are lit by every
+//      light. Each pixel writes its colour and, in destination alpha, its *dim factor* for
+//      the first light: the share of its light that remains when that light is blocked,
+//      1 − w₀ with wₖ = (light k's diffuse here) / (ambient + all light here). Where no light
+//      reaches (a baked shadow of every light) every w is 0 and the factor is 1: a dynamic
+//      shadow cannot darken it again. The second buffer keeps every wₖ.
+//   2. Translucent (motion-blurred) balls, blended over the scene with alpha writes masked
+//      off, so destination alpha still holds the surface's factor.
+//   3. For each light with dynamic casters in its range: their GPU-extruded volumes
+//      (degenerate quads, shaders/shadows/extrude.vert; z-fail in one two-sided draw,
+//      infinite far plane) counted into the stencil. Casters whose bounding sphere lies
+//      beyond the light's range are culled: everything such a caster could shadow is
+//      further still, where the light's attenuation is already zero, so nothing pops; and
+//      as a caster nears the end of the range its shadow fades with the light it blocks.
+//      Then (lights after the first) destination alpha is rewritten to that light's factor,
+//      and one full-screen quad is drawn under the stencil test with
+//      glBlendFunc(GL_ZERO, GL_DST_ALPHA): colour × factor, in linear light. The quad
+//      leaves a marker bit in the stencil (StencilLayout), so where several lights' shadows
+//      overlap each later factor knows which lights are already gone — the result is
+//      exactly ambient + the lights that still reach the pixel.
+//   4. Present: the colour buffer into the frame's target, encoded to sRGB.
+// Mode::Naive is the 2 fps baseline: the uncut scene in ambient, then per light every
+// caster's volume (the whole static scene included) and an additive pass where the
+// stencil is zero.
+//
+//   render::pipedream::Renderer renderer(machine, geometry);
+//   renderer.render(pose, camera, frame.target, render::pipedream::Mode::Full);
+
+#include "glint/gl/objects.h"
+#include "glint/gl/render_target.h"
+#include "glint/gl/shader.h"
+#include "glint/mesh/machine_room.h"
+#include "glint/render/camera.h"
+#include "glint/render/env/dynamic_cube.h"
+#include "glint/render/gpu_mesh.h"
+#include "glint/render/pipedream/motion_blur.h"
+#include "glint/render/pipedream/score.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glint::render::pipedream {
+
+/// Lights a renderer handles (one weight channel each in an RGBA buffer).
+constexpr int kMaxLights = 4;
+
+/// The cut static scene as a renderer draws it (no GL). Vertices are one per (cut vertex,
+/// input triangle): normals interpolated from the input triangle's vertex normals at the
+/// cut vertex, so a piece shades exactly as the part of the triangle it covers.
+struct StaticGeometry {
+  Mesh mesh;                             ///< positions, normals, indices; triangles ordered by light mask
+  std::vector<vec4> colors;              ///< albedo per vertex
+  std::vector<std::uint32_t> maskStart;  ///< triangles of mask m: [maskStart[m], maskStart[m + 1]); 2^lights + 1 entries
+  Mesh edges;                            ///< the cut polygons' sides as index pairs (GL_LINES; may be empty)
+  std::size_t polygons = 0;              ///< cut polygons (before triangulation)
+  int lights = 0;
+};
+
+enum class Mode {
+  Full,        ///< the seed's method: cut static shadows, dynamic volumes, the dim-factor quad, blurred balls
+  Wireframe,   ///< Full with the cut polygons' sides drawn over it
+  DestAlpha,   ///< the dim factor as grey: what a pixel keeps when every light is blocked (seed: "dest alpha view")
+  Volumes,     ///< Full with the dynamic volumes drawn as blue wireframe (culled per light)
+  StaticOnly,  ///< the cut static shadows alone: no volumes, no quad
+  NoBlur,      ///< Full with the balls still, opaque and sharp
+  Naive        ///< every caster's volumes (static too) per light, multi-pass: the 2 fps baseline
+};
+
+struct RendererOptions {
+  float shutter = 1.0f / 30.0f;  ///< seconds the shutter is open: the streak length per speed
+  float minOpacity = 0.25f;      ///< a fast ball's opacity does not drop below this
+  float lodScale = 1.5f;         ///< mip levels of blur per doubling of a ball's length
+  float ambient = 0.1f;          ///< the ambient term (what a pixel no light reaches keeps)
+  bool cullVolumes = true;       ///< skip casters beyond a light's range (exact; see above)
+  int cubeSize = 128;            ///< the room's environment map (the balls' reflections)
+};
+
+/// What the last frame drew.
+struct FrameStats {
+  std::size_t sceneTriangles = 0;   ///< triangles of the scene pass(es): static + dynamic + balls, per pass
+  std::size_t volumeTriangles = 0;  ///< shadow-volume triangles drawn, all lights
+  std::size_t casters = 0;          ///< dynamic casters this frame (parts and balls)
+  std::size_t castersDrawn = 0;     ///< (caster, light) pairs whose volume was drawn
+  std::size_t castersCulled = 0;    ///< (caster, light) pairs culled by the light's range
+  std::size_t balls = 0;            ///< balls in flight
+  int lightsWithShadows = 0;        ///< lights that got a stencil pass and a quad
+};
+
+/// One 8-bit stencil for every light in turn: the low bits count the current light's
+/// volumes (wrapping, modulo 2^countBits); the top `lights − 1` bits are markers, bit
+/// 7 − k set where light k's dynamic shadow has already been applied. The last light needs
+/// no marker.
+struct StencilLayout {
+  int lights = 1;
+  GLuint countMask() const { return 0xFFu >> (lights - 1); }
+  GLuint marker(int light) const { return light < lights - 1 ? 0x80u >> light : 0u; }
+  /// Markers of lights [0, light).
+  GLuint markersBefore(int light) const {
+    GLuint m = 0;
+    for (int k = 0; k < light; ++k) m |= marker(k);
+    return m;
+  }
+};
+
+class Renderer {
+public:
+  /// Uploads the geometry, builds the extrusion meshes and renders the room's cube map
+  /// (from the middle of the stage) for the balls. Needs a current 4.5 context. The
+  /// machine must outlive the renderer. Error(Usage) for more than kMaxLights lights.
+  Renderer(const InstrumentMachine& machine, const StaticGeometry& geometry, const RendererOptions& options = {});
+
+  /// A whole frame of `mode` into `target`. `camera`'s projection (from glm::perspective)
+  /// is given an infinite far plane here (z-fail's far caps); its near plane is kept.
+  void render(const MachinePose& pose, const Camera& camera, const gl::Target& target, Mode mode);
+
+  // ---- The steps of render() for Full and its debug modes (tests, benchmarks). They draw
+  // into the renderer's own framebuffer (size from prepare()); present() copies it out.
+  /// Sizes the framebuffers, takes the pose and the camera (infinite far plane); call first.
+  void prepare(const MachinePose& pose, const Camera& camera, ivec2 size, Mode mode);
+  /// Step 1: clears, draws the static groups and the dynamic parts (and opaque balls).
+  void drawScene();
+  /// Step 2: the translucent balls (nothing in NoBlur, where the scene pass drew them).
+  void drawTranslucent();
+  /// Step 3 for light `light`: counts its casters' volumes into the stencil's count bits.
+  /// Returns false (and draws nothing) when no caster is in range.
+  bool countVolumes(int light);
+  /// Step 3, after countVolumes(light): destination alpha := that light's factor (lights
+  /// > 0), then the quad. `earlier`: bit j set for earlier lights whose quad ran.
+  void compositeLight(int light, std::uint32_t earlier);
+  /// Step 4: the colour buffer (or, for DestAlpha, the dim factor) into `target`.
+  void present(const gl::Target& target) const;
+  /// Fragments all shadow volumes of a frame rasterize (both faces, caps, every light's
+  /// in-range casters; for Naive every caster, static ones included), counted with
+  /// GL_SAMPLES_PASSED while drawing them with the depth test off: what counting costs in
+  /// fill. Needs prepare().
+  std::uint64_t measureVolumeFill();
+
+  /// The scene pass's framebuffer: colour (RGBA16F, linear) + weights + depth/stencil.
+  const gl::Framebuffer& sceneFramebuffer() const { return m_sceneFbo; }
+  /// Colour + depth/stencil only (translucent balls, alpha passes, quads).
+  const gl::Framebuffer& compositeFramebuffer() const { return m_compositeFbo; }
+  /// The colour attachment (linear RGB, alpha the dim factor) and the weights.
+  const gl::Texture& colorTexture() const { return m_color; }
+  const gl::Texture& weightsTexture() const { return m_weights; }
+  const Camera& camera() const { return m_camera; }
+  ivec2 size() const { return m_size; }
+  int lights() const { return m_lights; }
+  StencilLayout stencilLayout() const { return {m_lights}; }
+  const FrameStats& stats() const { return m_stats; }
+  const RendererOptions& options() const { return m_options; }
+  RendererOptions& options() { return m_options; }
+  /// One line on what the renderer holds.
+  std::string describe() const;
+
+private:
+  struct Caster {
+    gl::VertexArray vao;
+    gl::Buffer vertices, indices;
+    GLsizei indexCount = 0;
+    vec3 centre{0.0f};    // bounding sphere in the mesh's frame
+    float radius = 0.0f;
+    bool twoSided = false;
+  };
+  struct DynamicDraw {  // one dynamic part this frame
+    int mesh = 0;       // 0 skin, 1 cymbal, 2 mallet
+    mat4 model{1.0f};
+    vec3 albedo{1.0f};
+  };
+  struct BallDraw {
+    BallState state;
+    BallBlur blur;
+    float depth = 0.0f;  // view distance, for back-to-front order
+  };
+  Caster makeCaster(const Mesh& mesh, const std::string& name);
+  void resize(ivec2 size);
+  void setLights(const gl::Program& program) const;
+  void drawStaticGroups() const;
+  void drawDynamic(const gl::Program& program) const;
+  void drawMarkers() const;
+  void drawBalls(bool translucent);
+  void drawCaster(const Caster& caster, const mat4& model) const;
+  bool inRange(const Caster& caster, const mat4& model, int light) const;
+  /// Every volume of `light` with the current state: in-range dynamic casters, and with
+  /// `everything` the static scene too (Naive). Counts into m_stats.
+  bool drawVolumesOf(int light, bool everything);
+  void ensureNaiveCasters();
+  void renderNaive();
+  void drawVolumeWireframe();
+  void drawEdges();
+  void renderCube();
+
+  const InstrumentMachine& m_machine;
+  RendererOptions m_options;
+  int m_lights = 0;
+  // Static geometry: the cut (groups by mask) and the uncut scene (naive, reflections).
+  GpuMesh m_static, m_uncut, m_edges;
+  std::vector<std::uint32_t> m_maskStart;
+  std::size_t m_staticTriangles = 0, m_uncutTriangles = 0, m_edgeCount = 0;
+  // Dynamic parts: meshes to draw and their extrusion meshes.
+  GpuMesh m_parts[3];
+  Caster m_partCasters[3];
+  Caster m_ballCaster;
+  Caster m_staticSolids, m_staticShell;  // naive only
+  gl::VertexArray m_ballVao;
+  gl::Buffer m_ballVertices, m_ballIndices;
+  GLsizei m_ballIndexCount = 0;
+  GpuMesh m_marker;
+  // Programs.
+  gl::Program m_lit, m_shadowed, m_extrude, m_ball;
+  FullscreenPass m_alphaPass, m_quad, m_present;
+  // Framebuffers at the frame's size.
+  ivec2 m_size{0};
+  gl::Texture m_color, m_weights, m_depthStencil;
+  gl::Framebuffer m_sceneFbo, m_compositeFbo;
+  env::DynamicCubeMap m_cube;
+  // This frame.
+  Camera m_camera;
+  Mode m_mode = Mode::Full;
+  std::vector<DynamicDraw> m_dynamic;
+  std::vector<BallDraw> m_balls;
+  FrameStats m_stats;
+};
+
+}  // namespace glint::render::pipedream

@@ -1,0 +1,569 @@
+// The Pipe Dream frame (render/pipedream/renderer.h): cut static shadows, GPU-extruded
+// dynamic volumes, the destination-alpha dim factor and one quad per light, blurred balls.
+#include "glint/render/pipedream/renderer.h"
+
+#include "glint/core/error.h"
+#include "glint/mesh/adjacency.h"
+#include "glint/render/shadows/volume.h"
+#include "glint/render/shadows/world_renderer.h"
+#include "glint/render/state.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+
+namespace glint::render::pipedream {
+
+namespace {
+
+// Linear colours (the colour buffer is linear; present() encodes sRGB).
+const vec4 kBackground{0.030f, 0.034f, 0.045f, 1.0f};  // alpha 1: nothing to dim
+const vec3 kSkinAlbedo{0.86f, 0.82f, 0.70f};
+const vec3 kCymbalAlbedo{0.85f, 0.66f, 0.26f};
+const vec3 kMalletAlbedo{0.55f, 0.42f, 0.30f};
+const vec3 kMarkerColor{1.6f, 1.45f, 1.0f};
+const vec4 kVolumeWire{0.20f, 0.38f, 1.0f, 1.0f};
+const vec4 kEdgeColor{0.015f, 0.015f, 0.02f, 1.0f};
+constexpr float kMarkerRadius = 0.12f;
+
+// Volumes are pushed away from the camera so that a caster's lit faces (its volume's near
+// cap) never z-fight with themselves (render/shadows/stencil_shadows.h).
+constexpr float kOffsetFactor = 1.0f, kOffsetUnits = 4.0f;
+
+mat3 normalMatrix(const mat4& model) { return glm::transpose(glm::inverse(mat3(model))); }
+
+float maxScale(const mat4& model) {
+  return std::max({glm::length(vec3(model[0])), glm::length(vec3(model[1])), glm::length(vec3(model[2]))});
+}
+
+/// The uncut static scene with one albedo per vertex (every vertex of the machine belongs
+/// to one part, so to one material).
+Mesh uncutMesh(const InstrumentMachine& machine, std::vector<vec4>& colors) {
+  Mesh mesh;
+  mesh.positions = machine.staticMesh.positions;
+  mesh.normals = machine.staticMesh.normals;
+  mesh.indices = machine.staticMesh.indices;
+  colors.assign(mesh.positions.size(), vec4(1.0f));
+  for (std::size_t t = 0; t < machine.triangleMaterial.size(); ++t)
+    for (int c = 0; c < 3; ++c)
+      colors[mesh.indices[3 * t + std::size_t(c)]] = vec4(machineMaterialColor(machine.triangleMaterial[t]), 1.0f);
+  return mesh;
+}
+
+/// The triangles [first, first + count) of `mesh`, positions kept whole.
+Mesh subMesh(const Mesh& mesh, std::size_t first, std::size_t count) {
+  Mesh out;
+  out.positions = mesh.positions;
+  out.indices.assign(mesh.indices.begin() + std::ptrdiff_t(3 * first), mesh.indices.begin() + std::ptrdiff_t(3 * (first + count)));
+  return out;
+}
+
+}  // namespace
+
+Renderer::Renderer(const InstrumentMachine& machine, const StaticGeometry& geometry, const RendererOptions& options)
+    : m_machine(machine), m_options(options), m_lights(int(machine.lights.size())) {
+  if (m_lights < 1 || m_lights > kMaxLights)
+    fail(ErrorKind::Usage, "the pipedream renderer takes 1 to {} lights, the machine has {}", kMaxLights, m_lights);
+  if (geometry.lights != m_lights || geometry.maskStart.size() != (std::size_t(1) << m_lights) + 1)
+    fail(ErrorKind::Internal, "static geometry cut for {} lights, the machine has {}", geometry.lights, m_lights);
+
+  m_static = GpuMesh(geometry.mesh, geometry.colors, "pipedream-static-cut");
+  m_maskStart = geometry.maskStart;
+  m_staticTriangles = geometry.mesh.triangleCount();
+  if (!geometry.edges.indices.empty()) {
+    m_edges = GpuMesh(geometry.edges, {}, "pipedream-cut-edges");
+    m_edgeCount = geometry.edges.indices.size() / 2;
+  }
+  std::vector<vec4> colors;
+  const Mesh uncut = uncutMesh(machine, colors);
+  m_uncut = GpuMesh(uncut, colors, "pipedream-static-uncut");
+  m_uncutTriangles = uncut.triangleCount();
+
+  const Mesh* parts[3] = {&machine.skin, &machine.cymbal, &machine.mallet};
+  const char* names[3] = {"skin", "cymbal", "mallet"};
+  for (int i = 0; i < 3; ++i) {
+    m_parts[i] = GpuMesh(*parts[i], {}, std::string("pipedream-") + names[i]);
+    m_partCasters[i] = makeCaster(*parts[i], std::string("pipedream-") + names[i] + "-extrusion");
+  }
+  m_ballCaster = makeCaster(makeIcosphere(1.0f, 2), "pipedream-ball-extrusion");
+  m_marker = GpuMesh(makeIcosphere(kMarkerRadius, 2), {}, "pipedream-light-marker");
+
+  // The blur ball: positions, then the rear flag, in one buffer.
+  const BlurBallMesh ball = buildBlurBall(32, 16);
+  std::vector<float> data;
+  for (const vec3& p : ball.positions) data.insert(data.end(), {p.x, p.y, p.z});
+  data.insert(data.end(), ball.rear.begin(), ball.rear.end());
+  m_ballVertices = gl::Buffer(std::span<const float>(data), 0, "pipedream-ball-vertices");
+  m_ballIndices = gl::Buffer(std::span<const std::uint32_t>(ball.indices), 0, "pipedream-ball-indices");
+  m_ballVao = gl::VertexArray::create("pipedream-ball");
+  m_ballVao.attribute(0, 0, 3, 0);
+  m_ballVao.vertexBuffer(0, m_ballVertices, 0, sizeof(vec3));
+  m_ballVao.attribute(1, 1, 1, 0);
+  m_ballVao.vertexBuffer(1, m_ballVertices, GLintptr(ball.positions.size() * sizeof(vec3)), sizeof(float));
+  m_ballVao.indexBuffer(m_ballIndices);
+  m_ballIndexCount = GLsizei(ball.indices.size());
+
+  m_lit = gl::Program::fromFiles({"pipedream/scene.vert", "pipedream/scene.frag"});
+  m_shadowed = gl::Program::fromFiles({"pipedream/scene.vert", "pipedream/shadowed.frag"});
+  m_extrude = gl::Program::fromFiles({"shadows/extrude.vert", "shadows/volume.frag"});
+  m_ball = gl::Program::fromFiles({"pipedream/ball.vert", "pipedream/ball.frag"});
+  m_alphaPass = FullscreenPass("pipedream/alpha.frag");
+  m_quad = FullscreenPass("shadows/flat.frag");
+  m_present = FullscreenPass("pipedream/present.frag");
+  for (const gl::Program* p : {&m_lit, &m_shadowed}) setLights(*p);
+  renderCube();
+}
+
+Renderer::Caster Renderer::makeCaster(const Mesh& mesh, const std::string& name) {
+  const EdgeMap edges = EdgeMap::build(mesh);
+  Caster c;
+  // Closed parts cast the classic volume; anything else the thin two-sided shell.
+  c.twoSided = !edges.isClosedManifold();
+  const shadows::ExtrusionMesh extrusion = shadows::buildExtrusionMesh(edges, c.twoSided);
+  std::vector<vec3> data(extrusion.positions);
+  data.insert(data.end(), extrusion.faceNormals.begin(), extrusion.faceNormals.end());
+  c.vertices = gl::Buffer(std::span<const vec3>(data), 0, name);
+  c.indices = gl::Buffer(std::span<const std::uint32_t>(extrusion.indices), 0, name + "-indices");
+  c.vao = gl::VertexArray::create(name);
+  c.vao.attribute(0, 0, 3, 0);
+  c.vao.vertexBuffer(0, c.vertices, 0, sizeof(vec3));
+  c.vao.attribute(1, 1, 3, 0);
+  c.vao.vertexBuffer(1, c.vertices, GLintptr(extrusion.positions.size() * sizeof(vec3)), sizeof(vec3));
+  c.vao.indexBuffer(c.indices);
+  c.indexCount = GLsizei(extrusion.indices.size());
+  const Bounds b = mesh.bounds();
+  c.centre = 0.5f * (b.min + b.max);
+  for (const vec3& p : mesh.positions) c.radius = std::max(c.radius, glm::length(p - c.centre));
+  return c;
+}
+
+void Renderer::setLights(const gl::Program& program) const {
+  program.set("uLightCount", m_lights);
+  program.set("uAmbient", m_options.ambient);
+  for (int i = 0; i < m_lights; ++i) {
+    const MachineLight& l = m_machine.lights[std::size_t(i)];
+    program.set(fmt::format("uLightPos[{}]", i), l.position);
+    program.set(fmt::format("uLightRange[{}]", i), l.range);
+    program.set(fmt::format("uLightIntensity[{}]", i), l.intensity);
+  }
+}
+
+void Renderer::renderCube() {
+  // The balls reflect the room as seen from the middle of the stage: the uncut scene lit by
+  // every light (reflections in small, blurred balls need no shadows), once.
+  m_cube = env::DynamicCubeMap(m_options.cubeSize, "pipedream-room-cube");
+  const vec3 centre = 0.5f * (m_machine.room.min + m_machine.room.max);
+  m_cube.render(vec3(centre.x, 2.5f, centre.z),
+                [&](const Camera& face) {
+                  PipelineState{.depthTest = true}.apply();
+                  m_lit.set("uViewProj", face.viewProjection());
+                  m_lit.set("uModel", mat4(1.0f));
+                  m_lit.set("uNormalMatrix", mat3(1.0f));
+                  m_lit.set("uVertexAlbedo", true);
+                  m_lit.set("uPass", 0);
+                  m_lit.set("uMask", (1 << m_lights) - 1);
+                  m_lit.use();
+                  m_uncut.draw();
+                },
+                kBackground);
+}
+
+void Renderer::resize(ivec2 size) {
+  if (size == m_size) return;
+  if (size.x <= 0 || size.y <= 0) fail(ErrorKind::Usage, "pipedream: frame size {}x{} is empty", size.x, size.y);
+  m_size = size;
+  // Linear float colour: the dim factor multiplies linear light, and alpha keeps it exactly.
+  m_color = gl::Texture(GL_TEXTURE_2D, "pipedream-color");
+  m_color.storage(GL_RGBA16F, size.x, size.y);
+  m_weights = gl::Texture(GL_TEXTURE_2D, "pipedream-weights");
+  m_weights.storage(GL_RGBA16F, size.x, size.y);
+  for (const gl::Texture* t : {&m_color, &m_weights}) t->filtering(GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE);
+  m_depthStencil = gl::Texture(GL_TEXTURE_2D, "pipedream-depth-stencil");
+  m_depthStencil.storage(GL_DEPTH24_STENCIL8, size.x, size.y);
+  m_sceneFbo = gl::Framebuffer::create("pipedream-scene");
+  m_sceneFbo.attach(GL_COLOR_ATTACHMENT0, m_color);
+  m_sceneFbo.attach(GL_COLOR_ATTACHMENT1, m_weights);
+  m_sceneFbo.attach(GL_DEPTH_STENCIL_ATTACHMENT, m_depthStencil);
+  const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  m_sceneFbo.drawBuffers(both);
+  m_sceneFbo.checkComplete();
+  m_compositeFbo = gl::Framebuffer::create("pipedream-composite");
+  m_compositeFbo.attach(GL_COLOR_ATTACHMENT0, m_color);
+  m_compositeFbo.attach(GL_DEPTH_STENCIL_ATTACHMENT, m_depthStencil);
+  m_compositeFbo.checkComplete();
+}
+
+void Renderer::prepare(const MachinePose& pose, const Camera& camera, ivec2 size, Mode mode) {
+  resize(size);
+  m_mode = mode;
+  m_camera = camera;
+  m_camera.projection = shadows::infiniteFarProjection(camera.projection);
+  m_stats = {};
+  m_dynamic.clear();
+  for (const mat4& m : pose.skins) m_dynamic.push_back({0, m, kSkinAlbedo});
+  for (const mat4& m : pose.cymbals) m_dynamic.push_back({1, m, kCymbalAlbedo});
+  for (const mat4& m : pose.mallets) m_dynamic.push_back({2, m, kMalletAlbedo});
+  m_balls.clear();
+  const vec3 forward = glm::normalize(camera.target - camera.position);
+  for (const BallState& b : pose.balls) {
+    BallDraw d{.state = b};
+    if (mode != Mode::NoBlur)
+      d.blur = blurOf(b.velocity, m_machine.ballRadius, m_options.shutter, m_options.minOpacity, m_options.lodScale);
+    d.depth = glm::dot(b.position - camera.position, forward);
+    m_balls.push_back(d);
+  }
+  // Back to front for blending.
+  std::stable_sort(m_balls.begin(), m_balls.end(), [](const BallDraw& a, const BallDraw& b) { return a.depth > b.depth; });
+  m_stats.casters = m_dynamic.size() + m_balls.size();
+  m_stats.balls = m_balls.size();
+}
+
+void Renderer::drawStaticGroups() const {
+  // One draw per light mask: pieces no light reaches take the cheaper shader.
+  m_static.vertexArray().bind();
+  for (std::size_t mask = 0; mask + 1 < m_maskStart.size(); ++mask) {
+    const std::uint32_t first = m_maskStart[mask], count = m_maskStart[mask + 1] - first;
+    if (count == 0) continue;
+    const gl::Program& p = mask == 0 ? m_shadowed : m_lit;
+    p.use();
+    p.set("uMask", int(mask));
+    glDrawElements(GL_TRIANGLES, GLsizei(3 * count), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(std::uintptr_t(3 * first) * sizeof(std::uint32_t)));
+  }
+  glBindVertexArray(0);
+}
+
+void Renderer::drawDynamic(const gl::Program& program) const {
+  program.set("uVertexAlbedo", false);
+  program.use();
+  for (const DynamicDraw& d : m_dynamic) {
+    program.set("uModel", d.model);
+    program.set("uNormalMatrix", normalMatrix(d.model));
+    program.set("uAlbedo", d.albedo);
+    m_parts[d.mesh].draw();
+  }
+}
+
+void Renderer::drawMarkers() const {
+  m_lit.set("uPass", 3);
+  m_lit.set("uEmissive", kMarkerColor);
+  m_lit.use();
+  for (const MachineLight& l : m_machine.lights) {
+    m_lit.set("uModel", glm::translate(mat4(1.0f), l.position));
+    m_lit.set("uNormalMatrix", mat3(1.0f));
+    m_marker.draw();
+  }
+}
+
+void Renderer::drawScene() {
+  m_sceneFbo.bind();
+  glViewport(0, 0, m_size.x, m_size.y);
+  PipelineState state{.depthTest = true};
+  // The wireframe's lines must win the depth test on the surfaces they lie on.
+  state.polygonOffset = m_mode == Mode::Wireframe;
+  state.offsetFactor = 1.0f;
+  state.offsetUnits = 1.0f;
+  state.apply();
+  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, kBackground);
+  const vec4 noWeights(0.0f);
+  glClearNamedFramebufferfv(m_sceneFbo.id(), GL_COLOR, 1, &noWeights.x);
+
+  for (const gl::Program* p : {&m_lit, &m_shadowed}) {
+    p->set("uViewProj", m_camera.viewProjection());
+    p->set("uModel", mat4(1.0f));
+    p->set("uNormalMatrix", mat3(1.0f));
+    p->set("uVertexAlbedo", true);
+    p->set("uAmbient", m_options.ambient);
+  }
+  m_lit.set("uPass", 0);
+  drawStaticGroups();
+  // Dynamic parts: lit by every light (their shadows on themselves come from the volumes).
+  m_lit.set("uMask", (1 << m_lights) - 1);
+  drawDynamic(m_lit);
+  drawMarkers();
+  m_stats.sceneTriangles += m_staticTriangles;
+  for (const DynamicDraw& d : m_dynamic) m_stats.sceneTriangles += m_parts[d.mesh].triangleCount();
+  if (m_mode == Mode::NoBlur) drawBalls(false);
+}
+
+void Renderer::drawBalls(bool translucent) {
+  m_ball.set("uViewProj", m_camera.viewProjection());
+  m_ball.set("uEye", m_camera.position);
+  m_ball.set("uRadius", m_machine.ballRadius);
+  m_ball.set("uShutter", translucent ? m_options.shutter : 0.0f);
+  m_ball.use();
+  m_cube.texture().bind(0);
+  m_ballVao.bind();
+  for (const BallDraw& b : m_balls) {
+    m_ball.set("uFrame", ballFrame(b.state.velocity));
+    m_ball.set("uCentre", b.state.position);
+    m_ball.set("uVelocity", b.state.velocity);
+    m_ball.set("uLodBias", translucent ? b.blur.lodBias : 0.0f);
+    m_ball.set("uOpacity", translucent ? b.blur.opacity : 1.0f);
+    glDrawElements(GL_TRIANGLES, m_ballIndexCount, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+  m_stats.sceneTriangles += m_balls.size() * std::size_t(m_ballIndexCount / 3);
+}
+
+void Renderer::drawTranslucent() {
+  if (m_mode == Mode::NoBlur || m_balls.empty()) return;
+  m_compositeFbo.bind();
+  glViewport(0, 0, m_size.x, m_size.y);
+  // Over the scene, depth-tested but not written; alpha masked: destination alpha keeps
+  // the dim factor of the surface behind. Back faces culled: one layer of a convex pill.
+  PipelineState{.depthTest = true,
+                .depthWrite = false,
+                .colorMask = {true, true, true, false},
+                .cull = true,
+                .blend = {.enabled = true, .src = GL_SRC_ALPHA, .dst = GL_ONE_MINUS_SRC_ALPHA}}
+      .apply();
+  drawBalls(true);
+}
+
+bool Renderer::inRange(const Caster& caster, const mat4& model, int light) const {
+  const MachineLight& l = m_machine.lights[std::size_t(light)];
+  const vec3 centre = vec3(model * vec4(caster.centre, 1.0f));
+  return glm::length(centre - l.position) - caster.radius * maxScale(model) < l.range;
+}
+
+void Renderer::drawCaster(const Caster& caster, const mat4& model) const {
+  m_extrude.set("uModel", model);
+  m_extrude.set("uNormalMatrix", normalMatrix(model));
+  caster.vao.bind();
+  glDrawElements(GL_TRIANGLES, caster.indexCount, GL_UNSIGNED_INT, nullptr);
+}
+
+bool Renderer::drawVolumesOf(int light, bool everything) {
+  m_extrude.set("uViewProj", m_camera.viewProjection());
+  m_extrude.set("uLightPos", m_machine.lights[std::size_t(light)].position);
+  m_extrude.use();
+  // The naive method knows no ranges: every caster, every light.
+  const bool cull = m_options.cullVolumes && !everything;
+  bool any = false;
+  const auto cast = [&](const Caster& c, const mat4& model) {
+    if (cull && !inRange(c, model, light)) {
+      ++m_stats.castersCulled;
+      return;
+    }
+    drawCaster(c, model);
+    ++m_stats.castersDrawn;
+    m_stats.volumeTriangles += std::size_t(c.indexCount / 3);
+    any = true;
+  };
+  for (const DynamicDraw& d : m_dynamic) cast(m_partCasters[d.mesh], d.model);
+  for (const BallDraw& b : m_balls)
+    cast(m_ballCaster, glm::scale(glm::translate(mat4(1.0f), b.state.position), vec3(m_machine.ballRadius)));
+  if (everything) {
+    cast(m_staticSolids, mat4(1.0f));
+    cast(m_staticShell, mat4(1.0f));
+  }
+  glBindVertexArray(0);
+  return any;
+}
+
+bool Renderer::countVolumes(int light) {
+  m_compositeFbo.bind();
+  glViewport(0, 0, m_size.x, m_size.y);
+  const StencilLayout layout = stencilLayout();
+  // Z-fail in one draw (two-sided stencil): back faces increment where depth fails, front
+  // faces decrement; only the count bits are written, so earlier lights' markers stay.
+  PipelineState state{.depthTest = true,
+                      .depthWrite = false,
+                      .colorMask = {false, false, false, false},
+                      .polygonOffset = true,
+                      .offsetFactor = kOffsetFactor,
+                      .offsetUnits = kOffsetUnits};
+  state.stencil.enabled = true;
+  state.stencil.separate = true;
+  state.stencil.front = {.writeMask = layout.countMask(), .dpfail = GL_DECR_WRAP};
+  state.stencil.back = {.writeMask = layout.countMask(), .dpfail = GL_INCR_WRAP};
+  state.apply();
+  const bool any = drawVolumesOf(light, false);
+  if (any) ++m_stats.lightsWithShadows;
+  return any;
+}
+
+void Renderer::compositeLight(int light, std::uint32_t earlier) {
+  m_compositeFbo.bind();
+  glViewport(0, 0, m_size.x, m_size.y);
+  const StencilLayout layout = stencilLayout();
+  if (light > 0) {
+    // Destination alpha := this light's factor. It depends on which earlier lights are
+    // already gone here: one pass per combination, picked by the markers in the stencil.
+    GLuint markers = 0;
+    for (int j = 0; j < light; ++j)
+      if (earlier & (1u << j)) markers |= layout.marker(j);
+    const gl::Program& p = m_alphaPass.program();
+    p.set("uLight", light);
+    m_weights.bind(0);
+    for (std::uint32_t removed = 0; removed < (1u << light); ++removed) {
+      if ((removed & ~earlier) != 0) continue;  // only subsets of the lights whose quads ran
+      GLuint ref = 0;
+      for (int j = 0; j < light; ++j)
+        if (removed & (1u << j)) ref |= layout.marker(j);
+      PipelineState{.colorMask = {false, false, false, true},
+                    .stencil = {.enabled = true,
+                                .front = {.func = GL_EQUAL, .ref = GLint(ref), .valueMask = markers, .writeMask = 0}}}
+          .apply();
+      p.set("uRemoved", int(removed));
+      m_alphaPass.drawWithCurrentState();
+    }
+  }
+  // The seed's shadow quad: colour × destination alpha where the count is not zero. The
+  // same pass zeroes the count (for the next light) and sets this light's marker.
+  PipelineState{.depthWrite = false,
+                .stencil = {.enabled = true,
+                            .front = {.func = GL_NOTEQUAL,
+                                      .ref = GLint(layout.marker(light)),
+                                      .valueMask = layout.countMask(),
+                                      .writeMask = layout.countMask() | layout.marker(light),
+                                      .dppass = GL_REPLACE}},
+                .blend = {.enabled = true, .src = GL_ZERO, .dst = GL_DST_ALPHA}}
+      .apply();
+  m_quad.drawWithCurrentState();
+}
+
+void Renderer::present(const gl::Target& target) const {
+  target.bind();
+  const gl::Program& p = m_present.program();
+  p.set("uOrigin", target.origin);
+  p.set("uView", m_mode == Mode::DestAlpha ? 1 : 0);
+  m_color.bind(0);
+  m_weights.bind(1);
+  m_present.draw();
+}
+
+void Renderer::drawVolumeWireframe() {
+  const FrameStats saved = m_stats;
+  m_compositeFbo.bind();
+  glViewport(0, 0, m_size.x, m_size.y);
+  PipelineState{.depthTest = true, .depthWrite = false, .polygonMode = GL_LINE}.apply();
+  m_extrude.set("uColor", kVolumeWire);
+  for (int light = 0; light < m_lights; ++light) drawVolumesOf(light, false);
+  PipelineState{}.apply();  // back to GL_FILL
+  m_stats = saved;
+}
+
+void Renderer::drawEdges() {
+  if (m_edgeCount == 0) return;
+  m_compositeFbo.bind();
+  glViewport(0, 0, m_size.x, m_size.y);
+  PipelineState{.depthTest = true, .depthFunc = GL_LEQUAL, .depthWrite = false}.apply();
+  m_lit.set("uPass", 3);
+  m_lit.set("uEmissive", vec3(kEdgeColor));
+  m_lit.set("uModel", mat4(1.0f));
+  m_lit.use();
+  m_edges.draw(GL_LINES);
+}
+
+void Renderer::ensureNaiveCasters() {
+  if (m_staticSolids.indexCount) return;
+  // Built on first use: only the baseline needs volumes of the static scene.
+  const Mesh& s = m_machine.staticMesh;
+  m_staticShell = makeCaster(subMesh(s, 0, m_machine.shellTriangles), "pipedream-naive-shell");
+  m_staticSolids = makeCaster(subMesh(s, m_machine.shellTriangles, s.triangleCount() - m_machine.shellTriangles),
+                              "pipedream-naive-solids");
+}
+
+void Renderer::renderNaive() {
+  ensureNaiveCasters();
+  m_compositeFbo.bind();
+  glViewport(0, 0, m_size.x, m_size.y);
+  PipelineState{.depthTest = true}.apply();
+  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, kBackground);
+  const auto drawAll = [&](int pass) {
+    m_lit.set("uPass", pass);
+    m_lit.set("uViewProj", m_camera.viewProjection());
+    m_lit.set("uModel", mat4(1.0f));
+    m_lit.set("uNormalMatrix", mat3(1.0f));
+    m_lit.set("uVertexAlbedo", true);
+    m_lit.use();
+    m_uncut.draw();
+    drawDynamic(m_lit);
+    m_stats.sceneTriangles += m_uncutTriangles;
+    for (const DynamicDraw& d : m_dynamic) m_stats.sceneTriangles += m_parts[d.mesh].triangleCount();
+  };
+  // Ambient everywhere.
+  setLights(m_lit);
+  drawAll(1);
+  drawMarkers();
+  for (int light = 0; light < m_lights; ++light) {
+    render::clear(GL_STENCIL_BUFFER_BIT);
+    PipelineState state{.depthTest = true,
+                        .depthWrite = false,
+                        .colorMask = {false, false, false, false},
+                        .polygonOffset = true,
+                        .offsetFactor = kOffsetFactor,
+                        .offsetUnits = kOffsetUnits};
+    state.stencil.enabled = true;
+    state.stencil.separate = true;
+    state.stencil.front = {.dpfail = GL_DECR_WRAP};
+    state.stencil.back = {.dpfail = GL_INCR_WRAP};
+    state.apply();
+    drawVolumesOf(light, true);
+    ++m_stats.lightsWithShadows;
+    // This light added where the stencil says nothing is in between: same vertices, GL_EQUAL.
+    PipelineState{.depthTest = true,
+                  .depthFunc = GL_EQUAL,
+                  .depthWrite = false,
+                  .stencil = {.enabled = true, .front = {.func = GL_EQUAL, .ref = 0, .writeMask = 0}},
+                  .blend = {.enabled = true, .src = GL_ONE, .dst = GL_ONE}}
+        .apply();
+    m_lit.set("uLight", light);
+    drawAll(2);
+  }
+  drawTranslucent();  // the balls as in Full
+}
+
+void Renderer::render(const MachinePose& pose, const Camera& camera, const gl::Target& target, Mode mode) {
+  prepare(pose, camera, target.size, mode);
+  if (mode == Mode::Naive) {
+    renderNaive();
+  } else {
+    drawScene();
+    drawTranslucent();
+    if (mode != Mode::StaticOnly && mode != Mode::DestAlpha) {
+      std::uint32_t done = 0;
+      for (int light = 0; light < m_lights; ++light)
+        if (countVolumes(light)) {
+          compositeLight(light, done);
+          done |= 1u << light;
+        }
+    }
+    if (mode == Mode::Wireframe) drawEdges();
+    if (mode == Mode::Volumes) drawVolumeWireframe();
+  }
+  present(target);
+  PipelineState{}.apply();
+}
+
+std::uint64_t Renderer::measureVolumeFill() {
+  const FrameStats saved = m_stats;
+  m_compositeFbo.bind();
+  glViewport(0, 0, m_size.x, m_size.y);
+  if (m_mode == Mode::Naive) ensureNaiveCasters();
+  PipelineState{.depthTest = false, .depthWrite = false, .colorMask = {false, false, false, false}}.apply();
+  gl::Query query(GL_SAMPLES_PASSED, "pipedream-volume-fill");
+  query.begin();
+  for (int light = 0; light < m_lights; ++light) drawVolumesOf(light, m_mode == Mode::Naive);
+  query.end();
+  PipelineState{}.apply();
+  m_stats = saved;
+  return query.result();
+}
+
+std::string Renderer::describe() const {
+  std::array<std::size_t, 1u << kMaxLights> byMask{};
+  std::size_t lit = 0;
+  for (std::size_t m = 0; m + 1 < m_maskStart.size(); ++m) {
+    byMask[m] = m_maskStart[m + 1] - m_maskStart[m];
+    if (m) lit += byMask[m];
+  }
+  return fmt::format("{} cut triangles ({} reached by no light: the cheap shader; {} lit), {} uncut; "
+                     "{} lights; {} dynamic casters, {} balls",
+                     m_staticTriangles, byMask[0], lit, m_uncutTriangles, m_lights, m_stats.casters, m_stats.balls);
+}
+
+}  // namespace glint::render::pipedream

@@ -1,0 +1,186 @@
+// The pipedream stage (scenes/pipedream.h): machine, score, cached cut → renderer geometry.
+#include "glint/scenes/pipedream.h"
+
+#include "glint/core/error.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <numeric>
+#include <tuple>
+
+namespace glint::scenes::pipedream {
+
+namespace rp = render::pipedream;
+using glm::dvec3;
+
+std::vector<cut::Light> cutLights(const InstrumentMachine& machine) {
+  std::vector<cut::Light> lights;
+  for (const MachineLight& l : machine.lights) lights.push_back({.position = l.position, .name = l.name});
+  return lights;
+}
+
+namespace {
+
+/// Barycentric weights of `p` (on or near the plane of a, b, c), clamped into the
+/// triangle; a third each for a degenerate triangle.
+dvec3 barycentric(dvec3 p, dvec3 a, dvec3 b, dvec3 c) {
+  const dvec3 n = glm::cross(b - a, c - a);
+  const double nn = glm::dot(n, n);
+  if (!(nn > 0.0)) return dvec3(1.0 / 3.0);
+  dvec3 w(glm::dot(glm::cross(c - b, p - b), n), glm::dot(glm::cross(a - c, p - c), n), glm::dot(glm::cross(b - a, p - a), n));
+  w = glm::max(w / nn, dvec3(0.0));
+  const double sum = w.x + w.y + w.z;
+  return sum > 0.0 ? w / sum : dvec3(1.0 / 3.0);
+}
+
+}  // namespace
+
+Mesh cutEdges(const cut::CutTriangles& cut) {
+  // Every triangle edge with its polygon; a diagonal appears twice within its polygon.
+  struct Edge {
+    std::uint32_t a, b, polygon;
+    auto key() const { return std::tie(a, b, polygon); }
+  };
+  std::vector<Edge> edges;
+  edges.reserve(cut.indices.size());
+  for (std::size_t t = 0; t < cut.triangleCount(); ++t)
+    for (int i = 0; i < 3; ++i) {
+      std::uint32_t a = cut.indices[3 * t + std::size_t(i)], b = cut.indices[3 * t + std::size_t((i + 1) % 3)];
+      if (a > b) std::swap(a, b);
+      edges.push_back({a, b, cut.trianglePolygon[t]});
+    }
+  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.key() < y.key(); });
+  Mesh out;
+  out.positions = cut.positions;
+  std::uint32_t lastA = ~0u, lastB = ~0u;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j].key() == edges[i].key()) ++j;
+    const bool side = j - i == 1;  // once in its polygon: a side, not a diagonal
+    if (side && (edges[i].a != lastA || edges[i].b != lastB)) {
+      out.indices.insert(out.indices.end(), {edges[i].a, edges[i].b});
+      lastA = edges[i].a;
+      lastB = edges[i].b;
+    }
+    i = j;
+  }
+  // Sorted by (a, b) first, so a side shared by two polygons is met twice in a row (the
+  // polygon differs) and written once.
+  if (out.indices.empty()) return out;
+  while (out.indices.size() % 6 != 0) out.indices.insert(out.indices.end(), {out.indices[0], out.indices[1]});
+  return out;
+}
+
+rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cut::CutTriangles& cut, bool edges) {
+  const Mesh& input = machine.staticMesh;
+  const int lights = int(machine.lights.size());
+  const std::size_t masks = std::size_t(1) << lights;
+  rp::StaticGeometry g;
+  g.lights = lights;
+  g.polygons = cut.polygonCount();
+
+  // Triangles grouped by light mask (a counting sort, stable: the cut's order within a group).
+  const std::size_t n = cut.triangleCount();
+  g.maskStart.assign(masks + 1, 0);
+  for (std::size_t t = 0; t < n; ++t) {
+    const cut::LightMask m = cut.mask(t);
+    if (m >= masks) fail(ErrorKind::Internal, "cut triangle {} has light mask {} for {} lights", t, m, lights);
+    ++g.maskStart[m + 1];
+  }
+  std::partial_sum(g.maskStart.begin(), g.maskStart.end(), g.maskStart.begin());
+  std::vector<std::uint32_t> order(n);
+  std::vector<std::uint32_t> next(g.maskStart.begin(), g.maskStart.end() - 1);
+  for (std::size_t t = 0; t < n; ++t) order[next[cut.mask(t)]++] = std::uint32_t(t);
+
+  // One vertex per (cut vertex, input triangle): sort the corners by that pair.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> corners(3 * n);  // (key, corner slot in output order)
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t t = order[i];
+    const std::uint64_t source = cut.source(t);
+    for (int c = 0; c < 3; ++c)
+      corners[3 * i + std::size_t(c)] = {(source << 32) | cut.indices[3 * std::size_t(t) + std::size_t(c)],
+                                         std::uint32_t(3 * i + std::size_t(c))};
+  }
+  std::sort(corners.begin(), corners.end());
+  g.mesh.indices.resize(3 * n);
+  for (std::size_t i = 0; i < corners.size();) {
+    const std::uint64_t key = corners[i].first;
+    const std::uint32_t source = std::uint32_t(key >> 32), vertex = std::uint32_t(key & 0xFFFFFFFFu);
+    const std::uint32_t id = std::uint32_t(g.mesh.positions.size());
+    const vec3 p = cut.positions[vertex];
+    const std::uint32_t* s = &input.indices[3 * std::size_t(source)];
+    const dvec3 w = barycentric(dvec3(p), dvec3(input.positions[s[0]]), dvec3(input.positions[s[1]]), dvec3(input.positions[s[2]]));
+    const vec3 normal = vec3(w.x) * input.normals[s[0]] + vec3(w.y) * input.normals[s[1]] + vec3(w.z) * input.normals[s[2]];
+    const float len = glm::length(normal);
+    g.mesh.positions.push_back(p);
+    g.mesh.normals.push_back(len > 0.0f ? normal / len : input.normals[s[0]]);
+    g.colors.push_back(vec4(machineMaterialColor(machine.triangleMaterial[source]), 1.0f));
+    for (; i < corners.size() && corners[i].first == key; ++i) g.mesh.indices[corners[i].second] = id;
+  }
+  if (edges) g.edges = cutEdges(cut);
+  return g;
+}
+
+std::size_t Stage::trianglesPerFrame(const rp::MachinePose& pose) const {
+  return geometry.mesh.triangleCount() + pose.skins.size() * machine.skin.triangleCount() +
+         pose.cymbals.size() * machine.cymbal.triangleCount() + pose.mallets.size() * machine.mallet.triangleCount() +
+         pose.balls.size() * rp::buildBlurBall(32, 16).triangleCount();
+}
+
+std::string Stage::describe() const {
+  const std::size_t dark = geometry.maskStart[1];
+  return fmt::format("detail {}: {} input triangles cut into {} polygons, {} triangles ({} reached by no light: the "
+                     "cheap shader); cut {} {} in {:.2f} s",
+                     detail, machine.staticMesh.triangleCount(), geometry.polygons, geometry.mesh.triangleCount(), dark,
+                     cutBuilt ? "built into" : "loaded from", cutFile.string(), cutSeconds);
+}
+
+std::shared_ptr<const Stage> loadStage(const StageOptions& options) {
+  static std::mutex mutex;
+  static std::map<std::pair<int, std::string>, std::shared_ptr<const Stage>> stages;
+  const std::lock_guard lock(mutex);
+  const int detail = std::clamp(options.detail, 1, 16);
+  const auto key = std::make_pair(detail, options.cacheDirectory.string());
+  if (auto it = stages.find(key); it != stages.end()) return it->second;
+
+  const auto start = std::chrono::steady_clock::now();
+  auto stage = std::make_shared<Stage>();
+  stage->detail = detail;
+  stage->machine = makeInstrumentMachine({.detail = detail});
+  stage->score = rp::makeScore(stage->machine);
+  const cut::CachedCut cut =
+      cut::cachedCut(stage->machine.staticMesh, cutLights(stage->machine),
+                     {.directory = options.cacheDirectory, .name = fmt::format("pipedream-detail{}", detail),
+                      .progress = options.progress});
+  stage->cutFile = cut.file;
+  stage->cutBuilt = cut.built;
+  stage->cutSeconds = cut.seconds;
+  stage->geometry = makeStaticGeometry(stage->machine, cut.triangles);
+  stage->buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stages[key] = stage;
+  return stage;
+}
+
+namespace {
+// Eyes inside the room (its walls are drawn from both sides), aimed as the seed's demo was.
+const NamedCamera kCameras[] = {
+    {"stage", "the whole machine from the front, a little above", {0.0f, 7.2f, 16.5f}, {0.0f, 2.0f, -0.5f}, 52.0f},
+    {"drums", "over the drum machine on the left, looking down", {-9.0f, 5.6f, 8.2f}, {-5.2f, 1.0f, 2.4f}, 48.0f},
+    {"wall", "the back wall: the pipes' baked shadows and the balls' crossing them", {1.0f, 6.8f, -0.5f}, {-1.0f, 4.6f, -6.8f}, 55.0f},
+    {"side", "across the machine from the right, where the volumes overlap most", {10.0f, 4.8f, 6.5f}, {-2.0f, 1.6f, -1.0f}, 58.0f},
+    {"balls", "a close look at balls in flight", {3.0f, 6.2f, 2.5f}, {3.6f, 3.2f, -2.6f}, 48.0f},
+};
+}  // namespace
+
+std::span<const NamedCamera> namedCameras() { return kCameras; }
+
+render::Camera namedCamera(int index, float aspect) {
+  const NamedCamera& c = kCameras[std::size_t(std::clamp(index, 0, int(std::size(kCameras)) - 1))];
+  return render::Camera::lookAt(c.eye, c.target, {0.0f, 1.0f, 0.0f}, c.fovY, aspect, 0.3f, 100.0f);
+}
+
+}  // namespace glint::scenes::pipedream

@@ -1,0 +1,457 @@
+// The pipedream frame on a headless context, checked against its own buffers and against
+// independent computations:
+//   - the dim factor: after the quads every pixel is its scene-pass colour times
+//     1 − Σ (weights of the lights whose volumes cover it); pixels no light reaches are
+//     left exactly as they were (no double darkening), and a pixel in one light's dynamic
+//     shadow is the seed's "dest colour × dest alpha";
+//   - translucent balls leave destination alpha alone;
+//   - culling by light range changes no pixel (the shadows it skips fall where the light
+//     is already zero);
+//   - the seed's method against the naive method (full-scene volumes, no cut): the same
+//     picture away from shadow edges;
+//   - the oracle: Embree rays from each visible pixel's surface point to each light,
+//     against static and dynamic occluders, decide lit or shadowed; the frame's own
+//     classification (the cut's mask through the light weights, the light's stencil count)
+//     agrees for ≥ 99.5% of (pixel, light) pairs outside a 2-pixel band at shadow edges
+//     (the method of tests/shadows/oracle_test.cpp);
+//   - the ball's vertex shader against stretchVertex (transform feedback).
+// A small stage (detail 1: ~11k input triangles, ~80k cut) keeps it quick on llvmpipe; the
+// cut is cached in the build tree like the scene's.
+#include "support/gl_test.h"
+
+#include "glint/gl/render_target.h"
+#include "glint/raytrace/raytracer.h"
+#include "glint/render/state.h"
+#include "glint/scenes/pipedream.h"
+#include "glint/scenes/scene.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <optional>
+
+using namespace glint;
+using glint::testing::GlTest;
+namespace rp = glint::render::pipedream;
+namespace pd = glint::scenes::pipedream;
+
+namespace {
+
+constexpr ivec2 kSize{320, 180};
+constexpr int kBand = 2;
+constexpr int kDetail = 1;
+
+const pd::Stage& stage() {
+  static const auto s = pd::loadStage({.detail = kDetail, .progress = false});
+  return *s;
+}
+
+rp::Renderer& renderer() {
+  static rp::Renderer r(stage().machine, stage().geometry);
+  return r;
+}
+
+render::Camera camera(int index) { return pd::namedCamera(index, float(kSize.x) / float(kSize.y)); }
+
+rp::MachinePose poseAt(double time) { return rp::poseAt(stage().machine, stage().score, time); }
+
+Image readFloat(const gl::Texture& texture) { return gl::readTexture(texture, 0, 0, 4, PixelType::F32); }
+
+/// One Full frame step by step: the scene pass's colour and weights, which lights' volumes
+/// cover each pixel (bit k: light k's stencil count was not zero), the final colour, depth.
+struct Steps {
+  Image scene, weights, final, depth;
+  std::vector<std::uint8_t> covered;
+};
+
+Steps renderSteps(const rp::MachinePose& pose, const render::Camera& cam) {
+  rp::Renderer& r = renderer();
+  r.prepare(pose, cam, kSize, rp::Mode::Full);
+  r.drawScene();
+  r.drawTranslucent();
+  Steps s;
+  s.scene = readFloat(r.colorTexture());
+  s.weights = readFloat(r.weightsTexture());
+  s.depth = gl::readDepth(r.sceneFramebuffer(), kSize);
+  s.covered.assign(std::size_t(kSize.x * kSize.y), 0);
+  const GLuint countMask = r.stencilLayout().countMask();
+  std::uint32_t done = 0;
+  for (int light = 0; light < r.lights(); ++light) {
+    if (!r.countVolumes(light)) continue;
+    const Image stencil = gl::readStencil(r.compositeFramebuffer(), kSize);
+    const auto px = stencil.pixels<std::uint8_t>();
+    for (std::size_t i = 0; i < px.size(); ++i)
+      if (px[i] & countMask) s.covered[i] |= std::uint8_t(1u << light);
+    r.compositeLight(light, done);
+    done |= 1u << light;
+  }
+  s.final = readFloat(r.colorTexture());
+  return s;
+}
+
+// ------------------------------------------------------------------ the oracle
+
+enum class Truth : std::uint8_t {
+  Excluded,  ///< no verdict: a silhouette, a grazing or terminator surface, the end of the range
+  Dark,      ///< the light gives nothing here in any method: beyond its range, or the shading normal faces away
+  Lit,
+  Shadowed
+};
+
+/// Per light, per pixel (row 0 = top): lit or shadowed by the ray tracer, or excluded.
+class Oracle {
+public:
+  explicit Oracle(const rp::MachinePose& pose) {
+    const InstrumentMachine& m = stage().machine;
+    m_meshes.push_back(m.staticMesh);
+    const auto place = [&](const Mesh& part, const mat4& model) {
+      Mesh w = part;
+      w.uvs.clear();
+      w.tangents.clear();
+      w.transform(model);
+      m_meshes.push_back(std::move(w));
+    };
+    for (const mat4& t : pose.skins) place(m.skin, t);
+    for (const mat4& t : pose.cymbals) place(m.cymbal, t);
+    for (const mat4& t : pose.mallets) place(m.mallet, t);
+    // The balls cast what the renderer's volumes cast: an icosphere of the ball's radius.
+    Mesh ball = makeIcosphere(1.0f, 2);
+    for (const rp::BallState& b : pose.balls)
+      place(ball, glm::scale(glm::translate(mat4(1.0f), b.position), vec3(m.ballRadius)));
+    for (Mesh& mesh : m_meshes)
+      if (mesh.normals.empty()) computeNormals(mesh);
+    m_all.emplace(std::span<const Mesh>(m_meshes), raytrace::SceneOptions{.robust = true});
+    m_static.emplace(m.staticMesh, raytrace::SceneOptions{.robust = true});
+    m_size = m.staticMesh.bounds().diagonal();
+  }
+
+  /// `truth[light][pixel]`; `dynamicOnly` counts pairs shadowed only because of a dynamic
+  /// occluder (the static scene alone would leave them lit).
+  /// `surface` (when given): pixels whose depth is the surface the pixel-centre ray hits
+  /// (not a silhouette, not behind a translucent ball).
+  std::vector<std::vector<Truth>> classify(const Image& depth, const render::Camera& cam, std::size_t& dynamicOnly,
+                                           std::vector<bool>* surface = nullptr) const {
+    const InstrumentMachine& m = stage().machine;
+    const mat4 inverse = glm::inverse(cam.viewProjection());
+    const int w = depth.width(), h = depth.height();
+    std::vector<raytrace::Ray> primary;
+    std::vector<std::size_t> where;
+    std::vector<vec3> positions;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float d = depth.at(x, y, 0);
+        if (d >= 1.0f) continue;
+        const vec4 ndc{(float(x) + 0.5f) / float(w) * 2.0f - 1.0f, (float(h - 1 - y) + 0.5f) / float(h) * 2.0f - 1.0f,
+                       2.0f * d - 1.0f, 1.0f};
+        const vec4 p = inverse * ndc;
+        positions.push_back(vec3(p) / p.w);
+        where.push_back(std::size_t(y * w + x));
+        primary.push_back({.origin = cam.position, .direction = positions.back() - cam.position, .tfar = 2.0f});
+      }
+    const auto hits = m_all->intersectBatch(primary);
+    std::vector<std::vector<Truth>> truth(m.lights.size(), std::vector<Truth>(std::size_t(w * h), Truth::Excluded));
+    if (surface) {
+      surface->assign(std::size_t(w * h), false);
+      for (std::size_t i = 0; i < hits.size(); ++i)
+        (*surface)[where[i]] = hits[i] && std::abs(hits[i]->t - 1.0f) <= 0.01f;
+    }
+    for (std::size_t light = 0; light < m.lights.size(); ++light) {
+      const MachineLight& l = m.lights[light];
+      std::vector<raytrace::Ray> shadow;
+      std::vector<std::size_t> of;
+      for (std::size_t i = 0; i < hits.size(); ++i) {
+        const auto& hit = hits[i];
+        if (!hit || std::abs(hit->t - 1.0f) > 0.01f) continue;  // silhouette, or a translucent ball in front
+        const Mesh& mesh = m_meshes[hit->mesh];
+        vec3 n = hit->geometricNormal;
+        if (glm::dot(n, primary[i].direction) > 0.0f) n = -n;  // the side the camera sees
+        const vec3 p = positions[i], toLight = l.position - p;
+        const vec3 dir = glm::normalize(toLight);
+        // Light that reaches no surface is no test: facing away (the geometric or the
+        // shading normal), or beyond the light's range (its term is zero there).
+        const vec3 shading = glm::normalize(raytrace::interpolate(*hit, std::span<const vec3>(mesh.normals),
+                                                                  std::span<const std::uint32_t>(mesh.indices)));
+        const float distance = glm::length(toLight), facing = glm::dot(shading, dir);
+        if (distance >= l.range || facing <= -0.02f) {
+          truth[light][where[i]] = Truth::Dark;
+          continue;
+        }
+        if (glm::dot(n, dir) <= 0.02f || facing <= 0.02f || distance > 0.95f * l.range) continue;
+        const vec3 origin = p + n * (1e-4f * m_size);
+        shadow.push_back({.origin = origin, .direction = l.position - origin, .tnear = 0.0f, .tfar = 1.0f});
+        of.push_back(where[i]);
+      }
+      const auto blocked = m_all->occludedBatch(shadow);
+      const auto blockedStatic = m_static->occludedBatch(shadow);
+      for (std::size_t i = 0; i < blocked.size(); ++i) {
+        truth[light][of[i]] = blocked[i] ? Truth::Shadowed : Truth::Lit;
+        dynamicOnly += blocked[i] && !blockedStatic[i];
+      }
+    }
+    return truth;
+  }
+
+private:
+  std::vector<Mesh> m_meshes;
+  std::optional<raytrace::Scene> m_all, m_static;
+  float m_size = 1.0f;
+};
+
+/// Classified and not within kBand pixels of a pixel classified the other way.
+std::vector<bool> awayFromEdges(const std::vector<Truth>& truth, int w, int h) {
+  std::vector<bool> out(truth.size(), false);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const Truth t = truth[std::size_t(y * w + x)];
+      if (t != Truth::Lit && t != Truth::Shadowed) continue;
+      bool nearEdge = false;
+      for (int dy = -kBand; dy <= kBand && !nearEdge; ++dy)
+        for (int dx = -kBand; dx <= kBand && !nearEdge; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+          const Truth n = truth[std::size_t(yy * w + xx)];
+          nearEdge = (n == Truth::Lit || n == Truth::Shadowed) && n != t;
+        }
+      out[std::size_t(y * w + x)] = !nearEdge;
+    }
+  return out;
+}
+
+struct View {
+  double time;
+  int camera;
+};
+// Several times and the seed's camera moves: the whole stage, the drum machine from above,
+// across the machine from the side.
+const View kViews[] = {{2.1, 0}, {6.35, 1}, {9.8, 3}};
+
+}  // namespace
+
+TEST_F(GlTest, PipeDreamShadowsAgreeWithTheRayTracer) {
+  std::size_t compared = 0, agree = 0, shadowed = 0, dynamicOnly = 0;
+  for (const View& v : kViews) {
+    const rp::MachinePose pose = poseAt(v.time);
+    const render::Camera cam = camera(v.camera);
+    const Steps s = renderSteps(pose, cam);
+    std::size_t dyn = 0;
+    // The renderer's camera has the infinite far plane its depth buffer was drawn with.
+    const auto truth = Oracle(pose).classify(s.depth, renderer().camera(), dyn);
+    std::size_t c = 0, a = 0;
+    for (std::size_t light = 0; light < truth.size(); ++light) {
+      const std::vector<bool> use = awayFromEdges(truth[light], kSize.x, kSize.y);
+      for (int y = 0; y < kSize.y; ++y)
+        for (int x = 0; x < kSize.x; ++x) {
+          const std::size_t i = std::size_t(y * kSize.x + x);
+          if (!use[i]) continue;
+          // The frame's verdict: the cut says the light reaches the piece (its weight is
+          // not zero) and no dynamic volume of this light covers the pixel.
+          const bool lit = s.weights.at(x, y, int(light)) > 0.0f && !(s.covered[i] & (1u << light));
+          const bool truthShadowed = truth[light][i] == Truth::Shadowed;
+          ++c;
+          a += lit != truthShadowed;
+          shadowed += truthShadowed;
+        }
+    }
+    compared += c;
+    agree += a;
+    dynamicOnly += dyn;
+    const double agreement = c ? double(a) / double(c) : 0.0;
+    std::printf("[ oracle   ] t = %.2f, camera %s: %zu of %zu (pixel, light) pairs agree (%.3f%%)\n", v.time,
+                pd::namedCameras()[std::size_t(v.camera)].name, a, c, 100.0 * agreement);
+    EXPECT_GE(agreement, 0.995) << "t = " << v.time;
+    EXPECT_GT(c, std::size_t(kSize.x * kSize.y / 3)) << "too few pairs compared";
+  }
+  std::printf("[ oracle   ] all: %zu of %zu agree (%.3f%%), %zu shadowed, %zu shadowed by a dynamic occluder only\n",
+              agree, compared, 100.0 * double(agree) / double(compared), shadowed, dynamicOnly);
+  EXPECT_GT(shadowed, compared / 10) << "too little static shadow to test anything";
+  EXPECT_GT(dynamicOnly, 300u) << "too little dynamic shadow to test anything";
+}
+
+TEST_F(GlTest, PipeDreamDimFactorNeverDarkensTwice) {
+  std::size_t untouched = 0, singles = 0, multiples = 0;
+  for (const View& v : kViews) {
+    const Steps s = renderSteps(poseAt(v.time), camera(v.camera));
+    for (int y = 0; y < kSize.y; ++y)
+      for (int x = 0; x < kSize.x; ++x) {
+        const std::uint8_t covered = s.covered[std::size_t(y * kSize.x + x)];
+        float removed = 0.0f, any = 0.0f;
+        for (int k = 0; k < 4; ++k) {
+          any += s.weights.at(x, y, k);
+          if (covered & (1u << k)) removed += s.weights.at(x, y, k);
+        }
+        for (int c = 0; c < 3; ++c) {
+          const float before = s.scene.at(x, y, c), after = s.final.at(x, y, c);
+          if (any == 0.0f) {
+            // No light reaches (every light's baked shadow, or facing away): exactly as drawn.
+            ASSERT_EQ(after, before) << x << "," << y << " t = " << v.time;
+          } else {
+            // Colour × the factors of the lights that left: 1 − Σ of their weights (half floats).
+            ASSERT_NEAR(after, before * (1.0f - removed), 4e-3f * before + 1e-4f) << x << "," << y << " t = " << v.time;
+          }
+        }
+        if (covered && any == 0.0f) ++untouched;
+        // One light's shadow: the seed's quad, dest colour × dest alpha.
+        if (covered == 1u && s.weights.at(x, y, 0) > 0.05f) {
+          ++singles;
+          for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(s.final.at(x, y, c), s.scene.at(x, y, c) * s.scene.at(x, y, 3), 4e-3f * s.scene.at(x, y, c) + 1e-4f);
+        }
+        if (std::popcount(unsigned(covered)) > 1 && removed > 0.05f) ++multiples;
+      }
+  }
+  std::printf("[ dim      ] %zu pixels in a dynamic shadow that no light reached (left alone), %zu in one light's "
+              "shadow, %zu in both\n",
+              untouched, singles, multiples);
+  EXPECT_GT(untouched, 200u) << "no dynamic shadow fell on baked shadow: the test shows nothing";
+  EXPECT_GT(singles, 200u);
+}
+
+TEST_F(GlTest, PipeDreamTranslucentBallsLeaveDestinationAlpha) {
+  rp::Renderer& r = renderer();
+  std::size_t changed = 0;
+  for (const double t : {3.0, 6.35, 10.4}) {
+    r.prepare(poseAt(t), camera(4), kSize, rp::Mode::Full);
+    r.drawScene();
+    const Image before = readFloat(r.colorTexture());
+    r.drawTranslucent();
+    const Image after = readFloat(r.colorTexture());
+    for (int y = 0; y < kSize.y; ++y)
+      for (int x = 0; x < kSize.x; ++x) {
+        ASSERT_EQ(after.at(x, y, 3), before.at(x, y, 3)) << x << "," << y;
+        changed += after.at(x, y, 0) != before.at(x, y, 0);
+      }
+  }
+  EXPECT_GT(changed, 100u) << "no ball was drawn";
+}
+
+TEST_F(GlTest, PipeDreamRangeCullingChangesNoPixel) {
+  rp::Renderer& r = renderer();
+  gl::RenderTarget target(kSize);
+  std::size_t culled = 0;
+  for (const View& v : kViews) {
+    const rp::MachinePose pose = poseAt(v.time);
+    r.options().cullVolumes = true;
+    r.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
+    culled += r.stats().castersCulled;
+    const Image with = readFloat(r.colorTexture());
+    r.options().cullVolumes = false;
+    r.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
+    EXPECT_EQ(r.stats().castersCulled, 0u);
+    const Image without = readFloat(r.colorTexture());
+    r.options().cullVolumes = true;
+    std::size_t differ = 0;
+    for (int y = 0; y < kSize.y; ++y)
+      for (int x = 0; x < kSize.x; ++x)
+        for (int c = 0; c < 3; ++c) differ += std::abs(with.at(x, y, c) - without.at(x, y, c)) > 1e-6f;
+    EXPECT_EQ(differ, 0u) << "t = " << v.time;
+  }
+  EXPECT_GT(culled, 0u) << "nothing was out of range: the test shows nothing";
+}
+
+TEST_F(GlTest, PipeDreamMatchesFullSceneVolumes) {
+  // The naive method knows nothing of the cut or the dim factor: ambient, then each light
+  // added where its stencil (every caster's volume) is zero. The two pictures are the same
+  // but at shadow edges (rasterised differently: the naive volumes are pushed back by a
+  // polygon offset), silhouettes and terminators (a facet turned just away from a light,
+  // whose smooth normal still faces it: the cut leaves it dark, the naive stencil, pushed
+  // back, lets it be lit): compared are the pixels where, for every light, the oracle
+  // compares (not within 2 pixels of a shadow edge) or the light gives nothing anyway
+  // (beyond its range, or turned away from it).
+  rp::Renderer& r = renderer();
+  gl::RenderTarget target(kSize);
+  for (const View& v : kViews) {
+    const rp::MachinePose pose = poseAt(v.time);
+    r.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
+    const Image full = readFloat(r.colorTexture());
+    std::size_t dyn = 0;
+    std::vector<bool> surface;
+    const auto truth = Oracle(pose).classify(gl::readDepth(r.sceneFramebuffer(), kSize), r.camera(), dyn, &surface);
+    std::vector<bool> compared = surface;
+    for (const auto& t : truth) {
+      const std::vector<bool> use = awayFromEdges(t, kSize.x, kSize.y);
+      for (std::size_t i = 0; i < t.size(); ++i) compared[i] = compared[i] && (use[i] || t[i] == Truth::Dark);
+    }
+    r.render(pose, camera(v.camera), target.target(), rp::Mode::Naive);
+    const Image naive = readFloat(r.colorTexture());
+    std::size_t count = 0, same = 0;
+    for (int y = 0; y < kSize.y; ++y)
+      for (int x = 0; x < kSize.x; ++x) {
+        if (!compared[std::size_t(y * kSize.x + x)]) continue;
+        bool close = true;
+        for (int c = 0; c < 3; ++c) close &= std::abs(full.at(x, y, c) - naive.at(x, y, c)) <= 0.01f * naive.at(x, y, c) + 2e-3f;
+        ++count;
+        same += close;
+      }
+    const double fraction = double(same) / double(count);
+    std::printf("[ naive    ] t = %.2f: %zu of %zu pixels within 1%% of the naive method's (%.3f%%)\n", v.time, same,
+                count, 100.0 * fraction);
+    EXPECT_GE(fraction, 0.995) << "t = " << v.time;
+    EXPECT_GT(count, std::size_t(kSize.x * kSize.y / 3));
+  }
+}
+
+TEST_F(GlTest, PipeDreamBallShaderStretchesAsTheReference) {
+  // The vertex shader's world positions, captured by transform feedback, against
+  // stretchVertex() — the arithmetic the unit tests check for length and closedness.
+  const rp::BlurBallMesh ball = rp::buildBlurBall(16, 8);
+  std::vector<float> data;
+  for (const vec3& p : ball.positions) data.insert(data.end(), {p.x, p.y, p.z});
+  data.insert(data.end(), ball.rear.begin(), ball.rear.end());
+  const gl::Buffer vertices(std::span<const float>(data), 0, "test-ball");
+  gl::VertexArray vao = gl::VertexArray::create("test-ball");
+  vao.attribute(0, 0, 3, 0);
+  vao.vertexBuffer(0, vertices, 0, sizeof(vec3));
+  vao.attribute(1, 1, 1, 0);
+  vao.vertexBuffer(1, vertices, GLintptr(ball.positions.size() * sizeof(vec3)), sizeof(float));
+  const gl::Buffer captured(ball.positions.size() * sizeof(vec3), nullptr, 0, "test-ball-capture");
+  const gl::Program program = gl::Program::fromFiles({"pipedream/ball.vert"}, {"CAPTURE"});
+  const vec3 centre(0.5f, 2.0f, -1.0f), velocity(6.0f, 9.0f, -3.0f);
+  const float radius = 0.12f, shutter = 1.0f / 30.0f;
+  program.set("uFrame", rp::ballFrame(velocity));
+  program.set("uCentre", centre);
+  program.set("uVelocity", velocity);
+  program.set("uRadius", radius);
+  program.set("uShutter", shutter);
+  program.set("uViewProj", mat4(1.0f));
+  program.use();
+  vao.bind();
+  const gl::RenderTarget target(ivec2(4));  // a complete framebuffer (a surfaceless context has none)
+  target.target().bind();
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, GLsizei(ball.positions.size()));
+  glEndTransformFeedback();
+  glDisable(GL_RASTERIZER_DISCARD);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  glBindVertexArray(0);
+  std::vector<vec3> out(ball.positions.size());
+  glGetNamedBufferSubData(captured.id(), 0, GLsizeiptr(out.size() * sizeof(vec3)), out.data());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const vec3 expected = rp::stretchVertex(ball.positions[i], ball.rear[i], centre, velocity, radius, shutter);
+    ASSERT_LT(glm::length(out[i] - expected), 1e-5f) << i;
+  }
+}
+
+TEST_F(GlTest, PipeDreamViewerKeysSwitchViewsWithoutAReload) {
+  // The scene as the viewer holds it: keys toggle the seed's views and pick cameras.
+  const auto ref = scenes::Registry::builtin().resolve("pipedream/full");
+  std::unique_ptr<scenes::Scene> scene = ref.scene->create(ref.variant);
+  scenes::setOption(*scene, fmt::format("detail={}", kDetail));
+  gl::RenderTarget target(kSize);
+  const auto frame = [&] {
+    scene->render({.target = target.target(), .time = 6.35});
+    return gl::readColor(target.framebuffer(), kSize);
+  };
+  const Image full = frame();
+  EXPECT_TRUE(scene->keyPressed('A'));
+  const Image alpha = frame();
+  EXPECT_NE(alpha, full);
+  EXPECT_NE(scene->notes().find("(dest-alpha)"), std::string::npos) << scene->notes();
+  EXPECT_TRUE(scene->keyPressed('A'));  // again: back to the full frame
+  EXPECT_EQ(frame(), full);
+  EXPECT_TRUE(scene->keyPressed('3'));
+  EXPECT_NE(frame(), full);
+  EXPECT_NE(scene->notes().find("camera 'wall'"), std::string::npos) << scene->notes();
+  EXPECT_FALSE(scene->keyPressed('X'));
+}
