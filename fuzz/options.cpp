@@ -1,5 +1,5 @@
 // Fuzz harness: the values users type on command lines — sizes (--size), numbers, vectors
-// and integers (core/text.h), lights (`glint cut --light`, cut/cutter.h), and effect chains
+// integers and memory sizes (core/text.h), lights (`glint cut --light`, cut/cutter.h), and effect chains
 // with their settings (`glint post -e NAME:p=v --set p=v`, render/post/effects.h). The first
 // byte chooses the parser; the rest is the text. What parses must be in range and finite.
 #include "support.h"
@@ -18,7 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size < 1) return 0;
   const std::string_view text(reinterpret_cast<const char*>(data + 1), size - 1);
   fuzz::parse([&] {
-    switch (data[0] % 6) {
+    switch (data[0] % 7) {
       case 0: {
         const ivec2 s = parseSize(text);
         fuzz::check(s.x >= 1 && s.y >= 1 && s.x <= kMaxImageSide && s.y <= kMaxImageSide, "size in range");
@@ -46,6 +46,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           }
         }
         (void)render::post::parseEffects(specs, settings);
+        break;
+      }
+      case 6: {
+        const double mib = parseMemorySize(text, "--max-memory");
+        fuzz::check(std::isfinite(mib) && mib > 0.0, "memory sizes are positive");
         break;
       }
       default: {

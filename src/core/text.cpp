@@ -81,6 +81,34 @@ int parseInt(std::string_view text, std::string_view what, int lo, int hi) {
   return value;
 }
 
+double parseMemorySize(std::string_view text, std::string_view what) {
+  std::string_view number = text;
+  for (std::string_view suffix : {"iB", "B"}) {
+    if (number.size() > suffix.size() && number.ends_with(suffix)) {
+      number.remove_suffix(suffix.size());
+      break;
+    }
+  }
+  double scale = 1.0;  // MiB
+  if (!number.empty()) {
+    switch (number.back()) {
+      case 'K': case 'k': scale = 1.0 / 1024.0; break;
+      case 'M': case 'm': scale = 1.0; break;
+      case 'G': case 'g': scale = 1024.0; break;
+      case 'T': case 't': scale = 1024.0 * 1024.0; break;
+      default: scale = 0.0;
+    }
+    if (scale != 0.0) number.remove_suffix(1);
+    else scale = 1.0;
+  }
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
+  if (number.empty() || ec != std::errc() || end != number.data() + number.size() || !std::isfinite(value) || value <= 0.0) {
+    fail(ErrorKind::Usage, "{}: '{}' is not a memory size (e.g. 4096 for MiB, 512M, 4G)", what, printable(text));
+  }
+  return value * scale;
+}
+
 vec3 parseVec3(std::string_view text, std::string_view what) {
   const auto fields = splitFields(text, ',');
   if (fields.size() != 3) fail(ErrorKind::Usage, "{} must be x,y,z, got '{}'", what, printable(text));

@@ -9,6 +9,7 @@
 //   const ivec2 size = parseSize("1920x1080");          // {1920, 1080}
 //   const float f = parseFloat("0.25", "--exposure");    // 0.25
 //   const vec3 p = parseVec3("1,2.5,-3", "--light");     // {1, 2.5, -3}
+//   const double mib = parseMemorySize("4G", "--max-memory");  // 4096
 
 #include "glint/core/math.h"
 
@@ -36,6 +37,10 @@ float parseFloat(std::string_view text, std::string_view what);
 
 /// An integer in [lo, hi].
 int parseInt(std::string_view text, std::string_view what, int lo, int hi);
+
+/// A memory size in MiB: "4096" (MiB), "512M", "1.5G", "2T" (binary units; a trailing
+/// "iB" or "B" is allowed: "4GiB"). Positive and finite.
+double parseMemorySize(std::string_view text, std::string_view what);
 
 /// "x,y,z": three finite numbers.
 vec3 parseVec3(std::string_view text, std::string_view what);
