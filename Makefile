@@ -20,10 +20,10 @@ SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
 # leak 112 bytes that LeakSanitizer cannot name a library for), and the install test (it
 # builds a consumer project without the sanitizer flags).
 ASAN_EXCLUDE := Viewer|Install\.AConsumer
-# Tests of the multi-threaded tools (bake, cut, the post pipeline) that TSan runs: the
-# libraries' tests, and the CLI tests, which run the TSan-built glint.
-TSAN_TESTS := tests/bake/bake_maps_test tests/cut/cut_test tests/post/post_video_test \
-  tests/bake/bake_cli_test tests/cut/cut_cli_test
+# Tests of the multi-threaded tools that TSan runs: the baker's and the cutter's parallel
+# loops (oneTBB) and post's three-thread decode/process/encode pipeline (video/transcode).
+# Library tests only, so the TSan build skips the GL layers and the glint command.
+TSAN_TESTS := tests/bake/bake_maps_test tests/cut/cut_test tests/post/post_video_test
 
 .PHONY: all setup setup-test configure build gallery test sanitize fuzz view accept-golden clean
 
@@ -59,7 +59,7 @@ sanitize: setup-test
 	GLINT_FUZZ_BUILD=$(CURDIR)/$(ASAN_BUILD) scripts/fuzz $(FUZZ_SECONDS)
 	cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	  -DGLINT_SANITIZE=thread -DGLINT_BUILD_VIEWER=OFF -DGLINT_BUILD_GL_TESTS=OFF
-	cmake --build $(TSAN_BUILD) -j $(JOBS) --target glint $(notdir $(TSAN_TESTS))
+	cmake --build $(TSAN_BUILD) -j $(JOBS) --target $(notdir $(TSAN_TESTS))
 	set -e; for t in $(TSAN_TESTS); do echo "TSan: $$t"; $(SANITIZER_ENV) $(TSAN_BUILD)/$$t --gtest_brief=1; done
 
 # Fuzz for longer: make fuzz FUZZ_SECONDS=600 (after make sanitize has built the harnesses).
