@@ -26,31 +26,6 @@ struct CutArgs {
   ToolSettings tool;
 };
 
-/// "x,y,z" or "x,y,z,name".
-cut::Light parseLight(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) parts.push_back(item);
-  if (parts.size() != 3 && parts.size() != 4)
-    fail(ErrorKind::Usage, "--light must be x,y,z or x,y,z,name, got '{}'", text);
-  cut::Light light;
-  for (int i = 0; i < 3; ++i) {
-    std::size_t used = 0;
-    float v = 0.0f;
-    try {
-      v = std::stof(parts[std::size_t(i)], &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != parts[std::size_t(i)].size() || !std::isfinite(v))
-      fail(ErrorKind::Usage, "--light '{}': '{}' is not a finite number", text, parts[std::size_t(i)]);
-    light.position[i] = v;
-  }
-  if (parts.size() == 4) light.name = parts[3];
-  return light;
-}
-
 /// "i/n" (1-based) → (i − 1, n).
 std::pair<int, int> parseShard(const std::string& text) {
   int i = 0, n = 0;
@@ -121,7 +96,7 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
       for (const auto& o : a->outputs) cut::checkOutputFormat(o);
     }
     cut::CutOptions options;
-    for (const auto& l : a->lights) options.lights.push_back(parseLight(l));
+    for (const auto& l : a->lights) options.lights.push_back(cut::parseLight(l));
     std::vector<std::string> outputs = a->outputs;
     if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
     for (const auto& path : outputs) checkWritable(path);
@@ -142,6 +117,11 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
     if (options.lights.empty() && a->merge.empty())
       fail(ErrorKind::Usage, "no lights: give --light x,y,z (or a glTF scene with KHR_lights_punctual lights)");
     run.throwIfInterrupted();
+    // Peak memory, measured on the machine-room scene with two lights (9.4k → 1.01M → 2.03M
+    // triangles: 206 → 1,369 → 2,602 MiB): ~200 MiB, and ~0.65 KB per input triangle plus
+    // ~0.3 KB per triangle and light (beams, pieces, output).
+    run.checkMemory(200.0 + double(scene.triangleCount()) * (650.0 + 300.0 * double(std::max<std::size_t>(options.lights.size(), 2))) / (1 << 20),
+                    fmt::format("cutting {} triangles for {} light(s)", scene.triangleCount(), options.lights.size()));
 
     auto& report = run.report();
     report["inputs"] = a->inputs;

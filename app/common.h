@@ -1,6 +1,7 @@
 #pragma once
 // What the glint subcommands share: global options, the Command each one returns, the
-// options every offline tool takes, and small parsers.
+// options every offline tool takes. The parsers for typed values (parseSize, ...) are in
+// core/text.h, where the fuzzer reaches them.
 //
 // Adding a subcommand: write app/cmd_<name>.cpp defining
 //   Command <name>Command(CLI::App& app, const GlobalOptions& global);
@@ -8,6 +9,7 @@
 // GLINT_COMMANDS in app/CMakeLists.txt. main.cpp declares and registers every command from
 // that one list (the generated commands.inc); nothing else changes.
 #include "glint/core/math.h"
+#include "glint/core/text.h"
 #include "glint/core/tool.h"
 
 #include <CLI/CLI.hpp>
@@ -33,8 +35,5 @@ struct Command {
 /// --json FILE ('-' for stdout). `reportContents` completes the --json help text ("texels,
 /// rays, hit ratio"); the common fields (phase times, peak memory, ...) are listed for it.
 void addToolOptions(CLI::App& command, ToolSettings& settings, const std::string& reportContents);
-
-/// "640x360" → {640, 360}; Error(Usage) for anything else or sizes outside 1..16384.
-ivec2 parseSize(const std::string& text);
 
 }  // namespace glint::app

@@ -8,6 +8,7 @@
 
 #include <cstdio>
 #include <map>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -18,22 +19,12 @@ namespace glint::app {
 #include "commands.inc"
 #undef GLINT_COMMAND
 
-ivec2 parseSize(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X')) {
-    fail(ErrorKind::Usage, "size must be WIDTHxHEIGHT (e.g. 640x360), got '{}'", text);
-  }
-  if (w < 1 || h < 1 || w > 16384 || h > 16384) {
-    fail(ErrorKind::Usage, "size {}x{} is out of range (1..16384 per side)", w, h);
-  }
-  return {w, h};
-}
-
 void addToolOptions(CLI::App& command, ToolSettings& settings, const std::string& reportContents) {
   command.add_option("--threads", settings.threads, "Worker threads (default: all cores); the output does not depend on it")
       ->check(CLI::NonNegativeNumber);
   command.add_flag("-q,--quiet", settings.quiet, "No progress bar or info messages, only warnings and errors");
+  command.add_option("--max-memory", settings.maxMemory,
+                     "Refuse a job estimated to need more memory than this (MiB, or 512M, 4G) with a clear error, before it starts");
   command.add_option("--json", settings.json,
                      "Write a JSON report (" + reportContents + "; phase times, peak memory, threads, warnings) to "
                      "this file, '-' for stdout");
@@ -95,6 +86,9 @@ int main(int argc, char** argv) {
   } catch (const Error& e) {
     std::fprintf(stderr, "glint: %s\n", e.what());
     return exitCode(e.kind());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "glint: out of memory (the job needs more than this machine has; see --max-memory)\n");
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint: internal error: %s\n", e.what());
     return 1;

@@ -271,7 +271,12 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
     EncodeLanes lanes;
   };
   thread_local Scratch scratch;
-  auto& [geometry, sweeps, hits, l] = scratch;
+  // Plain references, not a structured binding: lambdas below capture them (clang before 16
+  // cannot capture bindings, and the sanitizer and fuzzing builds use clang).
+  auto& geometry = scratch.geometry;
+  auto& sweeps = scratch.sweeps;
+  auto& hits = scratch.hits;
+  auto& l = scratch.lanes;
   const std::size_t count = samples.size();
   for (std::size_t i = 0; i < count; ++i) geometryAt(ctx, samples[i].slot, geometry[i]);
 

@@ -2,9 +2,13 @@
 
 #include "glint/core/error.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <charconv>
+#include <mutex>
+#include <set>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -15,11 +19,46 @@ namespace glint {
 namespace fs = std::filesystem;
 
 namespace {
+// Temporary files are named ".<stem>.tmp<pid>-<n><extension>": hidden, saying what they
+// are, and naming the process that writes them.
 fs::path temporarySibling(const fs::path& destination) {
   static std::atomic<unsigned> counter{0};
   const auto name = fmt::format(".{}.tmp{}-{}{}", destination.stem().string(), getpid(),
                                 counter.fetch_add(1), destination.extension().string());
   return destination.parent_path() / name;
+}
+
+/// The writer's process id in a temporary file's name, or 0 when it is not one of ours.
+pid_t temporaryOwner(const std::string& name) {
+  if (name.size() < 2 || name[0] != '.') return 0;
+  const std::size_t tmp = name.rfind(".tmp");
+  if (tmp == std::string::npos || tmp == 0) return 0;
+  const char* first = name.data() + tmp + 4;
+  const char* last = name.data() + name.size();
+  long pid = 0;
+  const auto [end, ec] = std::from_chars(first, last, pid);
+  if (ec != std::errc() || end == first || end == last || *end != '-' || pid <= 0) return 0;
+  return pid_t(pid);
+}
+
+/// Removes temporaries that a killed glint left in `dir` (kill -9, a crash, a power cut
+/// mid-write): files named as temporarySibling names them whose process no longer
+/// exists. Once per directory per process; a file it cannot remove stays, clearly named.
+void removeStaleTemporaries(const fs::path& dir) {
+  static std::mutex mutex;
+  static std::set<fs::path> cleaned;
+  {
+    const std::lock_guard lock(mutex);
+    if (!cleaned.insert(dir).second) return;
+  }
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const pid_t owner = temporaryOwner(it->path().filename().string());
+    if (owner == 0 || owner == getpid()) continue;
+    if (::kill(owner, 0) == 0 || errno != ESRCH) continue;  // alive (or not ours to ask)
+    std::error_code ignored;
+    if (it->is_regular_file(ignored)) fs::remove(it->path(), ignored);
+  }
 }
 }  // namespace
 
@@ -41,6 +80,7 @@ void checkWritable(const fs::path& destination) {
 
 void writeAtomically(const fs::path& destination, const std::function<void(const fs::path&)>& write) {
   checkWritable(destination);
+  removeStaleTemporaries(destination.parent_path().empty() ? fs::path(".") : destination.parent_path());
   const fs::path tmp = temporarySibling(destination);
   try {
     write(tmp);
@@ -57,6 +97,7 @@ void writeAtomically(const fs::path& destination, const std::function<void(const
 AtomicFile::AtomicFile(const fs::path& destination)
     : m_destination(destination), m_temporary(temporarySibling(destination)) {
   checkWritable(destination);
+  removeStaleTemporaries(destination.parent_path().empty() ? fs::path(".") : destination.parent_path());
 }
 
 AtomicFile::~AtomicFile() {

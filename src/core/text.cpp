@@ -1,5 +1,10 @@
 #include "glint/core/text.h"
 
+#include "glint/core/error.h"
+
+#include <charconv>
+#include <cmath>
+
 namespace glint {
 
 std::string escapeHtml(std::string_view text) {
@@ -15,6 +20,99 @@ std::string escapeHtml(std::string_view text) {
     }
   }
   return out;
+}
+
+namespace {
+
+/// Whole-text integer (optional '-'), false when anything is left over or it overflows.
+bool wholeInt(std::string_view text, int& value) {
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return ec == std::errc() && end == text.data() + text.size() && !text.empty();
+}
+
+}  // namespace
+
+std::string printable(std::string_view text) {
+  std::string out(text.substr(0, 200));
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return text.size() > 200 ? out + "..." : out;
+}
+
+std::vector<std::string_view> splitFields(std::string_view text, char separator) {
+  std::vector<std::string_view> fields;
+  for (std::size_t start = 0;;) {
+    const std::size_t at = text.find(separator, start);
+    fields.push_back(text.substr(start, at == std::string_view::npos ? std::string_view::npos : at - start));
+    if (at == std::string_view::npos) return fields;
+    start = at + 1;
+  }
+}
+
+ivec2 parseSize(std::string_view text) {
+  const std::size_t x = text.find_first_of("xX");
+  int w = 0, h = 0;
+  if (x == std::string_view::npos || !wholeInt(text.substr(0, x), w) || !wholeInt(text.substr(x + 1), h)) {
+    fail(ErrorKind::Usage, "size must be WIDTHxHEIGHT (e.g. 640x360), got '{}'", printable(text));
+  }
+  if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide) {
+    fail(ErrorKind::Usage, "size {}x{} is out of range (1..{} per side)", w, h, kMaxImageSide);
+  }
+  return {w, h};
+}
+
+float parseFloat(std::string_view text, std::string_view what) {
+  std::string_view digits = text;
+  if (digits.size() > 1 && digits.front() == '+' && digits[1] != '-') digits.remove_prefix(1);
+  float value = 0.0f;
+  // from_chars: the "C" locale always, no leading blanks, and "nan"/"inf" come out non-finite.
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value)) {
+    fail(ErrorKind::Usage, "{}: '{}' is not a finite number", what, printable(text));
+  }
+  return value;
+}
+
+int parseInt(std::string_view text, std::string_view what, int lo, int hi) {
+  int value = 0;
+  if (!wholeInt(text, value)) fail(ErrorKind::Usage, "{}: '{}' is not an integer", what, printable(text));
+  if (value < lo || value > hi) fail(ErrorKind::Usage, "{}: {} is out of range ({}..{})", what, value, lo, hi);
+  return value;
+}
+
+double parseMemorySize(std::string_view text, std::string_view what) {
+  std::string_view number = text;
+  for (std::string_view suffix : {"iB", "B"}) {
+    if (number.size() > suffix.size() && number.ends_with(suffix)) {
+      number.remove_suffix(suffix.size());
+      break;
+    }
+  }
+  double scale = 1.0;  // MiB
+  if (!number.empty()) {
+    switch (number.back()) {
+      case 'K': case 'k': scale = 1.0 / 1024.0; break;
+      case 'M': case 'm': scale = 1.0; break;
+      case 'G': case 'g': scale = 1024.0; break;
+      case 'T': case 't': scale = 1024.0 * 1024.0; break;
+      default: scale = 0.0;
+    }
+    if (scale != 0.0) number.remove_suffix(1);
+    else scale = 1.0;
+  }
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
+  if (number.empty() || ec != std::errc() || end != number.data() + number.size() || !std::isfinite(value) || value <= 0.0) {
+    fail(ErrorKind::Usage, "{}: '{}' is not a memory size (e.g. 4096 for MiB, 512M, 4G)", what, printable(text));
+  }
+  return value * scale;
+}
+
+vec3 parseVec3(std::string_view text, std::string_view what) {
+  const auto fields = splitFields(text, ',');
+  if (fields.size() != 3) fail(ErrorKind::Usage, "{} must be x,y,z, got '{}'", what, printable(text));
+  return {parseFloat(fields[0], what), parseFloat(fields[1], what), parseFloat(fields[2], what)};
 }
 
 }  // namespace glint

@@ -3,11 +3,13 @@
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
+#include "glint/core/text.h"
 
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 
@@ -40,6 +42,7 @@ ToolRun::ToolRun(std::string tool, const ToolSettings& settings)
     : m_tool(std::move(tool)), m_settings(settings), m_impl(std::make_unique<Impl>()),
       m_start(std::chrono::steady_clock::now()) {
   if (settings.threads < 0) fail(ErrorKind::Usage, "--threads must be positive, got {}", settings.threads);
+  if (!settings.maxMemory.empty()) m_maxMemoryMiB = parseMemorySize(settings.maxMemory, "--max-memory");
   if (settings.threads > 0) {
     m_impl->threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                                 std::size_t(settings.threads));
@@ -91,6 +94,14 @@ double ToolRun::elapsed() const {
 void ToolRun::warn(const std::string& message) {
   log::warn("{}", message);
   m_warnings.push_back(message);
+}
+
+void ToolRun::checkMemory(double estimateMiB, const std::string& what) {
+  m_report["memory_estimate_mib"] = std::round(estimateMiB);
+  if (m_maxMemoryMiB > 0.0 && estimateMiB > m_maxMemoryMiB) {
+    fail(ErrorKind::Usage, "{}: {} needs about {:.0f} MiB, more than --max-memory {:.0f} MiB allows", m_tool, what,
+         estimateMiB, m_maxMemoryMiB);
+  }
 }
 
 double ToolRun::peakMemoryMiB() {

@@ -5,6 +5,7 @@
 #include "glint/core/error.h"
 #include "glint/core/log.h"
 #include "glint/core/progress.h"
+#include "glint/core/text.h"
 
 #include "pieces.h"
 
@@ -757,6 +758,17 @@ CutResult cut(const Mesh& mesh, const CutOptions& options) {
 }
 
 // ------------------------------------------------------------------ triangles
+
+Light parseLight(std::string_view text) {
+  const auto fields = splitFields(text, ',');
+  if (fields.size() != 3 && fields.size() != 4) {
+    fail(ErrorKind::Usage, "--light must be x,y,z or x,y,z,name, got '{}'", printable(text));
+  }
+  Light light;
+  for (int i = 0; i < 3; ++i) light.position[i] = parseFloat(fields[std::size_t(i)], "--light");
+  if (fields.size() == 4) light.name = std::string(fields[3]);
+  return light;
+}
 
 double polygonArea(const CutMesh& mesh, std::size_t polygon) {
   const std::uint32_t s = mesh.polygonStart[polygon], e = mesh.polygonStart[polygon + 1];

@@ -2,6 +2,7 @@
 
 #include "glint/core/error.h"
 #include "glint/core/file.h"
+#include "glint/core/text.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -236,48 +239,58 @@ std::vector<Light> loadGltfLights(const std::filesystem::path& path) {
   }
   const nlohmann::json gltf = nlohmann::json::parse(text, nullptr, false);
   if (gltf.is_discarded() || !gltf.is_object()) fail(ErrorKind::Input, "'{}' is not glTF (its JSON does not parse)", path.string());
-  const auto lightsIt = gltf.find("extensions");
-  if (lightsIt == gltf.end() || !lightsIt->contains("KHR_lights_punctual")) return {};
-  const nlohmann::json& defs = (*lightsIt)["KHR_lights_punctual"].value("lights", nlohmann::json::array());
-  const nlohmann::json& nodes = gltf.value("nodes", nlohmann::json::array());
+  // The JSON is the file's: any field may have any type. nlohmann's type errors (a light
+  // index that is an array, a node that is a string) become one clear input error.
   std::vector<Light> out;
-  const auto number = [](const nlohmann::json& v, double fallback) { return v.is_number() ? v.get<double>() : fallback; };
-  // World transforms down the default scene's node tree (depth-limited against cycles).
-  const std::function<void(std::size_t, const glm::dmat4&, int)> visit = [&](std::size_t index, const glm::dmat4& parent,
-                                                                              int depth) {
-    if (index >= nodes.size() || depth > 64) return;
-    const nlohmann::json& n = nodes[index];
-    glm::dmat4 local(1.0);
-    if (n.contains("matrix") && n["matrix"].size() == 16) {
-      for (int i = 0; i < 16; ++i) local[i / 4][i % 4] = number(n["matrix"][std::size_t(i)], 0.0);
-    } else {
-      if (n.contains("translation") && n["translation"].size() == 3)
-        local = glm::translate(local, glm::dvec3(number(n["translation"][0], 0), number(n["translation"][1], 0),
-                                                 number(n["translation"][2], 0)));
-      if (n.contains("rotation") && n["rotation"].size() == 4)
-        local *= glm::mat4_cast(glm::dquat(number(n["rotation"][3], 1), number(n["rotation"][0], 0),
-                                           number(n["rotation"][1], 0), number(n["rotation"][2], 0)));
-      if (n.contains("scale") && n["scale"].size() == 3)
-        local = glm::scale(local, glm::dvec3(number(n["scale"][0], 1), number(n["scale"][1], 1), number(n["scale"][2], 1)));
-    }
-    const glm::dmat4 world = parent * local;
-    if (n.contains("extensions") && n["extensions"].contains("KHR_lights_punctual")) {
-      const auto& ref = n["extensions"]["KHR_lights_punctual"];
-      const std::size_t li = ref.value("light", std::size_t(-1));
-      if (li < defs.size() && defs[li].value("type", "") != "directional") {
-        const glm::dvec3 p(world[3]);
-        out.push_back({vec3(p), defs[li].value("name", "")});
+  try {
+    const auto lightsIt = gltf.find("extensions");
+    if (lightsIt == gltf.end() || !lightsIt->contains("KHR_lights_punctual")) return {};
+    const nlohmann::json& defs = (*lightsIt)["KHR_lights_punctual"].value("lights", nlohmann::json::array());
+    const nlohmann::json& nodes = gltf.value("nodes", nlohmann::json::array());
+    const auto number = [](const nlohmann::json& v, double fallback) { return v.is_number() ? v.get<double>() : fallback; };
+    // World transforms down the default scene's node tree (depth-limited against cycles).
+    const std::function<void(std::size_t, const glm::dmat4&, int)> visit = [&](std::size_t index, const glm::dmat4& parent,
+                                                                                int depth) {
+      if (index >= nodes.size() || depth > 64) return;
+      const nlohmann::json& n = nodes[index];
+      glm::dmat4 local(1.0);
+      if (n.contains("matrix") && n["matrix"].size() == 16) {
+        for (int i = 0; i < 16; ++i) local[i / 4][i % 4] = number(n["matrix"][std::size_t(i)], 0.0);
+      } else {
+        if (n.contains("translation") && n["translation"].size() == 3)
+          local = glm::translate(local, glm::dvec3(number(n["translation"][0], 0), number(n["translation"][1], 0),
+                                                   number(n["translation"][2], 0)));
+        if (n.contains("rotation") && n["rotation"].size() == 4)
+          local *= glm::mat4_cast(glm::dquat(number(n["rotation"][3], 1), number(n["rotation"][0], 0),
+                                             number(n["rotation"][1], 0), number(n["rotation"][2], 0)));
+        if (n.contains("scale") && n["scale"].size() == 3)
+          local = glm::scale(local, glm::dvec3(number(n["scale"][0], 1), number(n["scale"][1], 1), number(n["scale"][2], 1)));
       }
-    }
-    if (n.contains("children") && n["children"].is_array())
-      for (const auto& c : n["children"])
-        if (c.is_number_unsigned()) visit(c.get<std::size_t>(), world, depth + 1);
-  };
-  const nlohmann::json& scenes = gltf.value("scenes", nlohmann::json::array());
-  const std::size_t scene = gltf.value("scene", std::size_t(0));
-  if (scene < scenes.size() && scenes[scene].contains("nodes"))
-    for (const auto& root : scenes[scene]["nodes"])
-      if (root.is_number_unsigned()) visit(root.get<std::size_t>(), glm::dmat4(1.0), 0);
+      const glm::dmat4 world = parent * local;
+      if (n.contains("extensions") && n["extensions"].contains("KHR_lights_punctual")) {
+        const auto& ref = n["extensions"]["KHR_lights_punctual"];
+        const std::size_t li = ref.value("light", std::size_t(-1));
+        if (li < defs.size() && defs[li].value("type", "") != "directional") {
+          const glm::dvec3 p(world[3]);
+          out.push_back({vec3(p), defs[li].value("name", "")});
+        }
+      }
+      if (n.contains("children") && n["children"].is_array())
+        for (const auto& c : n["children"])
+          if (c.is_number_unsigned()) visit(c.get<std::size_t>(), world, depth + 1);
+    };
+    const nlohmann::json& scenes = gltf.value("scenes", nlohmann::json::array());
+    const std::size_t scene = gltf.value("scene", std::size_t(0));
+    if (scene < scenes.size() && scenes[scene].contains("nodes"))
+      for (const auto& root : scenes[scene]["nodes"])
+        if (root.is_number_unsigned()) visit(root.get<std::size_t>(), glm::dmat4(1.0), 0);
+  } catch (const nlohmann::json::exception& e) {
+    fail(ErrorKind::Input, "'{}': malformed glTF lights or nodes ({})", path.string(), e.what());
+  }
+  for (const Light& l : out) {
+    if (!std::isfinite(l.position.x) || !std::isfinite(l.position.y) || !std::isfinite(l.position.z))
+      fail(ErrorKind::Input, "'{}': light '{}' has a non-finite position", path.string(), printable(l.name));
+  }
   return out;
 }
 
@@ -289,9 +302,17 @@ std::vector<LightMask> loadPlyMasks(const std::filesystem::path& path) {
   std::size_t vertices = 0, faces = 0;
   std::istringstream h(text.substr(0, end));
   std::string line;
+  // A count that is not a number, or more elements than the file has bytes: not glint's PLY.
+  const auto count = [&](std::string_view digits) {
+    std::size_t n = 0;
+    const auto [last, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+    if (ec != std::errc() || last != digits.data() + digits.size() || n > text.size())
+      fail(ErrorKind::Input, "'{}' is not a PLY written by glint cut (element count '{}')", path.string(), printable(digits));
+    return n;
+  };
   while (std::getline(h, line)) {
-    if (line.rfind("element vertex ", 0) == 0) vertices = std::stoull(line.substr(15));
-    if (line.rfind("element face ", 0) == 0) faces = std::stoull(line.substr(13));
+    if (line.rfind("element vertex ", 0) == 0) vertices = count(std::string_view(line).substr(15));
+    if (line.rfind("element face ", 0) == 0) faces = count(std::string_view(line).substr(13));
   }
   std::size_t pos = end + 11 + vertices * 12;
   std::vector<LightMask> masks;

@@ -6,6 +6,7 @@
 
 #include "pieces.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -56,7 +57,7 @@ public:
     const auto n = pod<std::uint64_t>();
     if (n > (m_data.size() - m_pos) / sizeof(T)) truncated();
     std::vector<T> v(n);
-    std::memcpy(v.data(), m_data.data() + m_pos, n * sizeof(T));
+    if (n > 0) std::memcpy(v.data(), m_data.data() + m_pos, n * sizeof(T));  // an empty vector's data() may be null
     m_pos += n * sizeof(T);
     return v;
   }
@@ -195,8 +196,11 @@ Shard loadShard(const std::filesystem::path& path) {
               b.polygonStart.size() == b.masks.size() + 1 && b.flags.size() == b.corners.size() &&
               b.vertexStart.back() == b.vertices.size() && b.polygonFirst.back() == b.masks.size() &&
               b.polygonStart.back() == b.corners.size();
+    // Every offset array non-decreasing first (then all of each lies within its last value,
+    // checked above), before any is used to index (found by fuzz_cut_files).
+    const auto ascending = [](const std::vector<std::uint32_t>& v) { return std::is_sorted(v.begin(), v.end()); };
+    ok = ok && ascending(b.vertexStart) && ascending(b.polygonFirst) && ascending(b.polygonStart);
     for (std::size_t e = 0; ok && e < n; ++e) {
-      ok = b.vertexStart[e] <= b.vertexStart[e + 1] && b.polygonFirst[e] <= b.polygonFirst[e + 1];
       for (std::uint32_t p = b.polygonFirst[e]; ok && p < b.polygonFirst[e + 1]; ++p) {
         ok = b.polygonStart[p] + 3 <= b.polygonStart[p + 1];
         for (std::uint32_t c = b.polygonStart[p]; ok && c < b.polygonStart[p + 1]; ++c)

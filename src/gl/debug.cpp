@@ -11,6 +11,7 @@
 namespace glint::gl {
 namespace {
 std::atomic<std::uint64_t> g_errors{0};
+std::atomic<std::uint64_t> g_notable{0};
 
 const char* typeName(GLenum type) {
   switch (type) {
@@ -26,10 +27,12 @@ const char* typeName(GLenum type) {
 void GLAPIENTRY onMessage(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei length, const GLchar* message,
                           const void*) {
   const std::string_view text(message, length < 0 ? std::char_traits<char>::length(message) : std::size_t(length));
+  const bool notable = severity == GL_DEBUG_SEVERITY_HIGH || severity == GL_DEBUG_SEVERITY_MEDIUM;
+  if (notable) ++g_notable;
   if (type == GL_DEBUG_TYPE_ERROR || type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR) {
     ++g_errors;
     log::error("GL {} {}: {}", typeName(type), id, text);
-  } else if (severity == GL_DEBUG_SEVERITY_HIGH) {
+  } else if (notable) {
     log::warn("GL {} {}: {}", typeName(type), id, text);
   } else {
     log::debug("GL {} {}: {}", typeName(type), id, text);
@@ -47,6 +50,8 @@ void enableDebugOutput() {
 }
 
 std::uint64_t debugErrorCount() { return g_errors.load(); }
+
+std::uint64_t debugNotableCount() { return g_notable.load(); }
 
 void checkGlError(const char* where) {
   const GLenum e = glGetError();

@@ -6,6 +6,7 @@
 #include "glint/gl/embedded_shaders.h"
 
 #include <algorithm>
+#include <charconv>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -113,8 +114,14 @@ std::string mapShaderLog(std::string_view log, const std::vector<std::string>& f
   std::string line, out;
   while (std::getline(in, line)) {
     std::smatch m;
-    if (std::regex_match(line, m, lineRe)) {
-      const long number = std::stol(m[2].matched ? m[2].str() : m[3].str());
+    long number = 0;
+    bool matched = std::regex_match(line, m, lineRe);
+    if (matched) {
+      // A line number too long for a long is not one preprocessShader made: kept as it is.
+      const std::string digits = m[2].matched ? m[2].str() : m[3].str();
+      matched = std::from_chars(digits.data(), digits.data() + digits.size(), number).ec == std::errc();
+    }
+    if (matched) {
       const auto index = std::size_t(number / kLineStride);
       const std::string file = index < files.size() ? files[index] : "?";
       out += fmt::format("shaders/{}:{}: {}\n", file, number % kLineStride, m[4].str());

@@ -179,11 +179,21 @@ static_assert(int(PixelType::U8) == GLINT_OIIO_U8 && int(PixelType::U16) == GLIN
 struct ReadTarget {
   Image image;
   std::exception_ptr exception;
+  std::string name;
 };
+
+// The largest image glint reads: 16384² pixels (1 GiB as RGBA8, 4 GiB as RGBA float). A
+// header that claims more is far more often corrupt than real (found by fuzz/image.cpp: a
+// 12 GB allocation for a few hundred bytes of TIFF), and would end in an out-of-memory kill.
+constexpr std::size_t kMaxReadPixels = std::size_t(16384) * 16384;
 
 void* allocateImage(void* user, int width, int height, int channels, int pixelType) {
   auto* target = static_cast<ReadTarget*>(user);
   try {
+    if (std::size_t(width) * std::size_t(height) > kMaxReadPixels) {
+      fail(ErrorKind::Input, "cannot read image '{}': it says it is {}×{}, more than the {} megapixels glint reads",
+           target->name, width, height, kMaxReadPixels >> 20);
+    }
     target->image = Image(width, height, channels, static_cast<PixelType>(pixelType));
     return target->image.bytes().data();
   } catch (...) {
@@ -252,6 +262,7 @@ Image loadImage(const fs::path& path) {
   if (fs::is_directory(path, ec)) fail(ErrorKind::Input, "cannot read '{}': it is a directory", path.string());
   const OiioApi& oiio = theModule().get();
   ReadTarget target;
+  target.name = path.string();
   std::array<char, kErrorSize> error{};
   switch (oiio.read(path.c_str(), &allocateImage, &target, error.data(), error.size())) {
     case GLINT_OIIO_OK: return std::move(target.image);

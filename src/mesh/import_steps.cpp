@@ -275,9 +275,15 @@ std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::v
   }
   const float epsilon = n == 0 ? 0.0f : std::sqrt(dot3(hi - lo, hi - lo)) * 1e-4f;
   const float squareEpsilon = epsilon * epsilon;
-  const float cell = epsilon > 0.0f ? epsilon : 1.0f;
+  // Cells in double: a box wider than float's range makes ε infinite, and a float cell
+  // index could then be NaN or past 2⁶³ (undefined to convert; found by fuzz/mesh.cpp).
+  const glm::dvec3 extent = glm::dvec3(hi) - glm::dvec3(lo);
+  const double diagonal = std::sqrt(glm::dot(extent, extent));
+  const double cell = epsilon > 0.0f && std::isfinite(epsilon) ? double(epsilon)
+                      : diagonal > 0.0 && std::isfinite(diagonal) ? diagonal * 1e-4 : 1.0;
   const auto cellOf = [&](const vec3& p) {
-    return glm::i64vec3(std::floor((p.x - lo.x) / cell), std::floor((p.y - lo.y) / cell), std::floor((p.z - lo.z) / cell));
+    return glm::i64vec3(std::floor((double(p.x) - double(lo.x)) / cell), std::floor((double(p.y) - double(lo.y)) / cell),
+                        std::floor((double(p.z) - double(lo.z)) / cell));
   };
   const auto key = [](const glm::i64vec3& c) {
     return std::uint64_t(c.x) * 73856093ull ^ std::uint64_t(c.y) * 19349663ull ^ std::uint64_t(c.z) * 83492791ull;

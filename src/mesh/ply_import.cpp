@@ -8,6 +8,7 @@
 #include <draco/core/decoder_buffer.h>
 #include <draco/io/ply_reader.h>
 
+#include <cmath>
 #include <cstring>
 #include <string_view>
 
@@ -61,8 +62,13 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   // Draco reads little endian and ASCII only.
   const std::string_view head(file.data(), std::min<std::size_t>(file.size(), 4096));
   const std::size_t format = head.find("format ");
-  if (!head.starts_with("ply") || format == std::string_view::npos) {
-    throw Declined("no PLY header");  // Assimp names the problem
+  // Not passed on to Assimp: its PLY reader (5.2.5) loops forever on some broken headers
+  // (found by fuzz/mesh.cpp; upstream's PLY issues: assimp/assimp#6163).
+  if (!head.starts_with("ply\n") && !head.starts_with("ply\r\n")) {
+    fail(ErrorKind::Input, "cannot read mesh '{}': not a PLY file (it does not start with a 'ply' line)", name);
+  }
+  if (format == std::string_view::npos || head.find("end_header") == std::string_view::npos) {
+    fail(ErrorKind::Input, "cannot read mesh '{}': its PLY header has no format line or no end_header", name);
   }
   if (head.substr(format, 25).starts_with("format binary_big_endian")) throw Declined("big-endian PLY");
 
@@ -75,11 +81,16 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   const draco::PlyElement* vertex = reader.GetElementByName("vertex");
   const draco::PlyElement* face = reader.GetElementByName("face");
   if (reader.GetElementByName("tristrips")) throw Declined("triangle strips");
-  if (!vertex || !face) throw Declined("no vertex or no face element");  // Assimp: points or an error
+  // A PLY without triangles to make is an error here, not handed to Assimp: it could only
+  // fail too, and Assimp 5.2.5's binary PLY reader reads out of bounds on such files (found
+  // by fuzz/mesh.cpp; fixed upstream after Debian 12's version, assimp/assimp#5310).
+  if (!vertex || !face) {
+    fail(ErrorKind::Input, "cannot read mesh '{}': the PLY has no {} element", name, !vertex ? "vertex" : "face");
+  }
   const draco::PlyProperty* x = vertex->GetPropertyByName("x");
   const draco::PlyProperty* y = vertex->GetPropertyByName("y");
   const draco::PlyProperty* z = vertex->GetPropertyByName("z");
-  if (!x || !y || !z) throw Declined("vertices without x, y and z");
+  if (!x || !y || !z) fail(ErrorKind::Input, "cannot read mesh '{}': its PLY vertices have no x, y and z", name);
   const draco::PlyProperty* nx = vertex->GetPropertyByName("nx");
   const draco::PlyProperty* ny = vertex->GetPropertyByName("ny");
   const draco::PlyProperty* nz = vertex->GetPropertyByName("nz");
@@ -148,6 +159,13 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
     }
   }
 
+  // Before any step computes with them (the normal generator's grid, joining).
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const vec3& p = mesh.positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      fail(ErrorKind::Input, "cannot read mesh '{}': vertex {} is not finite ({}, {}, {})", name, i, p.x, p.y, p.z);
+    }
+  }
   bool generated = false;
   Mesh result = finishPart(std::move(mesh), options.joinVertices, generated);
   warnMissingNormals(name, generated ? 1u : 0u, 1u);

@@ -31,6 +31,9 @@ OutputPtr createOutput(const fs::path& destination, const fs::path& tmp) {
   AVFormatContext* raw = nullptr;
   const int e = avformat_alloc_output_context2(&raw, format, nullptr, tmp.c_str());
   if (e < 0 || !raw) fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(e));
+  // The same frames give the same bytes: no random Matroska segment UID, no creation time,
+  // no library version strings (found by tests/reliability's kill and determinism tests).
+  raw->flags |= AVFMT_FLAG_BITEXACT;
   return OutputPtr(raw);
 }
 
@@ -139,6 +142,7 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_
     av_opt_set(e.priv_data, "slicecrc", "1", 0);
   }
   if (s.output->oformat->flags & AVFMT_GLOBALHEADER) e.flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  e.flags |= AV_CODEC_FLAG_BITEXACT;  // no encoder version string in the stream either
   if (const int o = avcodec_open2(&e, codec, nullptr); o < 0) {
     fail(ErrorKind::Internal, "cannot start the {} encoder: {}", codec->name, ffmpegError(o));
   }

@@ -127,3 +127,18 @@ TEST_F(GlTest, GpuTimerMeasuresNonNegativeTime) {
   EXPECT_GE(ms, 0.0);
   EXPECT_LT(ms, 1000.0);
 }
+
+// The debug callback counts what the gallery test asserts is absent: errors, and any
+// message of medium or high severity (the driver's own, or inserted as here).
+TEST_F(GlTest, DebugCallbackCountsErrorsAndNotableMessages) {
+  allowGlErrors();
+  const auto errors = gl::debugErrorCount(), notable = gl::debugNotableCount();
+  glDebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_PERFORMANCE, 1, GL_DEBUG_SEVERITY_LOW, -1, "low: not notable");
+  EXPECT_EQ(gl::debugNotableCount(), notable);
+  glDebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_PERFORMANCE, 2, GL_DEBUG_SEVERITY_MEDIUM, -1, "medium");
+  EXPECT_EQ(gl::debugNotableCount(), notable + 1);
+  EXPECT_EQ(gl::debugErrorCount(), errors);
+  glBindTexture(GL_TEXTURE_2D, 0xdeadbeef);  // not a texture name: GL_INVALID_OPERATION
+  EXPECT_EQ(gl::debugErrorCount(), errors + 1);
+  EXPECT_EQ(glGetError(), GLenum(GL_INVALID_OPERATION));
+}

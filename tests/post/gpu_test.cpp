@@ -123,7 +123,9 @@ TEST_F(PostGpu, SpectrumAndFiltersMatchTheDftReference) {
       {"bandpass", {.kind = FilterKind::BandPass, .cutoff = 0.2f, .low = 0.05f, .offset = 0.5f}},
       {"gaussian", {.kind = FilterKind::Kernel, .kernel = KernelShape::Gaussian, .size = 2.5f}},
       {"disk", {.kind = FilterKind::Kernel, .kernel = KernelShape::Disk, .size = 4.0f}}};
-  for (const auto& [name, f] : filters) {
+  for (const auto& entry : filters) {
+    const auto& [name, f0] = entry;
+    const FrequencyFilter& f = f0;  // a plain reference: the lambda captures it (clang 14 cannot capture bindings)
     const Image gpu = runPass(image, [&](auto& in, auto& out) { filter.run(in, out, f); });
     const auto d = compareSteps(gpu, frequencyFilterReference(image, f));
     EXPECT_LE(d.maxSteps, 1) << name << " at " << d.worstX << "," << d.worstY;

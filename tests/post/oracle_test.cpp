@@ -103,7 +103,8 @@ TEST_F(PostOracle, SobelMatchesOpenCv) {
         {SobelOutput::SignedX, clamp01(0.5 + 0.5 * scale * gx)},
         {SobelOutput::SignedY, clamp01(0.5 + 0.5 * scale * gy)}};
     for (const auto& [output, expected] : cases) {
-      const Image gpu = runPass(image, [&](auto& in, auto& out) { sobel.run(in, out, {.output = output, .scale = scale}); });
+      const SobelOutput which = output;  // a plain copy: the lambda captures it (clang 14 cannot capture bindings)
+      const Image gpu = runPass(image, [&](auto& in, auto& out) { sobel.run(in, out, {.output = which, .scale = scale}); });
       const auto d = compareSteps(gpu, grayImage(expected));
       EXPECT_LE(d.maxSteps, 1) << name << " output " << int(output) << " at " << d.worstX << "," << d.worstY;
       std::printf("[figure] sobel %s output %d vs cv::Sobel: max %d step(s), mean %.4f steps\n", name.c_str(),

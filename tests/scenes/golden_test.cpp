@@ -53,9 +53,11 @@ TEST_P(Golden, MatchesReference) {
     GTEST_SKIP() << "no context for this variant: " << contexts().unavailableReason(ref.scene->profile);
   }
   contexts().use(ref.scene->profile);
-  const auto errorsBefore = gl::debugErrorCount();
+  const auto errorsBefore = gl::debugErrorCount(), notableBefore = gl::debugNotableCount();
   const auto result = scenes::renderVariant(ref);
   EXPECT_EQ(gl::debugErrorCount(), errorsBefore) << "GL errors while rendering (see log)";
+  // Zero driver messages of medium severity or above too, for every gallery variant.
+  EXPECT_EQ(gl::debugNotableCount(), notableBefore) << "GL messages of medium or high severity (see log)";
 
   const fs::path golden = fs::path(GLINT_GOLDEN_DIR) / (ref.fullName() + ".png");
   const fs::path outBase = fs::path(GLINT_TEST_OUTPUT_DIR) / "golden" / ref.fullName();

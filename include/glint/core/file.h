@@ -4,7 +4,9 @@
 // Outputs are written atomically: to a temporary file in the destination's
 // directory, then renamed over the destination. A crash, an exception or
 // Ctrl-C never leaves a partial file under the final name, and an existing
-// file is replaced only by a complete one.
+// file is replaced only by a complete one. A process killed outright (kill -9)
+// leaves its temporary, named ".<stem>.tmp<pid>-<n><ext>"; the next write into that
+// directory removes such files whose process is gone.
 //
 //   glint::writeAtomically("out.png", [&](const std::filesystem::path& tmp) {
 //     saveImage(image, tmp);    // tmp keeps the extension, so format detection works

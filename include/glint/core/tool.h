@@ -12,7 +12,9 @@
 //                 independent of it (deterministic partitions, ordered reductions).
 //   -q            no progress bars or info lines (log level Warn): Progress is silent.
 //   timings       phase("load") measures a scope; addSeconds() takes phases a library timed.
-//   memory        peakMemoryMiB(): the process's peak resident set.
+//   memory        peakMemoryMiB(): the process's peak resident set. --max-memory M: the tool
+//                 estimates what a job needs before it starts (checkMemory) and refuses one
+//                 that would exceed M with a clear error, instead of an out-of-memory kill.
 //   --json F      report(): the tool's own fields; finish() adds tool, version, threads,
 //                 seconds (per phase and total), peak memory and warnings, and writes the
 //                 report atomically to F, or to stdout for "-".
@@ -41,12 +43,14 @@ struct ToolSettings {
   int threads = 0;   ///< worker threads; 0 = every core
   bool quiet = false;  ///< warnings and errors only: no progress bar, no info lines
   std::string json;  ///< where to write the report: a path, "-" for stdout, empty for none
+  std::string maxMemory;  ///< --max-memory ("4096" MiB, "512M", "4G"): refuse jobs estimated to need more; empty: no limit
 };
 
 class ToolRun {
 public:
   /// Starts the run: installs the interrupt handlers, caps the thread count, lowers the
-  /// log level when quiet. Error(Usage) for a negative thread count.
+  /// log level when quiet. Error(Usage) for a negative thread count or a --max-memory that
+  /// is not a size.
   ToolRun(std::string tool, const ToolSettings& settings);
   /// Restores the previous signal handlers and thread limit.
   ~ToolRun();
@@ -100,6 +104,10 @@ public:
 
   /// The process's peak resident set size so far, in MiB.
   static double peakMemoryMiB();
+  /// Records the job's estimated peak memory (memory_estimate_mib in the report) and, under
+  /// --max-memory, throws Error(Usage) naming `what` ("a 16384² bake") and both sizes when
+  /// the estimate is over the limit. Call before the big allocations.
+  void checkMemory(double estimateMiB, const std::string& what);
 
 private:
   struct Impl;
@@ -107,6 +115,7 @@ private:
   ToolSettings m_settings;
   std::unique_ptr<Impl> m_impl;
   std::chrono::steady_clock::time_point m_start;
+  double m_maxMemoryMiB = 0.0;  ///< parsed --max-memory; 0: no limit
   nlohmann::ordered_json m_report = nlohmann::ordered_json::object();
   std::vector<std::pair<std::string, double>> m_phases;
   std::vector<std::string> m_warnings;

@@ -52,6 +52,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace glint::cut {
@@ -73,6 +74,10 @@ struct Light {
   vec3 position{0.0f};
   std::string name;  ///< for reports; "light<i>" when empty
 };
+
+/// `glint cut --light`'s text: "x,y,z" or "x,y,z,name" (core/text.h's strict numbers).
+/// Error(Usage) for anything else.
+Light parseLight(std::string_view text);
 
 struct CutOptions {
   std::vector<Light> lights;  ///< 1 to kMaxLights

@@ -3,8 +3,9 @@
 //
 // enableDebugOutput() installs a synchronous callback on the current context.
 // Errors and undefined behaviour are logged as errors and counted; performance
-// and portability notes are logged at debug level. Tests assert that
-// debugErrorCount() did not grow while a scene rendered. The CLI turns it on
+// and portability notes of low severity are logged at debug level, those of medium or
+// high severity as warnings. Tests assert that debugErrorCount() did not grow while a
+// scene rendered, and the gallery test that debugNotableCount() did not either. The CLI turns it on
 // with --gl-debug.
 
 #include <cstdint>
@@ -15,6 +16,9 @@ namespace glint::gl {
 void enableDebugOutput();
 /// GL_DEBUG_TYPE_ERROR / UNDEFINED_BEHAVIOR messages seen so far in this process.
 std::uint64_t debugErrorCount();
+/// Messages of medium or high severity of any type (errors included) seen so far: what a
+/// driver thinks worth saying (performance traps, deprecated use, ...).
+std::uint64_t debugNotableCount();
 /// Throws Error(Internal) naming the first pending glGetError code, if any. Cheap
 /// enough for once per frame; a safety net when the debug callback is off.
 void checkGlError(const char* where);
