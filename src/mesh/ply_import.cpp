@@ -4,6 +4,7 @@
 #include "import_steps.h"
 
 #include "glint/core/error.h"
+#include "glint/core/text.h"
 
 #include <draco/core/decoder_buffer.h>
 #include <draco/io/ply_reader.h>
@@ -69,6 +70,18 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   }
   if (format == std::string_view::npos || head.find("end_header") == std::string_view::npos) {
     fail(ErrorKind::Input, "cannot read mesh '{}': its PLY header has no format line or no end_header", name);
+  }
+  // The header's frame exactly as the PLY format has it: Assimp's reader (the fallback for
+  // what Draco's cannot read) hangs or reads out of bounds when the format line is damaged
+  // or end_header is not followed by a line break (found by fuzz/mesh.cpp).
+  const std::string_view formatLine = head.substr(format, head.find_first_of("\r\n", format) - format);
+  if (formatLine != "format ascii 1.0" && formatLine != "format binary_little_endian 1.0" &&
+      formatLine != "format binary_big_endian 1.0") {
+    fail(ErrorKind::Input, "cannot read mesh '{}': unknown PLY format line '{}'", name, printable(formatLine));
+  }
+  const std::size_t headerEnd = head.find("end_header") + 10;
+  if (!head.substr(headerEnd).starts_with("\n") && !head.substr(headerEnd).starts_with("\r\n")) {
+    fail(ErrorKind::Input, "cannot read mesh '{}': its PLY header's end_header is not followed by a line break", name);
   }
   if (head.substr(format, 25).starts_with("format binary_big_endian")) throw Declined("big-endian PLY");
 
