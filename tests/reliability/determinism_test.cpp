@@ -16,16 +16,10 @@
 
 namespace fs = std::filesystem;
 using namespace glint;
+using glint::testing::readBytes;
 using glint::testing::runGlint;
 
 namespace {
-
-std::string readBytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 

@@ -27,15 +27,9 @@
 
 namespace fs = std::filesystem;
 using namespace glint;
+using glint::testing::readBytes;
 
 namespace {
-
-std::string readBytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// Every regular file under `dir`, by relative path, with its bytes.
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
