@@ -1,6 +1,7 @@
 #include "glint/render/post/effects.h"
 
 #include "glint/core/error.h"
+#include "glint/core/text.h"
 
 #include <fmt/format.h>
 
@@ -37,14 +38,14 @@ float parseFloat(const std::string& text, const char* what) {
     used = 0;
   }
   if (used == 0 || used != text.size() || !std::isfinite(v)) {
-    fail(ErrorKind::Usage, "{} must be a number, got '{}'", what, text);
+    fail(ErrorKind::Usage, "{} must be a number, got '{}'", printable(what), printable(text));
   }
   return v;
 }
 
 int parseInt(const std::string& text, const char* what) {
   const float v = parseFloat(text, what);
-  if (v != std::floor(v)) fail(ErrorKind::Usage, "{} must be a whole number, got '{}'", what, text);
+  if (v != std::floor(v)) fail(ErrorKind::Usage, "{} must be a whole number, got '{}'", printable(what), printable(text));
   return int(v);
 }
 
@@ -118,7 +119,7 @@ const std::vector<EffectDef>& definitions() {
                      else if (v == "vertical") e.sobel.output = SobelOutput::Vertical;
                      else if (v == "dx") e.sobel.output = SobelOutput::SignedX;
                      else if (v == "dy") e.sobel.output = SobelOutput::SignedY;
-                     else fail(ErrorKind::Usage, "sobel output must be magnitude, horizontal, vertical, dx or dy, got '{}'", v);
+                     else fail(ErrorKind::Usage, "sobel output must be magnitude, horizontal, vertical, dx or dy, got '{}'", printable(v));
                    },
                    [](const Effect& e) {
                      switch (e.sobel.output) {
@@ -191,7 +192,7 @@ bool apply(Effect& effect, const std::string& param, const std::string& value) {
 std::pair<std::string, std::string> splitAssignment(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
-    fail(ErrorKind::Usage, "parameter '{}' must be name=value", text);
+    fail(ErrorKind::Usage, "parameter '{}' must be name=value", printable(text));
   }
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
@@ -216,7 +217,7 @@ Effect makeEffect(const std::string& name) {
   if (!def) {
     std::string all;
     for (const auto& n : effectNames()) all += (all.empty() ? "" : ", ") + n;
-    fail(ErrorKind::Usage, "unknown effect '{}'; effects: {}", name, all);
+    fail(ErrorKind::Usage, "unknown effect '{}'; effects: {}", printable(name), all);
   }
   return def->make();
 }
@@ -238,7 +239,7 @@ std::vector<Effect> parseEffects(std::span<const std::string> specs, std::span<c
       bool taken = false;
       for (auto& e : added) taken = apply(e, param, value) || taken;
       if (!taken) {
-        fail(ErrorKind::Usage, "effect '{}' has no parameter '{}' (it takes: {})", name, param,
+        fail(ErrorKind::Usage, "effect '{}' has no parameter '{}' (it takes: {})", printable(name), printable(param),
              name == "posterize" ? "size, scale, threshold" : paramList(*find(name)));
       }
     }
@@ -251,14 +252,14 @@ std::vector<Effect> parseEffects(std::span<const std::string> specs, std::span<c
       if (const auto dot = param.find('.'); dot != std::string::npos) {
         only = param.substr(0, dot);
         param = param.substr(dot + 1);
-        if (!find(only)) fail(ErrorKind::Usage, "--set {}: unknown effect '{}'", assignment, only);
+        if (!find(only)) fail(ErrorKind::Usage, "--set {}: unknown effect '{}'", printable(assignment), printable(only));
       }
       bool taken = false;
       for (auto& e : chain)
         if (only.empty() || e.name == only) taken = apply(e, param, value) || taken;
       if (!taken) {
-        if (!only.empty()) fail(ErrorKind::Usage, "--set {}: no '{}' effect with a parameter '{}' in the chain", assignment, only, param);
-        fail(ErrorKind::Usage, "--set {}: no effect in the chain has a parameter '{}'", assignment, param);
+        if (!only.empty()) fail(ErrorKind::Usage, "--set {}: no '{}' effect with a parameter '{}' in the chain", printable(assignment), printable(only), printable(param));
+        fail(ErrorKind::Usage, "--set {}: no effect in the chain has a parameter '{}'", printable(assignment), printable(param));
       }
     }
   }
