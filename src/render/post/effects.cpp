@@ -46,6 +46,8 @@ float parseFloat(const std::string& text, const char* what) {
 int parseInt(const std::string& text, const char* what) {
   const float v = parseFloat(text, what);
   if (v != std::floor(v)) fail(ErrorKind::Usage, "{} must be a whole number, got '{}'", printable(what), printable(text));
+  // Converting a float past int's range is undefined (found by fuzz_options under UBSan).
+  if (std::abs(v) > 1e9f) fail(ErrorKind::Usage, "{} is out of range, got '{}'", printable(what), printable(text));
   return int(v);
 }
 
