@@ -9,6 +9,7 @@
 #include <draco/core/decoder_buffer.h>
 #include <draco/io/ply_reader.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <string_view>
@@ -78,6 +79,36 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   if (formatLine != "format ascii 1.0" && formatLine != "format binary_little_endian 1.0" &&
       formatLine != "format binary_big_endian 1.0") {
     fail(ErrorKind::Input, "cannot read mesh '{}': unknown PLY format line '{}'", name, printable(formatLine));
+  }
+  // Element counts the file cannot hold (every element takes at least a byte) are refused
+  // before Draco reserves memory for them (a 4 GB allocation; found by fuzz/mesh.cpp).
+  for (std::size_t at = head.find("\nelement "); at != std::string_view::npos && at < head.find("end_header");
+       at = head.find("\nelement ", at + 1)) {
+    const std::string_view line = head.substr(at + 9, head.find_first_of("\r\n", at + 9) - (at + 9));
+    const std::size_t blank = line.rfind(' ');
+    std::size_t count = 0;
+    const std::string_view digits = blank == std::string_view::npos ? std::string_view() : line.substr(blank + 1);
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), count);
+    if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || count > file.size()) {
+      fail(ErrorKind::Input, "cannot read mesh '{}': PLY element line 'element {}' has a count the file cannot hold", name,
+           printable(line));
+    }
+  }
+  // List properties only where glint reads them (a face's vertex indices): Draco's reader
+  // trusts a list's length and reads past the mapped file for one in a vertex element
+  // (SIGBUS; found by fuzz/mesh.cpp).
+  {
+    std::string_view element;
+    const std::string_view header = head.substr(0, head.find("end_header"));
+    for (std::size_t at = 0; at < header.size();) {
+      const std::size_t eol = std::min(header.find('\n', at), header.size());
+      const std::string_view line = header.substr(at, eol - at);
+      if (line.starts_with("element ")) element = line.substr(8, line.find(' ', 8) - 8);
+      if (line.starts_with("property list") && element != "face" && element != "tristrips") {
+        fail(ErrorKind::Input, "cannot read mesh '{}': its PLY element '{}' has a list property", name, printable(element));
+      }
+      at = eol + 1;
+    }
   }
   const std::size_t headerEnd = head.find("end_header") + 10;
   if (!head.substr(headerEnd).starts_with("\n") && !head.substr(headerEnd).starts_with("\r\n")) {
