@@ -9,10 +9,14 @@
 #include <draco/core/decoder_buffer.h>
 #include <draco/io/ply_reader.h>
 
+#include <algorithm>
 #include <charconv>
+#include <optional>
 #include <cmath>
 #include <cstring>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace glint::detail {
 namespace {
@@ -55,66 +59,155 @@ const draco::PlyProperty* find(const draco::PlyElement& element, std::initialize
   return found;
 }
 
+
+enum class Format { Ascii, LittleEndian, BigEndian };
+
+/// Bytes of a PLY scalar type, 0 for a name that is not one (the names Draco and Assimp read).
+std::size_t typeSize(std::string_view type) {
+  static constexpr std::pair<std::string_view, std::size_t> kTypes[] = {
+      {"char", 1},  {"int8", 1},   {"uchar", 1}, {"uint8", 1},   {"short", 2},   {"int16", 2},
+      {"ushort", 2}, {"uint16", 2}, {"int", 4},   {"int32", 4},   {"uint", 4},    {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+  for (const auto& [n, size] : kTypes) {
+    if (n == type) return size;
+  }
+  return 0;
+}
+
+/// Splits `line` at single spaces; empty when two spaces meet or the line starts or ends with one.
+std::vector<std::string_view> words(std::string_view line) {
+  std::vector<std::string_view> out;
+  for (std::size_t at = 0;;) {
+    const std::size_t blank = line.find(' ', at);
+    out.push_back(line.substr(at, blank - at));
+    if (out.back().empty()) return {};
+    if (blank == std::string_view::npos) return out;
+    at = blank + 1;
+  }
+}
+
+/// Checks a PLY file's header against the format's grammar, strictly (one space between
+/// words, known keywords and types only, counts that fit), and its body against the header:
+/// a binary body is walked (every list length read) and must hold every element; an ASCII
+/// body must have at least a byte per value. Whatever passes, Draco's and Assimp's readers
+/// see the same elements glint saw and stay inside the file. Fails with a one-line error.
+Format checkLayout(std::string_view file, const std::string& name) {
+  struct Property {
+    std::size_t size = 0;       // of a value
+    std::size_t countSize = 0;  // of a list's length; 0 for a scalar property
+  };
+  struct Element {
+    std::string_view name;
+    std::uint64_t count = 0;
+    std::vector<Property> properties;
+  };
+  const auto bad = [&](std::string_view what, std::string_view line) {
+    fail(ErrorKind::Input, "cannot read mesh '{}': {} ('{}')", name, what, printable(line.substr(0, 80)));
+  };
+  std::size_t at = 0;
+  const auto nextLine = [&]() -> std::optional<std::string_view> {
+    if (at >= file.size()) return std::nullopt;
+    const std::size_t eol = file.find('\n', at);
+    if (eol == std::string_view::npos) return std::nullopt;  // a header line always ends
+    std::string_view line = file.substr(at, eol - at);
+    if (line.ends_with('\r')) line.remove_suffix(1);
+    at = eol + 1;
+    return line;
+  };
+  if (nextLine() != std::optional<std::string_view>("ply")) {
+    fail(ErrorKind::Input, "cannot read mesh '{}': not a PLY file (it does not start with a 'ply' line)", name);
+  }
+  const std::optional<std::string_view> formatLine = nextLine();
+  Format format;
+  if (formatLine == "format ascii 1.0") format = Format::Ascii;
+  else if (formatLine == "format binary_little_endian 1.0") format = Format::LittleEndian;
+  else if (formatLine == "format binary_big_endian 1.0") format = Format::BigEndian;
+  else {
+    fail(ErrorKind::Input, "cannot read mesh '{}': its second line is not a PLY format line ('{}')", name,
+         printable(formatLine.value_or("").substr(0, 80)));
+  }
+  std::vector<Element> elements;
+  for (;;) {
+    const std::optional<std::string_view> line = nextLine();
+    if (!line) fail(ErrorKind::Input, "cannot read mesh '{}': its PLY header has no end_header line", name);
+    if (*line == "end_header") break;
+    if (line->starts_with("comment ") || *line == "comment" || line->starts_with("obj_info ")) continue;
+    const std::vector<std::string_view> w = words(*line);
+    if (w.size() == 3 && w[0] == "element") {
+      Element& e = elements.emplace_back();
+      e.name = w[1];
+      const auto [end, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
+      if (ec != std::errc() || end != w[2].data() + w[2].size() || e.count > file.size()) {
+        bad("a PLY element count the file cannot hold", *line);
+      }
+    } else if (w.size() == 3 && w[0] == "property" && !elements.empty() && typeSize(w[1]) != 0) {
+      elements.back().properties.push_back({typeSize(w[1]), 0});
+    } else if (w.size() == 5 && w[0] == "property" && w[1] == "list" && !elements.empty() && typeSize(w[3]) != 0 &&
+               typeSize(w[2]) != 0 && !w[2].starts_with("float") && w[2] != "double") {
+      // Lists only where glint reads them (a face's vertex indices): Draco's reader reads
+      // past the file for a list in a vertex element (SIGBUS; found by fuzz/mesh.cpp).
+      if (elements.back().name != "face" && elements.back().name != "tristrips") {
+        bad("a list property outside the face element", *line);
+      }
+      elements.back().properties.push_back({typeSize(w[3]), typeSize(w[2])});
+    } else {
+      bad("a PLY header line that is not a comment, element, property or end_header", *line);
+    }
+  }
+  std::string_view body = file.substr(at);
+  for (const Element& e : elements) {
+    if (e.count > 0 && e.properties.empty()) {
+      fail(ErrorKind::Input, "cannot read mesh '{}': PLY element '{}' has {} entries but no properties", name,
+           printable(e.name), e.count);
+    }
+    const auto shortBody = [&] {
+      fail(ErrorKind::Input, "cannot read mesh '{}': the file ends inside its {} element '{}' of {} entries", name,
+           format == Format::Ascii ? "ASCII" : "binary", printable(e.name), e.count);
+    };
+    if (format == Format::Ascii) {  // a digit and a separator per value, at the least
+      if (e.count * e.properties.size() > (body.size() + 1) / 2) shortBody();
+      body.remove_prefix(std::min(body.size(), std::size_t(e.count * e.properties.size() * 2)));
+      continue;
+    }
+    const bool lists = std::any_of(e.properties.begin(), e.properties.end(), [](const Property& p) { return p.countSize; });
+    if (!lists) {
+      std::size_t stride = 0;
+      for (const Property& p : e.properties) stride += p.size;
+      if (e.count > body.size() / stride) shortBody();
+      body.remove_prefix(std::size_t(e.count) * stride);
+      continue;
+    }
+    for (std::uint64_t entry = 0; entry < e.count; ++entry) {
+      for (const Property& p : e.properties) {
+        std::uint64_t values = 1;
+        if (p.countSize) {  // the length as both readers take it: unsigned, in the file's byte order
+          if (body.size() < p.countSize) shortBody();
+          values = 0;
+          for (std::size_t b = 0; b < p.countSize; ++b) {
+            const std::size_t byte = format == Format::LittleEndian ? p.countSize - 1 - b : b;
+            values = values << 8 | std::uint8_t(body[byte]);
+          }
+          body.remove_prefix(p.countSize);
+        }
+        if (values > body.size() / p.size) shortBody();
+        body.remove_prefix(std::size_t(values * p.size));
+      }
+    }
+  }
+  return format;
+}
 }  // namespace
 
 Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();
   const MappedFile file(path);
   if (file.size() == 0) fail(ErrorKind::Input, "cannot read mesh '{}': the file is empty", name);
-  // Draco reads little endian and ASCII only.
-  const std::string_view head(file.data(), std::min<std::size_t>(file.size(), 4096));
-  const std::size_t format = head.find("format ");
-  // Not passed on to Assimp: its PLY reader (5.2.5) loops forever on some broken headers
-  // (found by fuzz/mesh.cpp; upstream's PLY issues: assimp/assimp#6163).
-  if (!head.starts_with("ply\n") && !head.starts_with("ply\r\n")) {
-    fail(ErrorKind::Input, "cannot read mesh '{}': not a PLY file (it does not start with a 'ply' line)", name);
+  // The whole layout is checked before either reader sees the file: Draco's reader trusts
+  // element counts and reads past the end for fixed-size properties, and Assimp's (the
+  // fallback) hangs or reads out of bounds on damaged headers (both found by fuzz/mesh.cpp).
+  if (checkLayout(std::string_view(file.data(), file.size()), name) == Format::BigEndian) {
+    throw Declined("big-endian PLY");  // Draco reads little endian and ASCII only
   }
-  if (format == std::string_view::npos || head.find("end_header") == std::string_view::npos) {
-    fail(ErrorKind::Input, "cannot read mesh '{}': its PLY header has no format line or no end_header", name);
-  }
-  // The header's frame exactly as the PLY format has it: Assimp's reader (the fallback for
-  // what Draco's cannot read) hangs or reads out of bounds when the format line is damaged
-  // or end_header is not followed by a line break (found by fuzz/mesh.cpp).
-  const std::string_view formatLine = head.substr(format, head.find_first_of("\r\n", format) - format);
-  if (formatLine != "format ascii 1.0" && formatLine != "format binary_little_endian 1.0" &&
-      formatLine != "format binary_big_endian 1.0") {
-    fail(ErrorKind::Input, "cannot read mesh '{}': unknown PLY format line '{}'", name, printable(formatLine));
-  }
-  // Element counts the file cannot hold (every element takes at least a byte) are refused
-  // before Draco reserves memory for them (a 4 GB allocation; found by fuzz/mesh.cpp).
-  for (std::size_t at = head.find("\nelement "); at != std::string_view::npos && at < head.find("end_header");
-       at = head.find("\nelement ", at + 1)) {
-    const std::string_view line = head.substr(at + 9, head.find_first_of("\r\n", at + 9) - (at + 9));
-    const std::size_t blank = line.rfind(' ');
-    std::size_t count = 0;
-    const std::string_view digits = blank == std::string_view::npos ? std::string_view() : line.substr(blank + 1);
-    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), count);
-    if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || count > file.size()) {
-      fail(ErrorKind::Input, "cannot read mesh '{}': PLY element line 'element {}' has a count the file cannot hold", name,
-           printable(line));
-    }
-  }
-  // List properties only where glint reads them (a face's vertex indices): Draco's reader
-  // trusts a list's length and reads past the mapped file for one in a vertex element
-  // (SIGBUS; found by fuzz/mesh.cpp).
-  {
-    std::string_view element;
-    const std::string_view header = head.substr(0, head.find("end_header"));
-    for (std::size_t at = 0; at < header.size();) {
-      const std::size_t eol = std::min(header.find('\n', at), header.size());
-      const std::string_view line = header.substr(at, eol - at);
-      if (line.starts_with("element ")) element = line.substr(8, line.find(' ', 8) - 8);
-      if (line.starts_with("property list") && element != "face" && element != "tristrips") {
-        fail(ErrorKind::Input, "cannot read mesh '{}': its PLY element '{}' has a list property", name, printable(element));
-      }
-      at = eol + 1;
-    }
-  }
-  const std::size_t headerEnd = head.find("end_header") + 10;
-  if (!head.substr(headerEnd).starts_with("\n") && !head.substr(headerEnd).starts_with("\r\n")) {
-    fail(ErrorKind::Input, "cannot read mesh '{}': its PLY header's end_header is not followed by a line break", name);
-  }
-  if (head.substr(format, 25).starts_with("format binary_big_endian")) throw Declined("big-endian PLY");
 
   draco::DecoderBuffer buffer;
   buffer.Init(file.data(), file.size());

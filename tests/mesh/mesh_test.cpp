@@ -773,6 +773,43 @@ TEST(LoadMesh, TruncatedPlyIsRejectedInsteadOfCrashing) {
   EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
 }
 
+TEST(LoadMesh, DamagedPlyLayoutsAreOneLineErrors) {
+  // Each of these passes Draco's own header parser, which then reads past the end of the
+  // file or reserves memory the file cannot fill; the layout check refuses them first.
+  const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                             "property float x\nproperty float y\nproperty float z\n";
+  const std::string face = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string vertices(36, '\0');
+  const std::string triangle = std::string("\x03", 1) + std::string("\0\0\0\0\1\0\0\0\2\0\0\0", 12);
+  const struct {
+    const char* name;
+    std::string text;
+    const char* reason;
+  } cases[] = {
+      {"vertices past the end", header + face + vertices.substr(0, 20), "ends inside its binary element 'vertex'"},
+      {"a list longer than the file", header + face + vertices + "\xff" + triangle.substr(1), "ends inside"},
+      {"a huge element count", "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n0\n",
+       "count the file cannot hold"},
+      {"an element without properties", "ply\nformat ascii 1.0\nelement pad 5\n" + header.substr(header.find("element")) + face + "0",
+       "no properties"},
+      {"a tab in the header", "ply\nformat ascii 1.0\nelement\tvertex 3\nend_header\n", "header line"},
+      {"a list in the vertex element", "ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar float x\nend_header\n1 0\n",
+       "list property outside the face element"},
+      {"no end_header", header + face.substr(0, face.size() - 11), "no end_header"},
+  };
+  for (const auto& c : cases) {
+    const fs::path path = writeFile("damaged.ply", c.text);
+    const Error e = captureError([&] { loadMesh(path); });
+    EXPECT_EQ(e.kind(), ErrorKind::Input) << c.name;
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(c.reason), std::string::npos) << c.name << ": " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << c.name << ": " << msg;
+  }
+  // The same layout, whole, loads: the check refuses only what is damaged.
+  const Mesh m = loadMesh(writeFile("whole.ply", header + face + vertices + triangle));
+  EXPECT_EQ(m.triangleCount(), 1u);
+}
+
 TEST(LoadMesh, DirectoryIsNotAMeshFile) {
   const Error e = captureError([&] { loadMesh(outDir()); });
   EXPECT_EQ(e.kind(), ErrorKind::Input);
