@@ -160,6 +160,7 @@ Format checkLayout(std::string_view file, const std::string& name) {
       fail(ErrorKind::Input, "cannot read mesh '{}': PLY element '{}' has {} entries but no properties", name,
            printable(e.name), e.count);
     }
+    if (e.count == 0) continue;
     const auto shortBody = [&] {
       fail(ErrorKind::Input, "cannot read mesh '{}': the file ends inside its {} element '{}' of {} entries", name,
            format == Format::Ascii ? "ASCII" : "binary", printable(e.name), e.count);
