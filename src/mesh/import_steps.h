@@ -93,7 +93,9 @@ Mesh finishPart(PolyMesh&& part, bool join, bool& generatedNormals);
 
 /// Fast paths: the Mesh, with one warning for missing normals like the Assimp path; throws
 /// Error(Input) for a corrupt file and Declined for one Assimp should read.
-Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& options);
+/// `fastLane` false leaves every line to tinyobjloader: the reading the lane is checked
+/// against (tests/mesh/obj_lane_test.cpp, fuzz/mesh.cpp).
+Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& options, bool fastLane = true);
 Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& options);
 
 /// "'file': N of M meshes have no normals; generating smooth normals" — the one warning

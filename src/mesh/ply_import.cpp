@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <charconv>
 #include <optional>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <string_view>
@@ -86,10 +87,20 @@ std::vector<std::string_view> words(std::string_view line) {
   }
 }
 
+/// The next blank-separated word of `text` (empty at its end), removed from it.
+std::string_view nextWord(std::string_view& text) {
+  std::size_t b = 0;
+  while (b < text.size() && std::isspace(static_cast<unsigned char>(text[b]))) ++b;
+  std::size_t e = b;
+  while (e < text.size() && !std::isspace(static_cast<unsigned char>(text[e]))) ++e;
+  const std::string_view word = text.substr(b, e - b);
+  text.remove_prefix(e);
+  return word;
+}
+
 /// Checks a PLY file's header against the format's grammar, strictly (one space between
 /// words, known keywords and types only, counts that fit), and its body against the header:
-/// a binary body is walked (every list length read) and must hold every element; an ASCII
-/// body must have at least a byte per value. Whatever passes, Draco's and Assimp's readers
+/// the body is walked (every list length read) and must hold every element. Whatever passes, Draco's and Assimp's readers
 /// see the same elements glint saw and stay inside the file. Fails with a one-line error.
 Format checkLayout(std::string_view file, const std::string& name) {
   struct Property {
@@ -165,9 +176,24 @@ Format checkLayout(std::string_view file, const std::string& name) {
       fail(ErrorKind::Input, "cannot read mesh '{}': the file ends inside its {} element '{}' of {} entries", name,
            format == Format::Ascii ? "ASCII" : "binary", printable(e.name), e.count);
     };
-    if (format == Format::Ascii) {  // a digit and a separator per value, at the least
-      if (e.count * e.properties.size() > (body.size() + 1) / 2) shortBody();
-      body.remove_prefix(std::min(body.size(), std::size_t(e.count * e.properties.size() * 2)));
+    if (format == Format::Ascii) {  // walked value by value; a list's length must be a count that fits
+      for (std::uint64_t entry = 0; entry < e.count; ++entry) {
+        for (const Property& p : e.properties) {
+          std::uint64_t values = 1;
+          if (p.countSize) {
+            const std::string_view word = nextWord(body);
+            const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), values);
+            if (word.empty()) shortBody();
+            if (ec != std::errc() || end != word.data() + word.size() || values > body.size() / 2 + 1) {
+              fail(ErrorKind::Input, "cannot read mesh '{}': entry {} of PLY element '{}' has a list length '{}' the file cannot hold",
+                   name, entry, printable(e.name), printable(word.substr(0, 40)));
+            }
+          }
+          for (std::uint64_t v = 0; v < values; ++v) {
+            if (nextWord(body).empty()) shortBody();
+          }
+        }
+      }
       continue;
     }
     const bool lists = std::any_of(e.properties.begin(), e.properties.end(), [](const Property& p) { return p.countSize; });

@@ -9,6 +9,7 @@
 // the same face normals in a different order).
 #include "glint/core/error.h"
 #include "glint/mesh/mesh.h"
+#include "import_steps.h"  // detail::loadObjFast without its fast lane
 
 #include <gtest/gtest.h>
 
@@ -54,6 +55,39 @@ bool near(float a, float b, float relative) {
   return std::fabs(a - b) <= relative * std::max(1.0f, std::max(std::fabs(a), std::fabs(b)));
 }
 
+/// Compares two readings of one file as stated at the top of this file.
+void expectSameMesh(const Mesh& fast, const Mesh& other, const char* otherName) {
+  EXPECT_EQ(fast.vertexCount(), other.vertexCount());
+  EXPECT_EQ(fast.indices, other.indices) << "same triangles, same vertex order";
+  EXPECT_EQ(fast.hasNormals(), other.hasNormals());
+  EXPECT_EQ(fast.hasUvs(), other.hasUvs());
+  if (fast.vertexCount() != other.vertexCount()) return;
+  const auto vec = [](const auto& v, int n) {
+    std::string s = "(";
+    for (int k = 0; k < n; ++k) s += (k ? ", " : "") + std::to_string(v[k]);
+    return s + ")";
+  };
+  int reported = 0;
+  for (std::size_t i = 0; i < fast.vertexCount() && reported < 5; ++i) {
+    bool same = true;
+    for (int k = 0; k < 3; ++k) same = same && near(fast.positions[i][k], other.positions[i][k], 2.4e-7f);
+    if (fast.hasNormals() && other.hasNormals()) {
+      for (int k = 0; k < 3; ++k) same = same && std::fabs(fast.normals[i][k] - other.normals[i][k]) <= 1e-5f;
+    }
+    if (fast.hasUvs() && other.hasUvs()) {
+      for (int k = 0; k < 2; ++k) same = same && near(fast.uvs[i][k], other.uvs[i][k], 2.4e-7f);
+    }
+    if (!same) {
+      ++reported;
+      ADD_FAILURE() << "vertex " << i << ": fast p" << vec(fast.positions[i], 3) << " vs " << otherName << " p"
+                    << vec(other.positions[i], 3)
+                    << (fast.hasNormals() && other.hasNormals()
+                            ? " fast n" + vec(fast.normals[i], 3) + " " + otherName + " n" + vec(other.normals[i], 3)
+                            : "");
+    }
+  }
+}
+
 /// Loads `path` through the fast path (which must take it) and through Assimp, joined
 /// and not, and compares as stated at the top of this file. Returns the fast joined Mesh.
 Mesh expectSameAsAssimp(const fs::path& path) {
@@ -67,35 +101,7 @@ Mesh expectSameAsAssimp(const fs::path& path) {
     const Mesh assimp = loadMesh(path, {.joinVertices = join, .parser = MeshParser::Assimp});
     const std::string assimpLog = testing::internal::GetCapturedStderr();
     EXPECT_EQ(fastLog, assimpLog) << "the same warning (or none)";
-    EXPECT_EQ(fast.vertexCount(), assimp.vertexCount());
-    EXPECT_EQ(fast.indices, assimp.indices) << "same triangles, same vertex order";
-    EXPECT_EQ(fast.hasNormals(), assimp.hasNormals());
-    EXPECT_EQ(fast.hasUvs(), assimp.hasUvs());
-    if (fast.vertexCount() != assimp.vertexCount()) return fast;
-    int reported = 0;
-    for (std::size_t i = 0; i < fast.vertexCount() && reported < 5; ++i) {
-      bool same = true;
-      for (int k = 0; k < 3; ++k) same = same && near(fast.positions[i][k], assimp.positions[i][k], 2.4e-7f);
-      if (fast.hasNormals() && assimp.hasNormals()) {
-        for (int k = 0; k < 3; ++k) same = same && std::fabs(fast.normals[i][k] - assimp.normals[i][k]) <= 1e-5f;
-      }
-      if (fast.hasUvs() && assimp.hasUvs()) {
-        for (int k = 0; k < 2; ++k) same = same && near(fast.uvs[i][k], assimp.uvs[i][k], 2.4e-7f);
-      }
-      if (!same) {
-        ++reported;
-        ADD_FAILURE() << "vertex " << i << ": fast p(" << fast.positions[i].x << ", " << fast.positions[i].y << ", "
-                      << fast.positions[i].z << ") vs Assimp p(" << assimp.positions[i].x << ", "
-                      << assimp.positions[i].y << ", " << assimp.positions[i].z << ")"
-                      << (fast.hasNormals() ? " fast n(" + std::to_string(fast.normals[i].x) + ", " +
-                                                  std::to_string(fast.normals[i].y) + ", " +
-                                                  std::to_string(fast.normals[i].z) + ") Assimp n(" +
-                                                  std::to_string(assimp.normals[i].x) + ", " +
-                                                  std::to_string(assimp.normals[i].y) + ", " +
-                                                  std::to_string(assimp.normals[i].z) + ")"
-                                            : "");
-      }
-    }
+    expectSameMesh(fast, assimp, "Assimp");
     if (join) fastJoined = fast;
   }
   return fastJoined;
@@ -304,6 +310,32 @@ TEST(ImportOracle, BigObjIsCutIntoChunksAndGivesAssimpsMesh) {
   const fs::path path = writeFile("big.obj", obj);
   ASSERT_GT(fs::file_size(path), 4u << 20);
   expectSameAsAssimp(path);
+}
+
+TEST(ImportOracle, ObjFastLaneReadsEveryLineAsTinyObjLoaderDoes) {
+  // The OBJ path reads `v`/`vn`/`vt`/`f` lines of the usual shape itself and leaves every
+  // other line to tinyobjloader. Lines of each kind written every way this file knows
+  // (blanks, tabs, signs, exponents, comments, 4 coordinates, CR LF, lone CR, relative
+  // indices) must give what tinyobjloader alone gives, the rest of the path unchanged.
+  const std::string obj =
+      "# a comment\nmtllib none.mtl\no first\n"
+      "v 0 0 0\nv\t1 0 0\n v 0 1 0\nv +1 1 0\nv 1e-3 2.5E+2 -0.125\nv 1 1 1 # trailing comment\n"
+      "v 2 2 2 1\nv 0.1 0.2 0.3\r\nv -7 1e2 3.\n"
+      "vt 0 0\nvt 1 0 0\nvt 0.5 1\n vt 0.25 0.75\n"
+      "vn 0 0 1\r\nvn 0 1 0 \nvn\t1 0 0\n"
+      "usemtl a\nf 1/1/1 2/2/2 3/3/3\nf 1/1/1 -7/2/2 -6/3/3 4/4/1\nf\t5/1/2  6/2/2 7/3/3 \n f 8/1/3 9/2/3 1/3/3\r\n"
+      "g grp\nf 5//1 6//2 7//3\nf -9//1 -8//2 -7//-1\n"
+      "g plain\ns off\nf 1 2 3\r\nv 3 3 3\rv 4 4 4\rv 4 5 4\rf -1 -2 -3\nf 2 3 4\n";
+  const fs::path path = writeFile("lanes.obj", obj);
+  for (bool join : {true, false}) {
+    SCOPED_TRACE(join ? "joined" : "not joined");
+    testing::internal::CaptureStderr();
+    const Mesh lane = detail::loadObjFast(path, {.joinVertices = join}, true);
+    const Mesh tiny = detail::loadObjFast(path, {.joinVertices = join}, false);
+    testing::internal::GetCapturedStderr();
+    EXPECT_EQ(lane.triangleCount(), 10u);
+    expectSameMesh(lane, tiny, "tinyobjloader");
+  }
 }
 
 TEST(ImportOracle, PlyAsciiAndBinaryWithAndWithoutAttributes) {
