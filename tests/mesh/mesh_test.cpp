@@ -779,6 +779,7 @@ TEST(LoadMesh, DamagedPlyLayoutsAreOneLineErrors) {
   const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
                              "property float x\nproperty float y\nproperty float z\n";
   const std::string face = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string ascii = "ply\nformat ascii 1.0\n" + header.substr(header.find("element")) + face;
   const std::string vertices(36, '\0');
   const std::string triangle = std::string("\x03", 1) + std::string("\0\0\0\0\1\0\0\0\2\0\0\0", 12);
   const struct {
@@ -796,6 +797,9 @@ TEST(LoadMesh, DamagedPlyLayoutsAreOneLineErrors) {
       {"a list in the vertex element", "ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar float x\nend_header\n1 0\n",
        "list property outside the face element"},
       {"no end_header", header + face.substr(0, face.size() - 11), "no end_header"},
+      {"a NUL inside an ASCII line", ascii + std::string("0 0 0\n1 0 0\n0 1 0\n3 0 1\0 2\n", 27), "control character"},
+      {"two entries on one ASCII line", ascii + "0 0 0 1 0 0\n0 1 0\n3 0 1 2\n", "more values than its properties"},
+      {"an ASCII list length that is not a count", ascii + "0 0 0\n1 0 0\n0 1 0\n3x 0 1 2\n", "not a count"},
   };
   for (const auto& c : cases) {
     const fs::path path = writeFile("damaged.ply", c.text);
