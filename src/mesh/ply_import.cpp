@@ -105,6 +105,7 @@ Format checkLayout(std::string_view file, const std::string& name) {
   struct Property {
     std::size_t size = 0;       // of a value
     std::size_t countSize = 0;  // of a list's length; 0 for a scalar property
+    std::string_view name;
   };
   struct Element {
     std::string_view name;
@@ -144,14 +145,23 @@ Format checkLayout(std::string_view file, const std::string& name) {
     if (line->starts_with("comment ") || *line == "comment" || line->starts_with("obj_info ")) continue;
     const std::vector<std::string_view> w = words(*line);
     if (w.size() == 3 && w[0] == "element") {
+      // Each element once: the readers index elements by name, and Assimp frees what it
+      // never allocated on a file with two (found by fuzz/mesh.cpp).
+      if (std::any_of(elements.begin(), elements.end(), [&](const Element& e) { return e.name == w[1]; })) {
+        bad("a PLY element declared twice", *line);
+      }
       Element& e = elements.emplace_back();
       e.name = w[1];
       const auto [end, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
       if (ec != std::errc() || end != w[2].data() + w[2].size() || e.count > file.size()) {
         bad("a PLY element count the file cannot hold", *line);
       }
+    } else if (!w.empty() && w[0] == "property" && !elements.empty() &&
+               std::any_of(elements.back().properties.begin(), elements.back().properties.end(),
+                           [&](const Property& p) { return p.name == w.back(); })) {
+      bad("a PLY property declared twice in one element", *line);
     } else if (w.size() == 3 && w[0] == "property" && !elements.empty() && typeSize(w[1]) != 0) {
-      elements.back().properties.push_back({typeSize(w[1]), 0});
+      elements.back().properties.push_back({typeSize(w[1]), 0, w[2]});
     } else if (w.size() == 5 && w[0] == "property" && w[1] == "list" && !elements.empty() && typeSize(w[3]) != 0 &&
                typeSize(w[2]) != 0 && !w[2].starts_with("float") && w[2] != "double") {
       // Lists only where glint reads them (a face's vertex indices): Draco's reader reads
@@ -159,7 +169,7 @@ Format checkLayout(std::string_view file, const std::string& name) {
       if (elements.back().name != "face" && elements.back().name != "tristrips") {
         bad("a list property outside the face element", *line);
       }
-      elements.back().properties.push_back({typeSize(w[3]), typeSize(w[2])});
+      elements.back().properties.push_back({typeSize(w[3]), typeSize(w[2]), w[4]});
     } else {
       bad("a PLY header line that is not a comment, element, property or end_header", *line);
     }

@@ -797,6 +797,8 @@ TEST(LoadMesh, DamagedPlyLayoutsAreOneLineErrors) {
       {"a list in the vertex element", "ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar float x\nend_header\n1 0\n",
        "list property outside the face element"},
       {"no end_header", header + face.substr(0, face.size() - 11), "no end_header"},
+      {"an element declared twice", header + header.substr(header.find("element")) + face + vertices + vertices + triangle,
+       "declared twice"},
       {"a NUL inside an ASCII line", ascii + std::string("0 0 0\n1 0 0\n0 1 0\n3 0 1\0 2\n", 27), "control character"},
       {"two entries on one ASCII line", ascii + "0 0 0 1 0 0\n0 1 0\n3 0 1 2\n", "more values than its properties"},
       {"an ASCII list length that is not a count", ascii + "0 0 0\n1 0 0\n0 1 0\n3x 0 1 2\n", "not a count"},
