@@ -105,6 +105,7 @@ Format checkLayout(std::string_view file, const std::string& name) {
   struct Property {
     std::size_t size = 0;       // of a value
     std::size_t countSize = 0;  // of a list's length; 0 for a scalar property
+    bool signedCount = false;   // the length's type is char, short or int
     std::string_view name;
   };
   struct Element {
@@ -168,7 +169,7 @@ Format checkLayout(std::string_view file, const std::string& name) {
                            [&](const Property& p) { return p.name == w.back(); })) {
       bad("a PLY property declared twice in one element", *line);
     } else if (w.size() == 3 && w[0] == "property" && !elements.empty() && typeSize(w[1]) != 0) {
-      elements.back().properties.push_back({typeSize(w[1]), 0, w[2]});
+      elements.back().properties.push_back({typeSize(w[1]), 0, false, w[2]});
     } else if (w.size() == 5 && w[0] == "property" && w[1] == "list" && !elements.empty() && typeSize(w[3]) != 0 &&
                typeSize(w[2]) != 0 && !w[2].starts_with("float") && w[2] != "double") {
       // Lists only where glint reads them (a face's vertex indices): Draco's reader reads
@@ -176,7 +177,8 @@ Format checkLayout(std::string_view file, const std::string& name) {
       if (elements.back().name != "face" && elements.back().name != "tristrips") {
         bad("a list property outside the face element", *line);
       }
-      elements.back().properties.push_back({typeSize(w[3]), typeSize(w[2]), w[4]});
+      const bool signedCount = !w[2].starts_with('u');
+      elements.back().properties.push_back({typeSize(w[3]), typeSize(w[2]), signedCount, w[4]});
     } else {
       bad("a PLY header line that is not a comment, element, property or end_header", *line);
     }
@@ -236,12 +238,19 @@ Format checkLayout(std::string_view file, const std::string& name) {
     for (std::uint64_t entry = 0; entry < e.count; ++entry) {
       for (const Property& p : e.properties) {
         std::uint64_t values = 1;
-        if (p.countSize) {  // the length as both readers take it: unsigned, in the file's byte order
+        if (p.countSize) {  // the length in the file's byte order
           if (body.size() < p.countSize) shortBody();
           values = 0;
           for (std::size_t b = 0; b < p.countSize; ++b) {
             const std::size_t byte = format == Format::LittleEndian ? p.countSize - 1 - b : b;
             values = values << 8 | std::uint8_t(body[byte]);
+          }
+          // Draco reads a length unsigned, Assimp as its type says: a negative one is
+          // refused, so that both read the same (Assimp reserved 32 GB for a char -1;
+          // found by fuzz/mesh.cpp).
+          if (p.signedCount && (values >> (8 * p.countSize - 1)) != 0) {
+            fail(ErrorKind::Input, "cannot read mesh '{}': entry {} of PLY element '{}' has a negative list length", name,
+                 entry, printable(e.name));
           }
           body.remove_prefix(p.countSize);
         }
@@ -297,7 +306,9 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   if ((u != nullptr) != (v != nullptr)) throw Declined("a partial texture coordinate");
   const draco::PlyProperty* list = face->GetPropertyByName("vertex_indices");
   if (!list) list = face->GetPropertyByName("vertex_index");
-  if (!list || !list->is_list()) throw Declined("faces without vertex_indices");
+  // Not handed to Assimp either: it has no other name for them, and its reader
+  // misreads such faces' other lists (found by fuzz/mesh.cpp).
+  if (!list || !list->is_list()) fail(ErrorKind::Input, "cannot read mesh '{}': its PLY faces have no vertex_indices list", name);
   if (face->GetPropertyByName("texcoord")) throw Declined("per-face texture coordinates");
 
   const int vertexCount = vertex->num_entries();

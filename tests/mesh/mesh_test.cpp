@@ -801,6 +801,10 @@ TEST(LoadMesh, DamagedPlyLayoutsAreOneLineErrors) {
       {"no end_header", header + face.substr(0, face.size() - 11), "no end_header"},
       {"an element declared twice", header + header.substr(header.find("element")) + face + vertices + vertices + triangle,
        "declared twice"},
+      {"a negative list length", header + "element face 1\nproperty list char int vertex_indices\nend_header\n" + vertices +
+           "\xff" + triangle.substr(1), "negative list length"},
+      {"faces without vertex indices", header + "element face 1\nproperty list uchar int corners\nend_header\n" + vertices +
+           triangle, "no vertex_indices"},
       {"a NUL inside an ASCII line", ascii + std::string("0 0 0\n1 0 0\n0 1 0\n3 0 1\0 2\n", 27), "control character"},
       {"two entries on one ASCII line", ascii + "0 0 0 1 0 0\n0 1 0\n3 0 1 2\n", "more values than its properties"},
       {"an ASCII list length that is not a count", ascii + "0 0 0\n1 0 0\n0 1 0\n3x 0 1 2\n", "not a count"},
