@@ -261,7 +261,7 @@ void loading(Recorder& r, const fs::path& dir) {
     const std::string note = fmt::format("{} triangles; median of {}, alternating", triangles, kLoadRepeats);
     r.record({.group = group, .name = "Assimp", .value = mb / median(assimpRuns), .unit = "MB/s", .note = note});
     if (c.fast) {
-      r.record({.group = group, .name = path.extension() == ".obj" ? "glint (tinyobjloader, parallel)" : "glint (Draco PLY reader)",
+      r.record({.group = group, .name = path.extension() == ".obj" ? "glint (from_chars lane + tinyobjloader, parallel)" : "glint (Draco PLY reader)",
                 .value = mb / median(fastRuns), .unit = "MB/s", .ratioTo = "Assimp", .note = note});
     }
   }
