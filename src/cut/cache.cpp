@@ -6,6 +6,7 @@
 #include "glint/core/file.h"
 #include "glint/core/log.h"
 
+#include "binary.h"
 #include "pieces.h"
 
 #include <chrono>
@@ -27,50 +28,6 @@ std::uint64_t mix(std::uint64_t h, std::uint64_t value) {
   }
   return h;
 }
-
-template <typename T>
-void put(std::string& out, const T& v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-template <typename T>
-void putArray(std::string& out, const std::vector<T>& v) {
-  put(out, std::uint64_t(v.size()));
-  out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-}
-
-class Reader {
-public:
-  Reader(std::string data, fs::path path) : m_data(std::move(data)), m_path(std::move(path)) {}
-  template <typename T>
-  T get() {
-    need(sizeof(T));
-    T v;
-    std::memcpy(&v, m_data.data() + m_pos, sizeof(T));
-    m_pos += sizeof(T);
-    return v;
-  }
-  template <typename T>
-  std::vector<T> getArray() {
-    const auto n = get<std::uint64_t>();
-    if (n > (m_data.size() - m_pos) / sizeof(T)) bad("truncated");
-    std::vector<T> v(n);
-    std::memcpy(v.data(), m_data.data() + m_pos, n * sizeof(T));
-    m_pos += n * sizeof(T);
-    return v;
-  }
-  bool atEnd() const { return m_pos == m_data.size(); }
-  [[noreturn]] void bad(std::string_view why) const {
-    fail(ErrorKind::Input, "'{}' is not a usable cut: {}", m_path.string(), why);
-  }
-
-private:
-  void need(std::size_t n) const {
-    if (n > m_data.size() - m_pos) bad("truncated");
-  }
-  std::string m_data;
-  fs::path m_path;
-  std::size_t m_pos = 0;
-};
 
 }  // namespace
 
@@ -95,15 +52,16 @@ std::uint64_t cutCacheKey(const Mesh& scene, const std::vector<Light>& lights) {
 namespace {
 /// The file's bytes, written straight to `path` (the caller makes it atomic).
 void writeCutFile(const CutTriangles& t, std::uint64_t key, const fs::path& path) {
-  std::string out;
-  out.append(kMagic, sizeof(kMagic));
-  put(out, kFormatVersion);
-  put(out, key);
-  putArray(out, t.positions);
-  putArray(out, t.indices);
-  putArray(out, t.trianglePolygon);
-  putArray(out, t.polygonSource);
-  putArray(out, t.polygonMask);
+  detail::BinaryWriter w;
+  for (char c : kMagic) w.pod(c);
+  w.pod(kFormatVersion);
+  w.pod(key);
+  w.array(t.positions);
+  w.array(t.indices);
+  w.array(t.trianglePolygon);
+  w.array(t.polygonSource);
+  w.array(t.polygonMask);
+  const std::string& out = w.data();
   std::ofstream file(path, std::ios::binary);
   file.write(out.data(), std::streamsize(out.size()));
   file.close();
@@ -116,19 +74,19 @@ void saveCutTriangles(const CutTriangles& t, std::uint64_t key, const fs::path& 
 }
 
 CutTriangles loadCutTriangles(const fs::path& path, std::uint64_t expectedKey) {
-  Reader r(readTextFile(path), path);
+  detail::BinaryReader r(readTextFile(path), fmt::format("'{}' is not a usable cut", path.string()));
   char magic[sizeof(kMagic)];
-  for (char& c : magic) c = r.get<char>();
+  for (char& c : magic) c = r.pod<char>();
   if (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) r.bad("not a glint cut file");
-  if (r.get<std::uint32_t>() != kFormatVersion) r.bad("written by another version of glint");
-  const auto key = r.get<std::uint64_t>();
+  if (r.pod<std::uint32_t>() != kFormatVersion) r.bad("written by another version of glint");
+  const auto key = r.pod<std::uint64_t>();
   if (expectedKey != 0 && key != expectedKey) r.bad("the cut of another scene");
   CutTriangles t;
-  t.positions = r.getArray<vec3>();
-  t.indices = r.getArray<std::uint32_t>();
-  t.trianglePolygon = r.getArray<std::uint32_t>();
-  t.polygonSource = r.getArray<std::uint32_t>();
-  t.polygonMask = r.getArray<LightMask>();
+  t.positions = r.array<vec3>();
+  t.indices = r.array<std::uint32_t>();
+  t.trianglePolygon = r.array<std::uint32_t>();
+  t.polygonSource = r.array<std::uint32_t>();
+  t.polygonMask = r.array<LightMask>();
   if (!r.atEnd()) r.bad("trailing bytes");
   if (t.indices.size() != 3 * t.trianglePolygon.size()) r.bad("index and triangle counts disagree");
   if (t.polygonSource.size() != t.polygonMask.size()) r.bad("polygon counts disagree");

@@ -4,6 +4,7 @@
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 
+#include "binary.h"
 #include "pieces.h"
 
 #include <algorithm>
@@ -18,67 +19,8 @@ namespace {
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'U', 'T'};
 constexpr std::uint32_t kVersion = 1;
 
-class Writer {
-public:
-  template <typename T>
-  void pod(const T& v) {
-    const auto* p = reinterpret_cast<const char*>(&v);
-    m_data.insert(m_data.end(), p, p + sizeof(T));
-  }
-  template <typename T>
-  void array(const std::vector<T>& v) {
-    pod(std::uint64_t(v.size()));
-    const auto* p = reinterpret_cast<const char*>(v.data());
-    m_data.insert(m_data.end(), p, p + v.size() * sizeof(T));
-  }
-  void string(const std::string& s) {
-    pod(std::uint64_t(s.size()));
-    m_data.insert(m_data.end(), s.begin(), s.end());
-  }
-  const std::vector<char>& data() const { return m_data; }
-
-private:
-  std::vector<char> m_data;
-};
-
-class Reader {
-public:
-  Reader(std::vector<char> data, std::string name) : m_data(std::move(data)), m_name(std::move(name)) {}
-  template <typename T>
-  T pod() {
-    need(sizeof(T));
-    T v;
-    std::memcpy(&v, m_data.data() + m_pos, sizeof(T));
-    m_pos += sizeof(T);
-    return v;
-  }
-  template <typename T>
-  std::vector<T> array() {
-    const auto n = pod<std::uint64_t>();
-    if (n > (m_data.size() - m_pos) / sizeof(T)) truncated();
-    std::vector<T> v(n);
-    if (n > 0) std::memcpy(v.data(), m_data.data() + m_pos, n * sizeof(T));  // an empty vector's data() may be null
-    m_pos += n * sizeof(T);
-    return v;
-  }
-  std::string string() {
-    const auto n = pod<std::uint64_t>();
-    need(n);
-    std::string s(m_data.data() + m_pos, n);
-    m_pos += n;
-    return s;
-  }
-  bool atEnd() const { return m_pos == m_data.size(); }
-  [[noreturn]] void truncated() const { fail(ErrorKind::Input, "'{}' is truncated or corrupt", m_name); }
-
-private:
-  void need(std::size_t n) const {
-    if (n > m_data.size() - m_pos) truncated();
-  }
-  std::vector<char> m_data;
-  std::string m_name;
-  std::size_t m_pos = 0;
-};
+using Writer = detail::BinaryWriter;
+using Reader = detail::BinaryReader;
 
 void writeStats(Writer& w, const CutStats& s) {
   for (std::uint64_t v : {s.inputTriangles, s.receivers, s.degenerateTriangles, s.collapsedTriangles, s.candidates,
@@ -104,7 +46,7 @@ CutStats readStats(Reader& r) {
   s.prepareSeconds = r.pod<double>();
   s.cutSeconds = r.pod<double>();
   const auto n = r.pod<std::uint64_t>();
-  if (n > std::uint64_t(kMaxLights)) r.truncated();
+  if (n > std::uint64_t(kMaxLights)) r.bad("truncated or corrupt");
   s.lights.resize(n);
   for (LightStats& l : s.lights) {
     l.name = r.string();
@@ -154,8 +96,8 @@ void saveShard(const Shard& shard, const std::filesystem::path& path) {
 Shard loadShard(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(ErrorKind::Input, "cannot read '{}'", path.string());
-  std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Reader r(std::move(data), path.string());
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Reader r(std::move(data), fmt::format("'{}' is not a usable cut shard", path.string()));
   char magic[8];
   for (char& c : magic) c = r.pod<char>();
   if (std::memcmp(magic, kMagic, 8) != 0) fail(ErrorKind::Input, "'{}' is not a glint cut shard", path.string());
@@ -164,9 +106,9 @@ Shard loadShard(const std::filesystem::path& path) {
   s.inputHash = r.pod<std::uint64_t>();
   s.shardIndex = r.pod<std::int32_t>();
   s.shardCount = r.pod<std::int32_t>();
-  if (s.shardCount < 1 || s.shardIndex < 0 || s.shardIndex >= s.shardCount) r.truncated();
+  if (s.shardCount < 1 || s.shardIndex < 0 || s.shardIndex >= s.shardCount) r.bad("truncated or corrupt");
   const auto lights = r.pod<std::uint64_t>();
-  if (lights == 0 || lights > std::uint64_t(kMaxLights)) r.truncated();
+  if (lights == 0 || lights > std::uint64_t(kMaxLights)) r.bad("truncated or corrupt");
   s.lights.resize(lights);
   for (Light& l : s.lights) {
     l.position = r.pod<vec3>();
@@ -174,11 +116,11 @@ Shard loadShard(const std::filesystem::path& path) {
   }
   s.stats = readStats(r);
   const auto warnings = r.pod<std::uint64_t>();
-  if (warnings > 1000) r.truncated();
+  if (warnings > 1000) r.bad("truncated or corrupt");
   for (std::uint64_t i = 0; i < warnings; ++i) s.warnings.push_back(r.string());
   s.pieces = std::make_shared<Shard::Impl>();
   const auto blocks = r.pod<std::uint64_t>();
-  if (blocks > (std::uint64_t(1) << 32)) r.truncated();
+  if (blocks > (std::uint64_t(1) << 32)) r.bad("truncated or corrupt");
   for (std::uint64_t i = 0; i < blocks; ++i) {
     PieceBlock b;
     b.receiver = r.array<std::uint32_t>();
@@ -207,10 +149,10 @@ Shard loadShard(const std::filesystem::path& path) {
           ok = b.corners[c] < b.vertexStart[e + 1] - b.vertexStart[e];
       }
     }
-    if (!ok) r.truncated();
+    if (!ok) r.bad("truncated or corrupt");
     s.pieces->blocks.push_back(std::move(b));
   }
-  if (!r.atEnd()) r.truncated();
+  if (!r.atEnd()) r.bad("truncated or corrupt");
   return s;
 }
 
