@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/files.h"
+
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -27,29 +29,13 @@ using namespace glint;
 
 namespace {
 
-fs::path outDir() {
-  const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "mesh-oracle";
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path outDir() { return glint::testing::testOutputDir("mesh-oracle"); }
 
 fs::path writeFile(const std::string& name, const std::string& contents) {
-  const fs::path path = outDir() / name;
-  std::ofstream out(path, std::ios::binary);
-  out << contents;
-  return path;
+  return glint::testing::writeTestFile(outDir(), name, contents);
 }
 
-template <typename F>
-Error captureError(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no glint::Error thrown";
-  return Error(ErrorKind::Internal, "");
-}
+using glint::testing::captureError;
 
 bool near(float a, float b, float relative) {
   return std::fabs(a - b) <= relative * std::max(1.0f, std::max(std::fabs(a), std::fabs(b)));
@@ -94,12 +80,12 @@ Mesh expectSameAsAssimp(const fs::path& path) {
   Mesh fastJoined;
   for (bool join : {true, false}) {
     SCOPED_TRACE(path.filename().string() + (join ? " joined" : " not joined"));
-    testing::internal::CaptureStderr();
+    ::testing::internal::CaptureStderr();
     const Mesh fast = loadMesh(path, {.joinVertices = join, .parser = MeshParser::Fast});
-    const std::string fastLog = testing::internal::GetCapturedStderr();
-    testing::internal::CaptureStderr();
+    const std::string fastLog = ::testing::internal::GetCapturedStderr();
+    ::testing::internal::CaptureStderr();
     const Mesh assimp = loadMesh(path, {.joinVertices = join, .parser = MeshParser::Assimp});
-    const std::string assimpLog = testing::internal::GetCapturedStderr();
+    const std::string assimpLog = ::testing::internal::GetCapturedStderr();
     EXPECT_EQ(fastLog, assimpLog) << "the same warning (or none)";
     expectSameMesh(fast, assimp, "Assimp");
     if (join) fastJoined = fast;
@@ -329,10 +315,10 @@ TEST(ImportOracle, ObjFastLaneReadsEveryLineAsTinyObjLoaderDoes) {
   const fs::path path = writeFile("lanes.obj", obj);
   for (bool join : {true, false}) {
     SCOPED_TRACE(join ? "joined" : "not joined");
-    testing::internal::CaptureStderr();
+    ::testing::internal::CaptureStderr();
     const Mesh lane = detail::loadObjFast(path, {.joinVertices = join}, true);
     const Mesh tiny = detail::loadObjFast(path, {.joinVertices = join}, false);
-    testing::internal::GetCapturedStderr();
+    ::testing::internal::GetCapturedStderr();
     EXPECT_EQ(lane.triangleCount(), 10u);
     expectSameMesh(lane, tiny, "tinyobjloader");
   }
@@ -376,9 +362,9 @@ TEST(ImportOracle, PlyWithoutNormalsGetsSmoothNormalsBothWays) {
                           "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n";
   const fs::path path = writeFile("octahedron.ply", ply);
   for (MeshParser parser : {MeshParser::Fast, MeshParser::Assimp}) {
-    testing::internal::CaptureStderr();
+    ::testing::internal::CaptureStderr();
     const Mesh m = loadMesh(path, {.parser = parser});
-    EXPECT_NE(testing::internal::GetCapturedStderr().find("no normals"), std::string::npos);
+    EXPECT_NE(::testing::internal::GetCapturedStderr().find("no normals"), std::string::npos);
     ASSERT_EQ(m.vertexCount(), 6u);
     for (std::size_t i = 0; i < 6; ++i) EXPECT_GT(glm::dot(m.normals[i], m.positions[i]), 1.0f - 1e-6f) << i;
   }

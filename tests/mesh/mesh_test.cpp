@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/files.h"
+
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -170,16 +172,7 @@ Mesh oneTriangle() {
   return m;
 }
 
-template <typename F>
-Error captureError(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no glint::Error thrown";
-  return Error(ErrorKind::Internal, "");
-}
+using glint::testing::captureError;
 
 }  // namespace
 
@@ -568,17 +561,10 @@ TEST(Generators, RejectDegenerateTessellations) {
 
 namespace {
 
-fs::path outDir() {
-  const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "mesh";
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path outDir() { return glint::testing::testOutputDir("mesh"); }
 
 fs::path writeFile(const std::string& name, const std::string& contents) {
-  const fs::path path = outDir() / name;
-  std::ofstream out(path, std::ios::binary);
-  out << contents;
-  return path;
+  return glint::testing::writeTestFile(outDir(), name, contents);
 }
 
 std::string base64(const std::vector<unsigned char>& bytes) {
@@ -614,9 +600,9 @@ TEST(LoadMesh, ObjQuadWithNormalsIsTriangulated) {
                                   "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
                                   "vn 0 0 1\n"
                                   "f 1/1/1 2/2/1 3/3/1 4/4/1\n");
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   const Mesh m = loadMesh(path);
-  EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << "normals were present: no warning";
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << "normals were present: no warning";
   EXPECT_EQ(m.triangleCount(), 2u);
   EXPECT_EQ(m.vertexCount(), 4u) << "identical corners are joined";
   EXPECT_NEAR(surfaceArea(m), 2.0, 1e-6);
@@ -636,9 +622,9 @@ TEST(LoadMesh, ObjWithoutNormalsGetsSmoothNormalsAndAWarning) {
                                   "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
                                   "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\n"
                                   "f 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n");
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   const Mesh m = loadMesh(path);
-  const std::string log = testing::internal::GetCapturedStderr();
+  const std::string log = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(log.find("warning:"), std::string::npos) << log;
   EXPECT_NE(log.find("no normals"), std::string::npos) << log;
   EXPECT_EQ(m.vertexCount(), 6u);
@@ -656,9 +642,9 @@ TEST(LoadMesh, ObjCubeOfQuadsIsClosedAfterTriangulation) {
                                   "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
                                   "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
                                   "f 5 6 7 8\nf 2 1 4 3\nf 6 2 3 7\nf 1 5 8 4\nf 8 7 3 4\nf 1 2 6 5\n");
-  testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStderr();
   const Mesh m = loadMesh(path);
-  testing::internal::GetCapturedStderr();
+  ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(m.triangleCount(), 12u);
   EXPECT_EQ(m.vertexCount(), 8u);
   EXPECT_NEAR(signedVolume(m), 8.0, 1e-5);
