@@ -17,6 +17,7 @@
 //   - the ball's vertex shader against stretchVertex (transform feedback).
 // A small stage (detail 1: ~11k input triangles, ~80k cut) keeps it quick on llvmpipe; the
 // cut is cached in the build tree like the scene's.
+#include "support/depth_rays.h"
 #include "support/gl_test.h"
 
 #include "glint/gl/render_target.h"
@@ -132,22 +133,11 @@ public:
   std::vector<std::vector<Truth>> classify(const Image& depth, const render::Camera& cam, std::size_t& dynamicOnly,
                                            std::vector<bool>* surface = nullptr) const {
     const InstrumentMachine& m = stage().machine;
-    const mat4 inverse = glm::inverse(cam.viewProjection());
     const int w = depth.width(), h = depth.height();
-    std::vector<raytrace::Ray> primary;
-    std::vector<std::size_t> where;
-    std::vector<vec3> positions;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        const float d = depth.at(x, y, 0);
-        if (d >= 1.0f) continue;
-        const vec4 ndc{(float(x) + 0.5f) / float(w) * 2.0f - 1.0f, (float(h - 1 - y) + 0.5f) / float(h) * 2.0f - 1.0f,
-                       2.0f * d - 1.0f, 1.0f};
-        const vec4 p = inverse * ndc;
-        positions.push_back(vec3(p) / p.w);
-        where.push_back(std::size_t(y * w + x));
-        primary.push_back({.origin = cam.position, .direction = positions.back() - cam.position, .tfar = 2.0f});
-      }
+    const glint::testing::DepthSamples samples = glint::testing::depthSamples(depth, cam.viewProjection(), cam.position);
+    const std::vector<vec3>& positions = samples.positions;
+    const std::vector<std::size_t>& where = samples.pixels;
+    const std::vector<raytrace::Ray>& primary = samples.primary;
     const auto hits = m_all->intersectBatch(primary);
     std::vector<std::vector<Truth>> truth(m.lights.size(), std::vector<Truth>(std::size_t(w * h), Truth::Excluded));
     if (surface) {

@@ -21,6 +21,7 @@
 // as `glint render` does, with the scenes' own cameras, sizes, times and options) and
 // check their colours where the ray tracer says lit or shadowed: no false shadow (acne)
 // on lit surfaces, and the seed's compositing opacities in shadow.
+#include "support/depth_rays.h"
 #include "support/gl_test.h"
 
 #include "glint/gl/render_target.h"
@@ -78,25 +79,13 @@ public:
 
   /// `onlyObject`: compare only pixels showing this object (planar shadows: the ground).
   std::vector<Truth> classify(const Image& depth, const Camera& camera, int onlyObject = -1) const {
-    const mat4 inverse = glm::inverse(camera.viewProjection());
     const int w = depth.width(), h = depth.height();
     std::vector<Truth> truth(std::size_t(w * h), Truth::Excluded);
-    std::vector<raytrace::Ray> primary, shadow;
-    std::vector<std::size_t> where;
-    std::vector<vec3> positions;
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        const float d = depth.at(x, y, 0);
-        if (d >= 1.0f) continue;  // background
-        // Pixel centre in NDC; image row 0 is the top, GL's window row h − 1.
-        const vec4 ndc{(float(x) + 0.5f) / float(w) * 2.0f - 1.0f, (float(h - 1 - y) + 0.5f) / float(h) * 2.0f - 1.0f,
-                       2.0f * d - 1.0f, 1.0f};
-        const vec4 p = inverse * ndc;
-        positions.push_back(vec3(p) / p.w);
-        where.push_back(std::size_t(y * w + x));
-        primary.push_back({.origin = camera.position, .direction = positions.back() - camera.position, .tfar = 2.0f});
-      }
-    }
+    const glint::testing::DepthSamples samples = glint::testing::depthSamples(depth, camera.viewProjection(), camera.position);
+    const std::vector<vec3>& positions = samples.positions;
+    const std::vector<std::size_t>& where = samples.pixels;
+    const std::vector<raytrace::Ray>& primary = samples.primary;
+    std::vector<raytrace::Ray> shadow;
     const auto hits = m_scene->intersectBatch(primary);
     std::vector<std::size_t> shadowOf;
     for (std::size_t i = 0; i < hits.size(); ++i) {
