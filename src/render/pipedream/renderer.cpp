@@ -31,6 +31,23 @@ constexpr float kMarkerRadius = 0.12f;
 // cap) never z-fight with themselves (render/shadows/stencil_shadows.h).
 constexpr float kOffsetFactor = 1.0f, kOffsetUnits = 4.0f;
 
+/// Z-fail volume counting in one draw (two-sided stencil): back faces increment where
+/// depth fails, front faces decrement; colour and depth untouched, only `writeMask`'s
+/// stencil bits written.
+PipelineState zFailCounting(GLuint writeMask) {
+  PipelineState state{.depthTest = true,
+                      .depthWrite = false,
+                      .colorMask = {false, false, false, false},
+                      .polygonOffset = true,
+                      .offsetFactor = kOffsetFactor,
+                      .offsetUnits = kOffsetUnits};
+  state.stencil.enabled = true;
+  state.stencil.separate = true;
+  state.stencil.front = {.writeMask = writeMask, .dpfail = GL_DECR_WRAP};
+  state.stencil.back = {.writeMask = writeMask, .dpfail = GL_INCR_WRAP};
+  return state;
+}
+
 mat3 normalMatrix(const mat4& model) { return glm::transpose(glm::inverse(mat3(model))); }
 
 float maxScale(const mat4& model) {
@@ -367,19 +384,8 @@ bool Renderer::countVolumes(int light) {
   m_compositeFbo.bind();
   glViewport(0, 0, m_size.x, m_size.y);
   const StencilLayout layout = stencilLayout();
-  // Z-fail in one draw (two-sided stencil): back faces increment where depth fails, front
-  // faces decrement; only the count bits are written, so earlier lights' markers stay.
-  PipelineState state{.depthTest = true,
-                      .depthWrite = false,
-                      .colorMask = {false, false, false, false},
-                      .polygonOffset = true,
-                      .offsetFactor = kOffsetFactor,
-                      .offsetUnits = kOffsetUnits};
-  state.stencil.enabled = true;
-  state.stencil.separate = true;
-  state.stencil.front = {.writeMask = layout.countMask(), .dpfail = GL_DECR_WRAP};
-  state.stencil.back = {.writeMask = layout.countMask(), .dpfail = GL_INCR_WRAP};
-  state.apply();
+  // Only the count bits are written, so earlier lights' markers stay.
+  zFailCounting(layout.countMask()).apply();
   const bool any = drawVolumesOf(light, false);
   if (any) ++m_stats.lightsWithShadows;
   return any;
@@ -491,17 +497,7 @@ void Renderer::renderNaive() {
   drawMarkers();
   for (int light = 0; light < m_lights; ++light) {
     render::clear(GL_STENCIL_BUFFER_BIT);
-    PipelineState state{.depthTest = true,
-                        .depthWrite = false,
-                        .colorMask = {false, false, false, false},
-                        .polygonOffset = true,
-                        .offsetFactor = kOffsetFactor,
-                        .offsetUnits = kOffsetUnits};
-    state.stencil.enabled = true;
-    state.stencil.separate = true;
-    state.stencil.front = {.dpfail = GL_DECR_WRAP};
-    state.stencil.back = {.dpfail = GL_INCR_WRAP};
-    state.apply();
+    zFailCounting(0xFF).apply();
     drawVolumesOf(light, true);
     ++m_stats.lightsWithShadows;
     // This light added where the stencil says nothing is in between: same vertices, GL_EQUAL.
