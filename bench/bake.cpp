@@ -40,15 +40,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-/// CPU seconds of this process, all threads: rates per CPU second do not depend on what
-/// else the machine is running.
-double processCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 double peakRssMiB() {
   rusage usage{};
@@ -87,16 +78,11 @@ std::string shellQuote(const fs::path& p) {
 
 constexpr int kWholeRunRepeats = 5, kPeerRepeats = 3, kThroughputRepeats = 3, kLoadRepeats = 3;
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
 /// Runs a command line, returns wall seconds, or a negative value when it failed.
 double timeCommand(const std::string& command) {
   const auto start = Clock::now();
   const int status = std::system(command.c_str());
-  return status == 0 ? since(start) : -1.0;
+  return status == 0 ? secondsSince(start) : -1.0;
 }
 
 bool blenderAvailable() { return std::system("command -v blender >/dev/null 2>&1") == 0; }
@@ -254,7 +240,7 @@ void loading(Recorder& r, const fs::path& dir) {
         if (parser == MeshParser::Auto && !c.fast) continue;
         const auto start = Clock::now();
         const Mesh m = loadMesh(path, {.joinVertices = c.join, .parser = parser});
-        (parser == MeshParser::Assimp ? assimpRuns : fastRuns).push_back(since(start));
+        (parser == MeshParser::Assimp ? assimpRuns : fastRuns).push_back(secondsSince(start));
         triangles = m.triangleCount();
       }
     }
@@ -276,7 +262,7 @@ void bigBake(Recorder& r) {
   const auto start = Clock::now();
   const double cpuStart = processCpuSeconds();
   const auto result = bake::bake(low, high, options);
-  const double seconds = since(start), cpu = processCpuSeconds() - cpuStart;
+  const double seconds = secondsSince(start), cpu = processCpuSeconds() - cpuStart;
   const auto& s = result.stats;
   r.record({.group = group, .name = "bake (target ≤ 20)", .value = seconds, .unit = "s",
             .note = fmt::format("{} triangles; prepare {:.2f} s, trace {:.2f} s, dilate {:.2f} s", high.triangleCount(),
@@ -347,7 +333,7 @@ void throughput(Recorder& r, const Mesh& low, const Mesh& high, int size, int sa
     const auto start = Clock::now();
     const double cpuStart = processCpuSeconds();
     plainRun();
-    plainWall.push_back(double(rays.size()) / since(start) / 1e6);
+    plainWall.push_back(double(rays.size()) / secondsSince(start) / 1e6);
     plainCpu.push_back(double(rays.size()) / (processCpuSeconds() - cpuStart) / 1e6);
   }
   rtcReleaseScene(scene);
@@ -371,7 +357,7 @@ void scaling(Recorder& r) {
     const bake::BakeOptions options = bakeOptions(1024, 4);
     const auto start = Clock::now();
     const auto result = bake::bake(low, high, options);
-    const double seconds = since(start);
+    const double seconds = secondsSince(start);
     const std::string group = fmt::format("d: {}k triangles", (high.triangleCount() + 500) / 1000);
     r.record({.group = group, .name = "bake 1024² 4 spp", .value = seconds, .unit = "s",
               .note = fmt::format("prepare (BVH) {:.2f} s, trace {:.2f} s", result.stats.prepareSeconds,

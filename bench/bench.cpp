@@ -8,6 +8,8 @@
 #include <chrono>
 
 #include <cmath>
+#include <ctime>
+#include <fstream>
 #include <limits>
 
 namespace glint::bench {
@@ -37,6 +39,28 @@ Suites& Suites::builtin() {
   return suites;
 }
 
+double median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + long(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double processCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+double loadAverage() {
+  std::ifstream in("/proc/loadavg");
+  double load = 0.0;
+  in >> load;
+  return load;
+}
+
 double wallMs(const std::function<void()>& work, int repeats) {
   work();
   glFinish();
@@ -47,8 +71,7 @@ double wallMs(const std::function<void()>& work, int repeats) {
     glFinish();
     times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
-  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
-  return times[times.size() / 2];
+  return median(std::move(times));
 }
 
 void Recorder::record(Measurement m) { m_rows.push_back(std::move(m)); }

@@ -31,13 +31,6 @@ namespace glint::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-double processCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 /// Peak resident memory since the last resetPeak() (Linux: VmHWM, reset through
 /// /proc/self/clear_refs), so each run reports its own peak, not the process's so far.
@@ -57,14 +50,6 @@ double peakRssMiB() {
   return double(usage.ru_maxrss) / 1024.0;
 }
 
-/// The 1-minute load average: how busy the (shared) machine was.
-double loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  double load = 0.0;
-  in >> load;
-  return load;
-}
-
 struct Run {
   double seconds = 0.0, cpuSeconds = 0.0, load = 0.0, peakMiB = 0.0;
   cut::CutResult result;
@@ -78,7 +63,7 @@ Run runCut(const Mesh& stage, const std::vector<cut::Light>& lights) {
   const double cpu = processCpuSeconds();
   const auto start = Clock::now();
   run.result = cut::cut(stage, options);
-  run.seconds = since(start);
+  run.seconds = secondsSince(start);
   run.cpuSeconds = processCpuSeconds() - cpu;
   run.load = loadAverage();
   run.peakMiB = peakRssMiB();  // the scene, the cut and its result

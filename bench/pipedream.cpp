@@ -36,18 +36,6 @@ int envInt(const char* name, int fallback) {
   return v && *v ? std::max(1, std::atoi(v)) : fallback;
 }
 
-double loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  double load = 0.0;
-  in >> load;
-  return load;
-}
-
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
 void runView(Recorder& recorder, rp::Renderer& renderer, const gl::RenderTarget& target, const rp::MachinePose& pose,
              const render::Camera& camera, const std::string& group, int runs) {
   const ivec2 size = target.size();

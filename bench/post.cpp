@@ -41,11 +41,6 @@ double msOf(const std::function<void()>& work, bool gl) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
 // Medians of `rounds` alternating runs of the GPU work (with glFinish) and the peer's, after
 // one warm-up of each: both see the same machine state (clocks, other load).
 std::pair<double, double> alternating(const std::function<void()>& gpu, const std::function<void()>& peer, int rounds) {

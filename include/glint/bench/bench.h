@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -62,6 +63,18 @@ public:
 private:
   std::vector<Suite> m_suites;
 };
+
+// Measuring, for the suites.
+
+/// The middle value (the upper of the two middle ones for an even count); `values` not empty.
+double median(std::vector<double> values);
+/// Seconds of wall clock since `start`.
+double secondsSince(std::chrono::steady_clock::time_point start);
+/// CPU seconds of this process, all threads: a rate per CPU second does not depend on what
+/// else the machine is running.
+double processCpuSeconds();
+/// The 1-minute load average (/proc/loadavg): how busy the machine was, for the notes.
+double loadAverage();
 
 /// Median wall-clock milliseconds of one run of `work`, each run followed by glFinish (what
 /// an application waits for), after one untimed warm-up run (shader compilation, uploads).
