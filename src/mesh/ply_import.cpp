@@ -183,6 +183,29 @@ Format checkLayout(std::string_view file, const std::string& name) {
       bad("a PLY header line that is not a comment, element, property or end_header", *line);
     }
   }
+  // What both readers need to make triangles: vertices with x, y and z, and faces (or
+  // triangle strips) with a vertex_indices list. Anything else is refused here, not
+  // handed to Assimp, whose reader misreads such files (a 32 GB allocation for a
+  // big-endian file with other element names; found by fuzz/mesh.cpp).
+  const auto element = [&](std::string_view n) -> const Element* {
+    for (const Element& e : elements) {
+      if (e.name == n) return &e;
+    }
+    return nullptr;
+  };
+  const auto has = [](const Element* e, std::string_view n, bool list) {
+    return e && std::any_of(e->properties.begin(), e->properties.end(),
+                            [&](const Property& p) { return p.name == n && (p.countSize != 0) == list; });
+  };
+  const Element* vertex = element("vertex");
+  if (!has(vertex, "x", false) || !has(vertex, "y", false) || !has(vertex, "z", false)) {
+    fail(ErrorKind::Input, "cannot read mesh '{}': the PLY has no vertex element with x, y and z", name);
+  }
+  const Element* faces = element("face");
+  const Element* strips = element("tristrips");
+  if (!has(faces, "vertex_indices", true) && !has(faces, "vertex_index", true) && !has(strips, "vertex_indices", true)) {
+    fail(ErrorKind::Input, "cannot read mesh '{}': the PLY has no face element with a vertex_indices list", name);
+  }
   std::string_view body = file.substr(at);
   for (const Element& e : elements) {
     if (e.count > 0 && e.properties.empty()) {

@@ -790,7 +790,11 @@ TEST(LoadMesh, DamagedPlyLayoutsAreOneLineErrors) {
       {"a negative list length", header + "element face 1\nproperty list char int vertex_indices\nend_header\n" + vertices +
            "\xff" + triangle.substr(1), "negative list length"},
       {"faces without vertex indices", header + "element face 1\nproperty list uchar int corners\nend_header\n" + vertices +
-           triangle, "no vertex_indices"},
+           triangle, "no face element with a vertex_indices list"},
+      {"a big-endian file without a vertex element",
+       "ply\nformat binary_big_endian 1.0\nelement point 3\nproperty float x\nproperty float y\nproperty float z\n" + face +
+           vertices + triangle,
+       "no vertex element with x, y and z"},
       {"a NUL inside an ASCII line", ascii + std::string("0 0 0\n1 0 0\n0 1 0\n3 0 1\0 2\n", 27), "control character"},
       {"two entries on one ASCII line", ascii + "0 0 0 1 0 0\n0 1 0\n3 0 1 2\n", "more values than its properties"},
       {"an ASCII list length that is not a count", ascii + "0 0 0\n1 0 0\n0 1 0\n3x 0 1 2\n", "not a count"},
