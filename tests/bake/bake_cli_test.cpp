@@ -56,7 +56,7 @@ void writeSpheres(const fs::path& d) {
   writeObj(makeUvSphere(1.0f, 64, 32), d / "high.obj");
 }
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+constexpr auto q = glint::testing::shellQuote;  // a path as one shell word
 
 }  // namespace
 

@@ -30,7 +30,7 @@ using glint::testing::runGlint;
 namespace {
 
 fs::path dir(const char* name) { return glint::testing::freshDir("cut-cli", name); }
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+constexpr auto q = glint::testing::shellQuote;  // a path as one shell word
 
 /// OBJ with normals (so loading it warns about nothing).
 void writeObj(const Mesh& m, const fs::path& path) {

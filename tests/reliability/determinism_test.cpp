@@ -21,7 +21,7 @@ using glint::testing::runGlint;
 
 namespace {
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+constexpr auto q = glint::testing::shellQuote;  // a path as one shell word
 
 constexpr int kThreads[] = {1, 2, 8};
 

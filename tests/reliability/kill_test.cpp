@@ -128,7 +128,7 @@ void killRepeatedly(const Job& job, int rounds, unsigned seed) {
 constexpr int kRounds = 12;
 constexpr unsigned kSeed = 20261123;
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+constexpr auto q = glint::testing::shellQuote;  // a path as one shell word
 
 }  // namespace
 

@@ -18,7 +18,7 @@ using glint::testing::oneLine;
 using glint::testing::runGlint;
 
 namespace {
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+constexpr auto q = glint::testing::shellQuote;  // a path as one shell word
 }  // namespace
 
 TEST(MaxMemory, BakeTooBigForTheLimitIsRefusedBeforeItStarts) {

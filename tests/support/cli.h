@@ -55,6 +55,13 @@ inline std::string readBytes(const std::filesystem::path& path) {
   return bytes.str();
 }
 
+/// `p` as one shell word: in single quotes, any single quote in it closed, escaped and reopened.
+inline std::string shellQuote(const std::filesystem::path& p) {
+  std::string out = "'";
+  for (char c : p.string()) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 /// glint's errors are exactly one line.
 inline bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
 
