@@ -97,10 +97,12 @@ std::string_view nextWord(std::string_view& text) {
   return word;
 }
 
-/// Checks a PLY file's header against the format's grammar, strictly (one space between
-/// words, known keywords and types only, counts that fit), and its body against the header:
-/// the body is walked (every list length read) and must hold every element. Whatever passes, Draco's and Assimp's readers
-/// see the same elements glint saw and stay inside the file. Fails with a one-line error.
+/// Checks a PLY file's header against the format's grammar, strictly (printable text, one
+/// space between words, known keywords and types only, each element and property once,
+/// counts that fit, a vertex and a face element glint can read), and its body against the
+/// header: the body is walked (every list length read) and must hold every element.
+/// Whatever passes, Draco's and Assimp's readers see the same elements glint saw and stay
+/// inside the file. Fails with a one-line error.
 Format checkLayout(std::string_view file, const std::string& name) {
   struct Property {
     std::size_t size = 0;       // of a value
@@ -310,16 +312,11 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   const draco::PlyElement* vertex = reader.GetElementByName("vertex");
   const draco::PlyElement* face = reader.GetElementByName("face");
   if (reader.GetElementByName("tristrips")) throw Declined("triangle strips");
-  // A PLY without triangles to make is an error here, not handed to Assimp: it could only
-  // fail too, and Assimp 5.2.5's binary PLY reader reads out of bounds on such files (found
-  // by fuzz/mesh.cpp; fixed upstream after Debian 12's version, assimp/assimp#5310).
-  if (!vertex || !face) {
-    fail(ErrorKind::Input, "cannot read mesh '{}': the PLY has no {} element", name, !vertex ? "vertex" : "face");
-  }
-  const draco::PlyProperty* x = vertex->GetPropertyByName("x");
-  const draco::PlyProperty* y = vertex->GetPropertyByName("y");
-  const draco::PlyProperty* z = vertex->GetPropertyByName("z");
-  if (!x || !y || !z) fail(ErrorKind::Input, "cannot read mesh '{}': its PLY vertices have no x, y and z", name);
+  // checkLayout required vertices with x, y, z and (strips aside) faces.
+  const draco::PlyProperty* x = vertex ? vertex->GetPropertyByName("x") : nullptr;
+  const draco::PlyProperty* y = vertex ? vertex->GetPropertyByName("y") : nullptr;
+  const draco::PlyProperty* z = vertex ? vertex->GetPropertyByName("z") : nullptr;
+  if (!face || !x || !y || !z) fail(ErrorKind::Internal, "'{}': Draco's reading disagrees with the PLY layout check", name);
   const draco::PlyProperty* nx = vertex->GetPropertyByName("nx");
   const draco::PlyProperty* ny = vertex->GetPropertyByName("ny");
   const draco::PlyProperty* nz = vertex->GetPropertyByName("nz");
