@@ -5,7 +5,8 @@
 // counts each chunk's `v`, `vt` and `vn` lines, so every chunk knows where its vertices
 // go in the file-wide arrays and which vertex a relative (negative) index means before it
 // is parsed. Then the chunks are parsed in parallel, each line by the fast lane or, when it
-// declines, by tinyobjloader (LoadObjWithCallback on a stream over a run of such lines): vertex records are written straight into the arrays,
+// declines, by tinyobjloader (LoadObjWithCallback on a stream over a run of such lines):
+// vertex records are written straight into the arrays,
 // faces keep their raw indices resolved to absolute ones, and `o`/`g`/`usemtl` are kept
 // as events. The events are then replayed in order with Assimp's rules for where a new
 // aiMesh starts (import_steps.h), so normals are generated and vertices joined per part
@@ -77,6 +78,7 @@ struct Chunk {
   const char* end = nullptr;
   std::size_t positions = 0, texCoords = 0, normals = 0;      // records in this chunk
   std::size_t faces = 0;                                      // `f` lines in this chunk
+  bool anyCr = false;                                         // a CR anywhere in the chunk
   std::size_t firstPosition = 0, firstTexCoord = 0, firstNormal = 0;  // file-wide offsets
   // Faces: corner c of the chunk has vertex v[c], uv t[c], normal n[c] (absolute, kAbsent if none).
   std::vector<std::uint32_t> v, t, n;
@@ -484,11 +486,11 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
     };
     // Lines end at LF, CR LF or a lone CR (as tinyobjloader reads them); memchr finds them.
     // Most files have no CR at all: one look over the chunk spares a search per line.
-    const bool anyCr = std::memchr(c.begin, '\r', std::size_t(c.end - c.begin)) != nullptr;
+    c.anyCr = std::memchr(c.begin, '\r', std::size_t(c.end - c.begin)) != nullptr;
     for (const char* p = c.begin; p < c.end;) {
       const void* found = std::memchr(p, '\n', std::size_t(c.end - p));
       const char* lf = found ? static_cast<const char*>(found) : c.end;
-      if (!anyCr) {
+      if (!c.anyCr) {
         count(p, lf);
         p = lf + 1;
         continue;
@@ -557,7 +559,8 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
       const char* lf = found ? static_cast<const char*>(found) : c.end;
       const char* e = lf > p && lf[-1] == '\r' ? lf - 1 : lf;
       // A lone CR ends a line for tinyobjloader: such a line is its to split.
-      if (fastLane && std::memchr(p, '\r', std::size_t(e - p)) == nullptr && lane.read(p, e)) {
+      const bool loneCr = c.anyCr && std::memchr(p, '\r', std::size_t(e - p)) != nullptr;
+      if (fastLane && !loneCr && lane.read(p, e)) {
         parseRun(p);
         lane.deliver(state);
       } else if (!run) {
