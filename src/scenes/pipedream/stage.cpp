@@ -166,7 +166,9 @@ std::shared_ptr<const Stage> loadStage(const StageOptions& options) {
 }
 
 namespace {
-// Eyes inside the room (its walls are drawn from both sides), aimed as the seed's demo was.
+// Aimed as the seed's demo was. The room has no front wall and no ceiling: 'stage' and
+// 'drums' stand in front of its open front (the floor's edge and the clear colour show
+// below and above the picture), the others inside it.
 const NamedCamera kCameras[] = {
     {"stage", "the whole machine from the front, a little above", {0.0f, 7.2f, 16.5f}, {0.0f, 2.0f, -0.5f}, 52.0f},
     {"drums", "over the drum machine on the left, looking down", {-9.0f, 5.6f, 8.2f}, {-5.2f, 1.0f, 2.4f}, 48.0f},
