@@ -182,10 +182,13 @@ struct ReadTarget {
   std::string name;
 };
 
-// The largest image glint reads: 16384² pixels (1 GiB as RGBA8, 4 GiB as RGBA float). A
-// header that claims more is far more often corrupt than real (found by fuzz/image.cpp: a
-// 12 GB allocation for a few hundred bytes of TIFF), and would end in an out-of-memory kill.
+// The largest image glint reads: 16384² pixels (1 GiB as RGBA8, 4 GiB as RGBA float), at
+// most 65536 on a side (four times the largest GL texture). A header that claims more is
+// far more often corrupt than real (found by fuzz/image.cpp: a 12 GB allocation for a few
+// hundred bytes of TIFF; a 434-byte EXR that decoded to 15,335,428 × 3 pixels, 552 MB),
+// and would end in an out-of-memory kill.
 constexpr std::size_t kMaxReadPixels = std::size_t(16384) * 16384;
+constexpr int kMaxReadSide = 65536;
 
 void* allocateImage(void* user, int width, int height, int channels, int pixelType) {
   auto* target = static_cast<ReadTarget*>(user);
@@ -193,6 +196,10 @@ void* allocateImage(void* user, int width, int height, int channels, int pixelTy
     if (std::size_t(width) * std::size_t(height) > kMaxReadPixels) {
       fail(ErrorKind::Input, "cannot read image '{}': it says it is {}×{}, more than the {} megapixels glint reads",
            target->name, width, height, kMaxReadPixels >> 20);
+    }
+    if (width > kMaxReadSide || height > kMaxReadSide) {
+      fail(ErrorKind::Input, "cannot read image '{}': it says it is {}×{}, more than the {} pixels a side glint reads",
+           target->name, width, height, kMaxReadSide);
     }
     target->image = Image(width, height, channels, static_cast<PixelType>(pixelType));
     return target->image.bytes().data();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 namespace fs = std::filesystem;
 using namespace glint;
@@ -152,6 +153,34 @@ TEST(ImageIo, MissingAndCorruptFilesAreInputErrors) {
     EXPECT_EQ(e.kind(), ErrorKind::Input);
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "message must be one line";
   }
+}
+
+// A header that claims more than glint reads (16384² pixels, 65536 a side) is an input
+// error before any pixel memory is allocated, however few bytes the file has.
+TEST(ImageIo, HeadersClaimingMoreThanGlintReadsAreRefusedBeforeAllocation) {
+  const auto refused = [](const fs::path& file, const char* limit) {
+    try {
+      loadImage(file);
+      ADD_FAILURE() << file << " was read";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
+      EXPECT_NE(std::string(e.what()).find(limit), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "message must be one line";
+    }
+  };
+  // An uncompressed 32-bit TGA header claiming 65529 × 65535 pixels (4.3 gigapixels), no pixels.
+  const unsigned char tga[18] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xF9, 0xFF, 0xFF, 0xFF, 32, 8};
+  const auto big = outDir() / "claims-4-gigapixels.tga";
+  std::ofstream(big, std::ios::binary).write(reinterpret_cast<const char*>(tga), sizeof tga);
+  refused(big, "megapixels");
+  // 434 bytes of EXR (found by fuzz/image.cpp) that decoded to 15,335,428 × 3 pixels: 552 MB
+  // of float pixels. The fuzz input's first byte picks the extension; the file is the rest.
+  std::ifstream in(fs::path(GLINT_SOURCE_DIR) / "fuzz/regressions/image/exr-15-million-pixels-wide", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 100u);
+  const auto wide = outDir() / "15-million-pixels-wide.exr";
+  std::ofstream(wide, std::ios::binary) << bytes.substr(1);
+  refused(wide, "a side");
 }
 
 TEST(ImageIo, UnwritableOutputIsAnOutputErrorAndLeavesNothing) {
