@@ -83,8 +83,10 @@ private:
   std::vector<std::byte> m_data;
 };
 
-/// Reads an image file. Error(Input) with the reason when it is missing, unreadable or corrupt.
-/// 8-bit files load as U8, 16-bit as U16, everything else (half, float) as F32.
+/// Reads an image file. Error(Input) with the reason when it is missing, unreadable or corrupt,
+/// or when its header claims more than 16384² pixels or more than 65536 on a side (refused
+/// before any pixel memory is allocated). 8-bit files load as U8, 16-bit as U16, everything
+/// else (half, float) as F32.
 Image loadImage(const std::filesystem::path& path);
 
 /// Writes an image atomically; the format follows the extension. Error(Output) when the
