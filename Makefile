@@ -18,6 +18,9 @@ SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
   TSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/tsan.supp:halt_on_error=1:second_deadlock_stack=1
 # scripts/sanitized-ctest runs a failed test once more, alone, and ends with a digest of the
 # failures: one that repeats fails the step, one that passes alone is reported as a flake.
+# The GL tests run without leak checks: LeakSanitizer's stop-the-world tracer (clang 14)
+# crashes at exit in processes with llvmpipe's threads ("Tracer caught signal 11"): a few
+# GL test processes a run, sometimes twice in a row. ASan and UBSan stay on.
 # Not under ASan: the viewer tests (X11 and GLX modules that Xvfb's GLFW loads and unloads
 # leak 112 bytes that LeakSanitizer cannot name a library for), and the install test (it
 # builds a consumer project without the sanitizer flags).
@@ -57,7 +60,9 @@ sanitize: setup-test
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	  -DGLINT_SANITIZE=address,undefined -DGLINT_BUILD_FUZZERS=ON
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
-	$(SANITIZER_ENV) scripts/sanitized-ctest $(ASAN_BUILD) -L 'unit|gl' -E '$(ASAN_EXCLUDE)' -j $(JOBS) --timeout 900
+	$(SANITIZER_ENV) scripts/sanitized-ctest $(ASAN_BUILD) -L unit -E '$(ASAN_EXCLUDE)' -j $(JOBS) --timeout 900
+	$(SANITIZER_ENV) ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
+	  scripts/sanitized-ctest $(ASAN_BUILD) -L gl -E '$(ASAN_EXCLUDE)' -j $(JOBS) --timeout 900
 	GLINT_FUZZ_BUILD=$(CURDIR)/$(ASAN_BUILD) scripts/fuzz $(FUZZ_SECONDS)
 	cmake -S . -B $(TSAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	  -DGLINT_SANITIZE=thread -DGLINT_BUILD_VIEWER=OFF -DGLINT_BUILD_GL_TESTS=OFF
