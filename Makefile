@@ -54,7 +54,8 @@ gallery: build
 
 test: setup-test configure
 	cmake --build $(BUILD) -j $(JOBS)
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
+	rm -rf $(BUILD)/cache $(BUILD)/test-home
+	cd $(BUILD) && MESA_SHADER_CACHE_DISABLE=true ctest --output-on-failure -j $(JOBS) --timeout 600
 
 sanitize: setup-test
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \

@@ -48,11 +48,13 @@ vec2 twiddle(int m) {
   return vec2(t.x, -uSign * t.y);
 }
 
-int line, i;
-int address(int position) { return uAxis == 0 ? line * uSize.x + position : position * uSize.x + line; }
+// The element at `position` along this invocation's line. The line is a parameter, not a
+// global: Mesa warns "'line' used uninitialized" for a global set in main and read here.
+int address(int line, int position) { return uAxis == 0 ? line * uSize.x + position : position * uSize.x + line; }
 
 void main() {
   int quarter = uLength / RADIX;
+  int line, i;
   if (uAxis == 0) {
     i = int(gl_GlobalInvocationID.x);
     line = int(gl_GlobalInvocationID.y);
@@ -70,24 +72,24 @@ void main() {
 #if RADIX <= 16
   T u[RADIX];
   for (int s = 0; s < RADIX; ++s) {
-    T x = src[address(i + s * quarter)];
+    T x = src[address(line, i + s * quarter)];
     u[s] = (s == 0 || k == 0) ? x : twiddleBy(x, twiddle(s * k * step));
   }
 #if RADIX == 2
-  dst[address(first)] = (u[0] + u[1]) * uScale;
-  dst[address(first + p)] = (u[0] - u[1]) * uScale;
+  dst[address(line, first)] = (u[0] + u[1]) * uScale;
+  dst[address(line, first + p)] = (u[0] - u[1]) * uScale;
 #elif RADIX == 4
   T a = u[0] + u[2], b = u[0] - u[2], c = u[1] + u[3], d = timesI(u[1] - u[3]) * uSign;
-  dst[address(first)] = (a + c) * uScale;
-  dst[address(first + p)] = (b + d) * uScale;
-  dst[address(first + 2 * p)] = (a - c) * uScale;
-  dst[address(first + 3 * p)] = (b - d) * uScale;
+  dst[address(line, first)] = (a + c) * uScale;
+  dst[address(line, first + p)] = (b + d) * uScale;
+  dst[address(line, first + 2 * p)] = (a - c) * uScale;
+  dst[address(line, first + 3 * p)] = (b - d) * uScale;
 #else
   // A direct R-point DFT; its roots of unity are table entries (N/R)·(s·t mod R).
   for (int t = 0; t < RADIX; ++t) {
     T sum = u[0];
     for (int s = 1; s < RADIX; ++s) sum += twiddleBy(u[s], twiddle(((s * t) % RADIX) * quarter));
-    dst[address(first + t * p)] = sum * uScale;
+    dst[address(line, first + t * p)] = sum * uScale;
   }
 #endif
 #else
@@ -95,11 +97,11 @@ void main() {
   for (int t = 0; t < RADIX; ++t) {
     T sum = T(0.0);
     for (int s = 0; s < RADIX; ++s) {
-      T x = src[address(i + s * quarter)];
+      T x = src[address(line, i + s * quarter)];
       if (s != 0 && k != 0) x = twiddleBy(x, twiddle(s * k * step));
       sum += twiddleBy(x, twiddle(((s * t) % RADIX) * quarter));
     }
-    dst[address(first + t * p)] = sum * uScale;
+    dst[address(line, first + t * p)] = sum * uScale;
   }
 #endif
 }

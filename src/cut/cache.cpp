@@ -3,6 +3,7 @@
 
 #include "glint/core/cache.h"
 #include "glint/core/error.h"
+#include "glint/core/hash.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
 
@@ -21,14 +22,6 @@ namespace {
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'T', 'R'};
 constexpr std::uint32_t kFormatVersion = 1;
 
-std::uint64_t mix(std::uint64_t h, std::uint64_t value) {
-  for (int i = 0; i < 8; ++i) {
-    h ^= (value >> (8 * i)) & 0xFF;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 }  // namespace
 
 CutTriangles cutTriangles(const CutMesh& mesh) {
@@ -43,10 +36,12 @@ CutTriangles cutTriangles(const CutMesh& mesh) {
 }
 
 std::uint64_t cutCacheKey(const Mesh& scene, const std::vector<Light>& lights) {
-  std::uint64_t h = inputHash(scene, lights);
-  h = mix(h, lights.size());
-  h = mix(h, kCutterVersion);
-  return mix(h, kFormatVersion);
+  // Each value's bytes in memory order (little-endian here, as the cache files are).
+  return Fnv1a(inputHash(scene, lights))
+      .add(std::uint64_t(lights.size()))
+      .add(std::uint64_t(kCutterVersion))
+      .add(std::uint64_t(kFormatVersion))
+      .value();
 }
 
 namespace {

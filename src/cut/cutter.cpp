@@ -3,6 +3,7 @@
 #include "glint/cut/cutter.h"
 
 #include "glint/core/error.h"
+#include "glint/core/hash.h"
 #include "glint/core/log.h"
 #include "glint/core/progress.h"
 #include "glint/core/text.h"
@@ -30,15 +31,6 @@ double since(Clock::time_point start) { return std::chrono::duration<double>(Clo
 /// Receivers per task: small enough to balance two cores, big enough that the blocks'
 /// bookkeeping is noise. Fixed, so blocks (and shard files) never depend on threads.
 constexpr std::size_t kBlockSize = 64;
-
-std::uint64_t fnv(std::uint64_t h, const void* data, std::size_t size) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < size; ++i) {
-    h ^= p[i];
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 /// Morton code of a point in the unit cube (10 bits per axis).
 std::uint32_t morton(const dvec3& unit) {
@@ -91,11 +83,10 @@ void PieceBlock::append(std::uint32_t triangle, const ReceiverPieces& p) {
 // ------------------------------------------------------------------ prepare
 
 std::uint64_t inputHash(const Mesh& mesh, const std::vector<Light>& lights) {
-  std::uint64_t h = 1469598103934665603ull;
-  h = fnv(h, mesh.positions.data(), mesh.positions.size() * sizeof(vec3));
-  h = fnv(h, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
-  for (const Light& l : lights) h = fnv(h, &l.position, sizeof(vec3));
-  return h;
+  Fnv1a h;
+  h.add(mesh.positions).add(mesh.indices);
+  for (const Light& l : lights) h.add(l.position);
+  return h.value();
 }
 
 Prepared prepare(const Mesh& mesh, const std::vector<Light>& lights, bool bvh) {

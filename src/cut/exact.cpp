@@ -3,6 +3,8 @@
 // and the compiler must not fold or reorder floating-point operations across that.
 #include "exact.h"
 
+#include "glint/core/hash.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
@@ -92,17 +94,10 @@ bool VertexDef::operator==(const VertexDef& o) const {
 }
 
 std::uint64_t VertexDef::hash() const {
-  std::uint64_t h = 1469598103934665603ull ^ std::uint64_t(kind);
-  const auto mix = [&h](std::uint32_t v) {
-    h ^= v;
-    h *= 1099511628211ull;
-    h ^= h >> 29;
-  };
-  mix(a);
-  mix(b);
-  for (const PlaneDef* p : {&q, &r, &s})
-    for (std::uint32_t id : p->p) mix(id);
-  return h;
+  Fnv1a h;
+  h.add(std::uint32_t(kind)).add(a).add(b);
+  for (const PlaneDef* p : {&q, &r, &s}) h.add(p->p);
+  return h.value();
 }
 
 bool onPlaneByName(const VertexDef& v, const PlaneDef& plane) { return onPlaneByName(v, plane, plane.key()); }

@@ -4,6 +4,7 @@
 #include "import_steps.h"
 
 #include "glint/core/error.h"
+#include "glint/core/hash.h"
 #include "glint/core/log.h"
 
 #include <fcntl.h>
@@ -134,14 +135,8 @@ void earCut(const PolyMesh& mesh, std::uint32_t start, int n, std::vector<std::u
 
 /// Hash of a position's values (not bits: +0 and -0 compare equal, so they hash equal).
 std::size_t positionHash(const vec3& p) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (float f : {p.x, p.y, p.z}) {
-    std::uint32_t bits = 0;
-    f += 0.0f;  // -0 → +0
-    std::memcpy(&bits, &f, 4);
-    h = (h ^ bits) * 0x100000001b3ull;
-  }
-  return std::size_t(h ^ (h >> 29));
+  const vec3 canonical = p + vec3(0.0f);  // -0 → +0
+  return std::size_t(Fnv1a().add(canonical).value());
 }
 
 float squareDistance(const vec3& a, const vec3& b) {

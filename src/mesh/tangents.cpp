@@ -6,6 +6,7 @@
 #include "glint/mesh/tangents.h"
 
 #include "glint/core/error.h"
+#include "glint/core/hash.h"
 
 #include <algorithm>
 #include <array>
@@ -51,13 +52,7 @@ std::vector<std::uint32_t> weldVertices(const Mesh& mesh) {
   };
   struct KeyHash {
     std::size_t operator()(const Key& k) const {
-      std::uint64_t h = 1469598103934665603ull;
-      for (float f : k.v) {
-        std::uint32_t bits;
-        std::memcpy(&bits, &f, 4);
-        h = (h ^ bits) * 1099511628211ull;
-      }
-      return std::size_t(h);
+      return std::size_t(Fnv1a().add(k.v).value());
     }
   };
   const auto canon = [](float f) { return f == 0.0f ? 0.0f : f; };

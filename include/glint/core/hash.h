@@ -1,10 +1,20 @@
 #pragma once
-// glint/core/hash.h — a small integer hash for deterministic procedural noise.
+// glint/core/hash.h — the project's two hashes, each written once.
 //
-// Procedural textures and simulated rain must be identical on every machine and
-// thread count, so they hash integer coordinates instead of using a random engine.
+//   hash32   an integer hash for deterministic procedural noise (textures, simulated rain):
+//            identical on every machine and thread count, unlike a random engine.
+//   Fnv1a    64-bit FNV-1a over bytes: a stable content hash for cache keys, input
+//            fingerprints and hash-map keys. Not cryptographic.
+//
+//   glint::Fnv1a h;
+//   h.add(mesh.positions).add(lightCount);   // spans of trivially copyable values, or values
+//   const std::uint64_t key = h.value();
 
+#include <cstddef>
 #include <cstdint>
+#include <ranges>
+#include <span>
+#include <type_traits>
 
 namespace glint {
 
@@ -17,5 +27,45 @@ constexpr std::uint32_t hash32(std::uint32_t x) {
   x ^= x >> 16;
   return x;
 }
+
+/// 64-bit FNV-1a, fed byte by byte. Values are hashed by their object representation,
+/// so callers that need +0 and -0 (or other equal values with different bits) to hash
+/// alike canonicalise first.
+class Fnv1a {
+ public:
+  static constexpr std::uint64_t kOffsetBasis = 0xcbf29ce484222325ull;
+  static constexpr std::uint64_t kPrime = 0x100000001b3ull;
+
+  constexpr Fnv1a() = default;
+  constexpr explicit Fnv1a(std::uint64_t seed) : m_h(seed) {}
+
+  /// Hashes `size` bytes at `data`.
+  Fnv1a& addBytes(const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) m_h = (m_h ^ p[i]) * kPrime;
+    return *this;
+  }
+  /// Hashes a contiguous range of trivially copyable values (a span, vector or array):
+  /// their bytes, in order. The size is not hashed; add it too where lengths vary.
+  template <std::ranges::contiguous_range R>
+    requires std::ranges::sized_range<R> && std::is_trivially_copyable_v<std::ranges::range_value_t<R>>
+  Fnv1a& add(const R& values) {
+    return addBytes(std::ranges::data(values), std::ranges::size(values) * sizeof(std::ranges::range_value_t<R>));
+  }
+  /// Hashes one trivially copyable value that is not a range.
+  template <class T>
+    requires std::is_trivially_copyable_v<T> && (!std::ranges::contiguous_range<T>)
+  Fnv1a& add(const T& value) {
+    return addBytes(&value, sizeof(T));
+  }
+
+  constexpr std::uint64_t value() const { return m_h; }
+
+ private:
+  std::uint64_t m_h = kOffsetBasis;
+};
+
+/// FNV-1a of a byte span in one call.
+inline std::uint64_t fnv1a(std::span<const std::byte> bytes) { return Fnv1a().add(bytes).value(); }
 
 }  // namespace glint

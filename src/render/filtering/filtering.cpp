@@ -1,6 +1,7 @@
 #include "glint/render/filtering/filtering.h"
 
 #include "glint/core/error.h"
+#include "glint/core/hash.h"
 #include "glint/gl/context.h"
 #include "glint/gl/render_target.h"
 #include "glint/image/metrics.h"
@@ -43,12 +44,6 @@ const FilterMode kModes[] = {
 std::map<std::string, std::vector<Image>>& truthCache() {
   static std::map<std::string, std::vector<Image>> cache;
   return cache;
-}
-
-std::uint64_t hashBytes(std::span<const std::byte> bytes) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
-  for (std::byte b : bytes) h = (h ^ std::uint64_t(b)) * 1099511628211ull;
-  return h;
 }
 
 // Leaves the caller's framebuffer binding and viewport as they were (the viewer calls
@@ -120,7 +115,7 @@ GroundPlane::GroundPlane(const Image& texture, float tileSize, std::string_view 
   m_texture.storage(GL_RGBA8, rgba.width(), rgba.height(), 1, 0);
   m_texture.upload(0, rgba.width(), rgba.height(), GL_RGBA, GL_UNSIGNED_BYTE, rgba.bytes().data());
   m_texture.generateMipmap();
-  m_key = fmt::format("{:016x}-{}", hashBytes(rgba.bytes()), tileSize);
+  m_key = fmt::format("{:016x}-{}", fnv1a(rgba.bytes()), tileSize);
   vec3 sum(0.0f);
   for (int y = 0; y < rgba.height(); ++y)
     for (int x = 0; x < rgba.width(); ++x) sum += vec3(rgba.at(x, y, 0), rgba.at(x, y, 1), rgba.at(x, y, 2));
