@@ -18,10 +18,10 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace glint;
-  if (size < 1) return 0;
-  const auto path = fuzz::inputFile({data + 1, size - 1}, kExtensions[data[0] % std::size(kExtensions)]);
+  const auto path = fuzz::inputFile(data, size, kExtensions);
+  if (!path) return 0;
   fuzz::parse([&] {
-    const Image image = loadImage(path);
+    const Image image = loadImage(*path);
     fuzz::check(image.width() > 0 && image.height() > 0, "a decoded image has pixels");
     fuzz::check(image.channels() >= 1 && image.channels() <= 4, "1 to 4 channels");
     fuzz::check(image.bytes().size() == image.pixelCount() * std::size_t(image.channels()) * pixelTypeSize(image.type()),

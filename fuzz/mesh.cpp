@@ -30,7 +30,6 @@ constexpr glint::MeshParser kParser = glint::MeshParser::Auto;
 constexpr const char* kExtensions[] = {"obj"};
 constexpr glint::MeshParser kParser = glint::MeshParser::Auto;
 #endif
-constexpr std::size_t kExtensionCount = sizeof kExtensions / sizeof kExtensions[0];
 
 #if !defined(GLINT_FUZZ_ASSIMP) && !defined(GLINT_FUZZ_PLY)
 /// The OBJ path's reading with its fast lane or with tinyobjloader alone: a Mesh, or the
@@ -80,9 +79,10 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace glint;
-  if (size < 1) return 0;
+  const auto input = fuzz::inputFile(data, size, kExtensions, /*selectorShift=*/1);  // bit 0: joinVertices
+  if (!input) return 0;
+  const std::filesystem::path& path = *input;
   const std::uint8_t selector = data[0];
-  const auto path = fuzz::inputFile({data + 1, size - 1}, kExtensions[(selector >> 1) % kExtensionCount]);
   fuzz::parse([&] {
     const Mesh mesh = loadMesh(path, {.joinVertices = (selector & 1) != 0, .parser = kParser});
     fuzz::check(mesh.indices.size() % 3 == 0, "whole triangles");

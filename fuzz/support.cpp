@@ -46,6 +46,12 @@ std::filesystem::path inputFile(std::span<const std::uint8_t> bytes, std::string
   return path;
 }
 
+std::optional<std::filesystem::path> inputFile(const std::uint8_t* data, std::size_t size,
+                                               std::span<const char* const> extensions, int selectorShift) {
+  if (size < 1 || extensions.empty()) return std::nullopt;
+  return inputFile({data + 1, size - 1}, extensions[(data[0] >> selectorShift) % extensions.size()]);
+}
+
 void check(bool ok, const char* what) {
   if (!ok) {
     std::fprintf(stderr, "fuzz: invariant broken: %s\n", what);

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -21,6 +22,12 @@ namespace glint::fuzz {
 /// /dev/shm when there is one: the loaders read paths, not memory). The same path is
 /// rewritten for every input.
 std::filesystem::path inputFile(std::span<const std::uint8_t> bytes, std::string_view extension);
+
+/// The usual shape of a file harness's input: its first byte (shifted right by
+/// `selectorShift`, whose low bits the harness keeps for its own choices) picks one of
+/// `extensions`, and the rest is written as input.<extension>. nullopt for an empty input.
+std::optional<std::filesystem::path> inputFile(const std::uint8_t* data, std::size_t size,
+                                               std::span<const char* const> extensions, int selectorShift = 0);
 
 /// This process's scratch directory (created on first use, removed at exit).
 const std::filesystem::path& scratchDirectory();

@@ -18,10 +18,10 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace glint;
-  if (size < 1) return 0;
-  const auto path = fuzz::inputFile({data + 1, size - 1}, kExtensions[data[0] % std::size(kExtensions)]);
+  const auto path = fuzz::inputFile(data, size, kExtensions);
+  if (!path) return 0;
   fuzz::parse([&] {
-    auto source = video::Source::open(path.string(), {.keepAudio = (data[0] & 0x80) != 0, .threads = 1});
+    auto source = video::Source::open(path->string(), {.keepAudio = (data[0] & 0x80) != 0, .threads = 1});
     video::Frame frame;
     for (int i = 0; i < 8 && source.read(frame); ++i) {
       fuzz::check(frame.image.width() > 0 && frame.image.height() > 0, "a frame has pixels");

@@ -7,6 +7,7 @@
 #include <link.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -107,6 +108,36 @@ std::vector<fs::path> moduleCandidates(const ModuleLocation& module) {
   add(module.built);
   add(module.installed);
   return candidates;
+}
+
+const void* loadModuleTable(const ModuleLocation& module, std::string_view what, const char* entry, int abiVersion) {
+  const auto candidates = moduleCandidates(module);
+  if (candidates.empty()) {
+    fail(ErrorKind::Internal, "cannot load the {} module '{}': not found ({})", what,
+         module.built.filename().string(), moduleSearchDescription(module));
+  }
+  std::string error;  // the first candidate's reason
+  for (const fs::path& path : candidates) {
+    std::string reason;
+    if (void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+      dlerror();
+      using EntryFn = const void* (*)();
+      const auto fn = reinterpret_cast<EntryFn>(dlsym(handle, entry));
+      const void* table = fn ? fn() : nullptr;
+      int version = 0;
+      if (table) std::memcpy(&version, table, sizeof version);  // the table's first member
+      if (table && version == abiVersion) return table;
+      reason = !fn ? fmt::format("no entry point {}: not a glint {} module", entry, what)
+                   : fmt::format("ABI version {}, expected {} (a stale build?)", version, abiVersion);
+    } else {
+      const char* message = dlerror();
+      reason = message ? message : "dlopen failed";
+      // dlerror()'s message starts with the path, which this message names already.
+      if (const std::string prefix = path.string() + ": "; reason.starts_with(prefix)) reason.erase(0, prefix.size());
+    }
+    if (error.empty()) error = fmt::format("cannot load the {} module '{}': {}", what, path.string(), reason);
+  }
+  throw Error(ErrorKind::Internal, error);
 }
 
 std::string moduleSearchDescription(const ModuleLocation& module) {

@@ -213,4 +213,43 @@ GLuint64 Query::result() const {
   return value;
 }
 
+
+void Buffer::read(std::size_t offset, std::size_t bytes, void* out) const {
+  glGetNamedBufferSubData(m_id, GLintptr(offset), GLsizeiptr(bytes), out);
+}
+
+void* Buffer::map(std::size_t offset, std::size_t bytes, GLbitfield access) const {
+  return glMapNamedBufferRange(m_id, GLintptr(offset), GLsizeiptr(bytes), access);
+}
+
+void Texture::bindImage(GLuint unit, GLenum access, GLenum format, int level) const {
+  glBindImageTexture(unit, m_id, level, GL_FALSE, 0, access, format);
+}
+
+void Texture::read(int level, GLenum format, GLenum type, std::size_t bytes, void* out) const {
+  glGetTextureImage(m_id, level, format, type, GLsizei(bytes), out);
+}
+
+void Texture::clear(int level, GLenum format, GLenum type, const void* value) const {
+  glClearTexImage(m_id, level, format, type, value);
+}
+
+void Texture::copyFromReadFramebuffer(int x, int y, int width, int height) const {
+  glCopyTextureSubImage2D(m_id, 0, 0, 0, x, y, width, height);
+}
+
+void Framebuffer::clearColor(int drawBuffer, const float rgba[4]) const {
+  glClearNamedFramebufferfv(m_id, GL_COLOR, drawBuffer, rgba);
+}
+
+void Framebuffer::clearDepthStencil(float depth, int stencil) const {
+  glClearNamedFramebufferfi(m_id, GL_DEPTH_STENCIL, 0, depth, stencil);
+}
+
+void Framebuffer::blitTo(const Framebuffer& target, std::array<int, 4> from, std::array<int, 4> to, GLbitfield mask,
+                         GLenum filter) const {
+  glBlitNamedFramebuffer(m_id, target.m_id, from[0], from[1], from[2], from[3], to[0], to[1], to[2], to[3], mask,
+                         filter);
+}
+
 }  // namespace glint::gl

@@ -6,12 +6,12 @@
 // dynamic loader map ~260 libraries before main() of every glint command.
 #include "glint/core/error.h"
 #include "glint/core/file.h"
+#include "glint/core/locations.h"
 #include "glint/image/image.h"
 
 #include "oiio_locate.h"
 #include "oiio_module.h"
 
-#include <dlfcn.h>
 #include <spng.h>
 #include <unistd.h>
 
@@ -40,60 +40,11 @@ namespace {
 // ---------------------------------------------------------------------------------
 // Loading the module
 
-struct OiioApi {
-  GlintOiioReadFn read = nullptr;
-  GlintOiioWriteFn write = nullptr;
-};
+using OiioApi = GlintOiioApi;
 
-// dlerror()'s message without the module's path, which the caller's message names.
-std::string dlReason(const fs::path& path, const std::string& fallback) {
-  const char* message = dlerror();
-  std::string reason = message ? message : fallback;
-  if (const std::string prefix = path.string() + ": "; reason.starts_with(prefix)) reason.erase(0, prefix.size());
-  return reason;
-}
-
-// dlopen()s one candidate and checks its ABI; the reason on failure. Never dlclose():
-// OpenImageIO and its dependencies stay mapped for the life of the process.
-std::optional<OiioApi> openModule(const fs::path& path, std::string& reason) {
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) {
-    reason = dlReason(path, "dlopen failed");
-    return std::nullopt;
-  }
-  auto symbol = [&](const char* name) -> void* {
-    dlerror();
-    void* address = dlsym(handle, name);
-    if (!address && reason.empty()) reason = dlReason(path, std::string("no symbol ") + name);
-    return address;
-  };
-  reason.clear();
-  auto version = reinterpret_cast<GlintOiioAbiVersionFn>(symbol("glint_oiio_abi_version"));
-  OiioApi api;
-  api.read = reinterpret_cast<GlintOiioReadFn>(symbol("glint_oiio_read"));
-  api.write = reinterpret_cast<GlintOiioWriteFn>(symbol("glint_oiio_write"));
-  if (!reason.empty()) return std::nullopt;
-  if (const int v = version(); v != GLINT_OIIO_ABI_VERSION) {
-    reason = fmt::format("ABI version {}, expected {} (a stale build?)", v, GLINT_OIIO_ABI_VERSION);
-    return std::nullopt;
-  }
-  return api;
-}
-
-// Tries every candidate (oiio_locate.h); the first failure's message when none loads.
-std::optional<OiioApi> loadModule(std::string& error) {
-  error.clear();
-  const std::vector<fs::path> candidates = oiio::moduleCandidates();
-  if (candidates.empty()) {
-    error = fmt::format("cannot load the image I/O module '{}': not found ({})", oiio::moduleFileName(),
-                        oiio::moduleSearchDescription());
-  }
-  for (const fs::path& path : candidates) {
-    std::string reason;
-    if (auto api = openModule(path, reason)) return api;
-    if (error.empty()) error = fmt::format("cannot load the image I/O module '{}': {}", path.string(), reason);
-  }
-  return std::nullopt;
+// Loads the module (core/locations.h's loadModule); Error(Internal) when none loads.
+const OiioApi& loadModule() {
+  return glint::loadModule<OiioApi>(oiio::module(), "image I/O", "glint_oiio_api", GLINT_OIIO_ABI_VERSION);
 }
 
 // The module, loaded once: in the background by preload(), or by the first get().
@@ -113,11 +64,10 @@ public:
     m_loading = true;
     try {
       m_thread = std::thread([this] {
-        std::optional<OiioApi> api;
+        const OiioApi* api = nullptr;
         try {
-          std::string error;  // get() retries a failed load and reports it
-          api = loadModule(error);
-        } catch (...) {
+          api = &loadModule();
+        } catch (...) {  // get() retries a failed load and reports it
         }
         std::lock_guard lock(m_mutex);
         if (api) m_api = api;
@@ -132,11 +82,7 @@ public:
   const OiioApi& get() {
     std::unique_lock lock(m_mutex);
     m_done.wait(lock, [&] { return !m_loading; });
-    if (!m_api) {
-      std::string error;
-      m_api = loadModule(error);
-      if (!m_api) throw Error(ErrorKind::Internal, error);
-    }
+    if (!m_api) m_api = &loadModule();
     return *m_api;
   }
 
@@ -146,7 +92,7 @@ private:
   std::thread m_thread;
   bool m_started = false;  // preload() ran (at most one background thread)
   bool m_loading = false;  // the background thread is still loading
-  std::optional<OiioApi> m_api;
+  const OiioApi* m_api = nullptr;
 };
 
 ModuleLoader& theModule() {
@@ -256,11 +202,11 @@ void preloadImageIo() { theModule().preload(); }
 
 void requireImageIo() {
   std::error_code ec;
-  for (const fs::path& path : oiio::moduleCandidates()) {
+  for (const fs::path& path : moduleCandidates(oiio::module())) {
     if (fs::exists(path, ec)) return;
   }
-  fail(ErrorKind::Internal, "cannot load the image I/O module '{}': not found ({})", oiio::moduleFileName(),
-       oiio::moduleSearchDescription());
+  fail(ErrorKind::Internal, "cannot load the image I/O module '{}': not found ({})",
+       oiio::module().built.filename().string(), moduleSearchDescription(oiio::module()));
 }
 
 Image loadImage(const fs::path& path) {

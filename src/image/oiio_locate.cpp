@@ -10,12 +10,9 @@
 namespace glint::oiio {
 namespace fs = std::filesystem;
 
-namespace {
-const ModuleLocation kModule{GLINT_OIIO_MODULE, GLINT_OIIO_MODULE_INSTALLED, "GLINT_OIIO_MODULE"};
-}  // namespace
-
-std::string moduleFileName() { return fs::path(GLINT_OIIO_MODULE).filename().string(); }
-std::vector<fs::path> moduleCandidates() { return glint::moduleCandidates(kModule); }
-std::string moduleSearchDescription() { return glint::moduleSearchDescription(kModule); }
+const ModuleLocation& module() {
+  static const ModuleLocation location{GLINT_OIIO_MODULE, GLINT_OIIO_MODULE_INSTALLED, "GLINT_OIIO_MODULE"};
+  return location;
+}
 
 }  // namespace glint::oiio

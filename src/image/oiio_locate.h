@@ -13,20 +13,12 @@
 //   <prefix>/lib/glint          the prefix configured at build time: programs linked to an
 //                               installed glint without its CMake package
 
-#include <filesystem>
-#include <string>
-#include <vector>
+#include "glint/core/locations.h"
 
 namespace glint::oiio {
 
-/// The module's file name (libglint_oiio.so).
-std::string moduleFileName();
-
-/// The candidates that exist, in the order above, duplicates removed; with
-/// GLINT_OIIO_MODULE set, that path alone (or none).
-std::vector<std::filesystem::path> moduleCandidates();
-
-/// Where moduleCandidates() looks, for error messages: one line.
-std::string moduleSearchDescription();
+/// The module's build and install paths and its override variable, for core/locations.h's
+/// moduleCandidates and loadModule.
+const ModuleLocation& module();
 
 }  // namespace glint::oiio

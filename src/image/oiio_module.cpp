@@ -37,9 +37,7 @@ int report(int status, const std::string& message, char* error, std::size_t erro
 
 extern "C" {
 
-GLINT_OIIO_EXPORT int glint_oiio_abi_version(void) { return GLINT_OIIO_ABI_VERSION; }
-
-GLINT_OIIO_EXPORT int glint_oiio_read(const char* path, GlintOiioAllocFn alloc, void* user, char* error,
+int glint_oiio_read(const char* path, GlintOiioAllocFn alloc, void* user, char* error,
                                       std::size_t errorSize) {
   try {
     // Straight (unassociated) alpha in, straight alpha out: glint never premultiplies
@@ -67,7 +65,7 @@ GLINT_OIIO_EXPORT int glint_oiio_read(const char* path, GlintOiioAllocFn alloc, 
   }
 }
 
-GLINT_OIIO_EXPORT int glint_oiio_write(const char* path, int width, int height, int channels, int pixelType,
+int glint_oiio_write(const char* path, int width, int height, int channels, int pixelType,
                                        const void* pixels, int hasAlpha, char* error, std::size_t errorSize) {
   try {
     auto output = OIIO::ImageOutput::create(path);
@@ -98,6 +96,11 @@ GLINT_OIIO_EXPORT int glint_oiio_write(const char* path, int width, int height, 
   } catch (...) {
     return report(GLINT_OIIO_EXCEPTION, "unknown exception in the image I/O module", error, errorSize);
   }
+}
+
+GLINT_OIIO_EXPORT const GlintOiioApi* glint_oiio_api(void) {
+  static const GlintOiioApi api = {GLINT_OIIO_ABI_VERSION, &glint_oiio_read, &glint_oiio_write};
+  return &api;
 }
 
 }  // extern "C"

@@ -13,7 +13,7 @@
 
 #include <stddef.h>
 
-#define GLINT_OIIO_ABI_VERSION 1
+#define GLINT_OIIO_ABI_VERSION 2
 
 #ifdef __cplusplus
 extern "C" {
@@ -40,14 +40,21 @@ enum GlintOiioPixelType { GLINT_OIIO_U8 = 0, GLINT_OIIO_U16 = 1, GLINT_OIIO_F32 
 /// valid until glint_oiio_read returns, or NULL to abort the read.
 typedef void* (*GlintOiioAllocFn)(void* user, int width, int height, int channels, int pixelType);
 
-typedef int (*GlintOiioAbiVersionFn)(void);
 typedef int (*GlintOiioReadFn)(const char* path, GlintOiioAllocFn alloc, void* user, char* error,
                                size_t errorSize);
 typedef int (*GlintOiioWriteFn)(const char* path, int width, int height, int channels, int pixelType,
                                 const void* pixels, int hasAlpha, char* error, size_t errorSize);
 
-/// GLINT_OIIO_ABI_VERSION of the module; the loader refuses a module that differs.
-int glint_oiio_abi_version(void);
+/// The module's function table, the one thing it exports (glint_oiio_api), as the video
+/// module's: core/locations.h's loadModule checks `abiVersion` against
+/// GLINT_OIIO_ABI_VERSION and refuses a module that differs.
+typedef struct GlintOiioApi {
+  int abiVersion;
+  GlintOiioReadFn read;    ///< glint_oiio_read below
+  GlintOiioWriteFn write;  ///< glint_oiio_write below
+} GlintOiioApi;
+
+const GlintOiioApi* glint_oiio_api(void);
 
 /// Reads the first subimage of `path` with unassociated (straight) alpha: 8-bit files
 /// as U8, 16-bit as U16, anything else as F32; at most 4 channels.

@@ -16,15 +16,6 @@ constexpr float kMargin = 3.0f;      // floor and walls beyond the outer modules
 constexpr float kWallHeight = 10.0f;
 constexpr int kTrianglesPerModule = 8668;  // counted from the parts below (see the test)
 
-struct Random {
-  std::uint32_t state;
-  float next() {
-    state = hash32(state + 0x9E3779B9u);
-    return float(state >> 8) * (1.0f / 16777216.0f);
-  }
-  float range(float lo, float hi) { return lo + (hi - lo) * next(); }
-};
-
 /// Axis a closed tube runs along.
 enum class Axis { X, Y, Z };
 
@@ -87,7 +78,7 @@ void addGrid(Mesh& out, vec3 origin, vec3 u, vec3 v, int nu, int nv) {
 int gridWidth(int modules) { return std::max(1, int(std::ceil(std::sqrt(double(std::max(1, modules)))))); }
 
 /// One instrument module centred at (cx, 0, cz).
-void addModule(Mesh& out, float cx, float cz, Random& rng) {
+void addModule(Mesh& out, float cx, float cz, HashSequence& rng) {
   // A low platform the instruments stand on.
   addBox(out, {cx - 2.5f, 0.0f, cz - 2.5f}, {cx + 2.5f, 0.3f, cz + 2.5f});
   // Three drums at the front.
@@ -123,7 +114,7 @@ Mesh makeMachineRoom(const MachineRoomOptions& options) {
   addGrid(out, {origin, 0.0f, origin}, {0.0f, 0.0f, extent}, {extent, 0.0f, 0.0f}, cells, cells);            // floor, up
   addGrid(out, {origin, 0.0f, origin}, {extent, 0.0f, 0.0f}, {0.0f, kWallHeight, 0.0f}, cells, int(kWallHeight));  // back wall, +z
   addGrid(out, {origin, 0.0f, origin}, {0.0f, kWallHeight, 0.0f}, {0.0f, 0.0f, extent}, int(kWallHeight), cells);  // left wall, +x
-  Random rng{options.seed * 7919u + 17u};
+  HashSequence rng{options.seed * 7919u + 17u};
   for (int m = 0; m < modules; ++m) {
     const int i = m % width, j = m / width;
     addModule(out, -0.5f * stage + kModuleSize * (float(i) + 0.5f), -0.5f * stage + kModuleSize * (float(j) + 0.5f), rng);
@@ -317,7 +308,10 @@ Mesh makeMalletMesh(int segments) {
   return m;
 }
 
-void addInstrumentModule(PartBuilder& b, InstrumentMachine& out, vec3 c, int detail, Random& rng) {
+/// One module of instruments around `c`. One function on purpose: its parts draw from `rng`
+/// in this order, and the stage's geometry (and so its cached cut and the golden pictures)
+/// depends on that order; each part is a paragraph of its own below.
+void addInstrumentModule(PartBuilder& b, InstrumentMachine& out, vec3 c, int detail, HashSequence& rng) {
   const int big = 8 + 6 * detail;     // drums, collectors
   const int pipe = 6 + 4 * detail;    // pipes
   const int thin = 4 + 2 * detail;    // posts, stands
@@ -477,7 +471,7 @@ InstrumentMachine makeInstrumentMachine(const InstrumentMachineOptions& options)
     }
   }
 
-  Random rng{options.seed * 7919u + 101u};
+  HashSequence rng{options.seed * 7919u + 101u};
   for (int row = 0; row < 2; ++row)
     for (int col = 0; col < 3; ++col)
       addInstrumentModule(b, out, vec3(-6.4f + 6.4f * float(col), 0.0f, row == 0 ? -3.0f : 3.2f), detail, rng);

@@ -27,6 +27,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <span>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -444,21 +445,11 @@ private:
   std::size_t m_meshFaces = 0;
 };
 
-}  // namespace
-
-Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& options, bool fastLane) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  const auto ms = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
-  const std::string name = path.string();
-  const MappedFile file(path);
-  if (file.size() == 0) fail(ErrorKind::Input, "cannot read mesh '{}': the file is empty", name);
-  const char* const data = file.data();
-  const char* const end = data + file.size();
-
-  // Chunks of about 1 MiB, cut after a line feed, several per thread for balance.
+/// Chunks of about 1 MiB, cut after a line feed, several per thread for balance.
+std::vector<Chunk> splitIntoChunks(const char* data, const char* end) {
+  const std::size_t size = std::size_t(end - data);
   const std::size_t threads = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  const std::size_t target = std::max<std::size_t>(std::size_t(1) << 20, file.size() / (threads * 8) + 1);
+  const std::size_t target = std::max<std::size_t>(std::size_t(1) << 20, size / (threads * 8) + 1);
   std::vector<Chunk> chunks;
   for (const char* p = data; p < end;) {
     const char* cut = p + std::min<std::size_t>(target, std::size_t(end - p));
@@ -471,57 +462,72 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
     c.end = cut;
     p = cut;
   }
+  return chunks;
+}
 
-  // Pass 1: count vertex records per chunk.
-  tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t i) {
-    Chunk& c = chunks[i];
-    const auto count = [&c](const char* p, const char* lineEnd) {
-      switch (classify(p, lineEnd)) {
-        case Record::Position: ++c.positions; break;
-        case Record::TexCoord: ++c.texCoords; break;
-        case Record::Normal: ++c.normals; break;
-        case Record::Face: ++c.faces; break;
-        case Record::Other: break;
-      }
-    };
-    // Lines end at LF, CR LF or a lone CR (as tinyobjloader reads them); memchr finds them.
-    // Most files have no CR at all: one look over the chunk spares a search per line.
-    c.anyCr = std::memchr(c.begin, '\r', std::size_t(c.end - c.begin)) != nullptr;
-    for (const char* p = c.begin; p < c.end;) {
-      const void* found = std::memchr(p, '\n', std::size_t(c.end - p));
-      const char* lf = found ? static_cast<const char*>(found) : c.end;
-      if (!c.anyCr) {
-        count(p, lf);
-        p = lf + 1;
-        continue;
-      }
-      for (const char* q = p;;) {
-        const void* cr = std::memchr(q, '\r', std::size_t(lf - q));
-        if (!cr) {
-          count(q, lf);
-          break;
-        }
-        count(q, static_cast<const char*>(cr));
-        q = static_cast<const char*>(cr) + 1;
-        if (q >= lf) break;
-      }
-      p = lf + 1;
+/// Pass 1 over one chunk: counts its vertex records and faces.
+void countRecords(Chunk& c) {
+  const auto count = [&c](const char* p, const char* lineEnd) {
+    switch (classify(p, lineEnd)) {
+      case Record::Position: ++c.positions; break;
+      case Record::TexCoord: ++c.texCoords; break;
+      case Record::Normal: ++c.normals; break;
+      case Record::Face: ++c.faces; break;
+      case Record::Other: break;
     }
-  });
-  std::size_t positionCount = 0, texCoordCount = 0, normalCount = 0;
-  for (Chunk& c : chunks) {
-    c.firstPosition = positionCount;
-    c.firstTexCoord = texCoordCount;
-    c.firstNormal = normalCount;
-    positionCount += c.positions;
-    texCoordCount += c.texCoords;
-    normalCount += c.normals;
+  };
+  // Lines end at LF, CR LF or a lone CR (as tinyobjloader reads them); memchr finds them.
+  // Most files have no CR at all: one look over the chunk spares a search per line.
+  c.anyCr = std::memchr(c.begin, '\r', std::size_t(c.end - c.begin)) != nullptr;
+  for (const char* p = c.begin; p < c.end;) {
+    const void* found = std::memchr(p, '\n', std::size_t(c.end - p));
+    const char* lf = found ? static_cast<const char*>(found) : c.end;
+    if (!c.anyCr) {
+      count(p, lf);
+      p = lf + 1;
+      continue;
+    }
+    for (const char* q = p;;) {
+      const void* cr = std::memchr(q, '\r', std::size_t(lf - q));
+      if (!cr) {
+        count(q, lf);
+        break;
+      }
+      count(q, static_cast<const char*>(cr));
+      q = static_cast<const char*>(cr) + 1;
+      if (q >= lf) break;
+    }
+    p = lf + 1;
   }
-  std::vector<vec3> positions(positionCount), normals(normalCount);
-  std::vector<vec2> texCoords(texCoordCount);
-  const auto t1 = Clock::now();
+}
 
-  // Pass 2: parse every chunk with tinyobjloader.
+/// The file's vertex records, each chunk writing its own slice (offsets from pass 1).
+struct VertexTables {
+  std::vector<vec3> positions, normals;
+  std::vector<vec2> texCoords;
+};
+
+/// Gives each chunk its first record's index and sizes the tables.
+VertexTables allocateVertexTables(std::vector<Chunk>& chunks) {
+  std::size_t positions = 0, texCoords = 0, normals = 0;
+  for (Chunk& c : chunks) {
+    c.firstPosition = positions;
+    c.firstTexCoord = texCoords;
+    c.firstNormal = normals;
+    positions += c.positions;
+    texCoords += c.texCoords;
+    normals += c.normals;
+  }
+  VertexTables tables;
+  tables.positions.resize(positions);
+  tables.texCoords.resize(texCoords);
+  tables.normals.resize(normals);
+  return tables;
+}
+
+/// Pass 2 over one chunk: v/vt/vn/f lines through the fast lane, every other run of lines
+/// through tinyobjloader, in order. Errors and reasons to decline go into the chunk.
+void parseChunk(Chunk& c, VertexTables& tables, bool fastLane) {
   tinyobj::callback_t callbacks;
   callbacks.vertex_cb = onPosition;
   callbacks.texcoord_cb = onTexCoord;
@@ -530,88 +536,85 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   callbacks.object_cb = onObject;
   callbacks.group_cb = onGroup;
   callbacks.usemtl_cb = onMaterial;
-  tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t i) {
-    Chunk& c = chunks[i];
-    // Room for triangles: growing by doubling would copy and touch fresh pages twice over.
-    c.v.reserve(3 * c.faces);
-    c.t.reserve(3 * c.faces);
-    c.n.reserve(3 * c.faces);
-    c.faceSize.reserve(c.faces);
-    c.faceFlags.reserve(c.faces);
-    ParseState state{&c, nullptr, nullptr, &positions, &texCoords, &normals, positionCount, texCoordCount, normalCount};
-    // Lines the fast lane does not take go to tinyobjloader, a run of them at a time, in order.
-    const char* run = nullptr;
-    const auto parseRun = [&](const char* runEnd) {
-      if (!run) return;
-      MemoryBuffer buffer(run, runEnd);
-      std::istream stream(&buffer);
-      state.buffer = &buffer;
-      state.runBegin = run;
-      std::string warn, err;
-      if (!tinyobj::LoadObjWithCallback(stream, callbacks, &state, nullptr, &warn, &err) && c.error.empty()) {
-        c.error = err.empty() ? "tinyobjloader failed" : err.substr(0, err.find('\n'));
-      }
-      run = nullptr;
-    };
-    FastLane lane;
-    for (const char* p = c.begin; p < c.end;) {
-      const void* found = std::memchr(p, '\n', std::size_t(c.end - p));
-      const char* lf = found ? static_cast<const char*>(found) : c.end;
-      const char* e = lf > p && lf[-1] == '\r' ? lf - 1 : lf;
-      // A lone CR ends a line for tinyobjloader: such a line is its to split.
-      const bool loneCr = c.anyCr && std::memchr(p, '\r', std::size_t(e - p)) != nullptr;
-      if (fastLane && !loneCr && lane.read(p, e)) {
-        parseRun(p);
-        lane.deliver(state);
-      } else if (!run) {
-        run = p;
-      }
-      p = found ? lf + 1 : c.end;
+  // Room for triangles: growing by doubling would copy and touch fresh pages twice over.
+  c.v.reserve(3 * c.faces);
+  c.t.reserve(3 * c.faces);
+  c.n.reserve(3 * c.faces);
+  c.faceSize.reserve(c.faces);
+  c.faceFlags.reserve(c.faces);
+  ParseState state{&c,
+                   nullptr,
+                   nullptr,
+                   &tables.positions,
+                   &tables.texCoords,
+                   &tables.normals,
+                   tables.positions.size(),
+                   tables.texCoords.size(),
+                   tables.normals.size()};
+  const char* run = nullptr;  // the first line of a run for tinyobjloader, if any
+  const auto parseRun = [&](const char* runEnd) {
+    if (!run) return;
+    MemoryBuffer buffer(run, runEnd);
+    std::istream stream(&buffer);
+    state.buffer = &buffer;
+    state.runBegin = run;
+    std::string warn, err;
+    if (!tinyobj::LoadObjWithCallback(stream, callbacks, &state, nullptr, &warn, &err) && c.error.empty()) {
+      c.error = err.empty() ? "tinyobjloader failed" : err.substr(0, err.find('\n'));
     }
-    parseRun(c.end);
-    if ((state.localPositions != c.positions || state.localTexCoords != c.texCoords ||
-         state.localNormals != c.normals) && c.declined.empty()) {
-      c.declined = "vertex records counted differently";  // never seen: a guard, not a path
+    run = nullptr;
+  };
+  FastLane lane;
+  for (const char* p = c.begin; p < c.end;) {
+    const void* found = std::memchr(p, '\n', std::size_t(c.end - p));
+    const char* lf = found ? static_cast<const char*>(found) : c.end;
+    const char* e = lf > p && lf[-1] == '\r' ? lf - 1 : lf;
+    // A lone CR ends a line for tinyobjloader: such a line is its to split.
+    const bool loneCr = c.anyCr && std::memchr(p, '\r', std::size_t(e - p)) != nullptr;
+    if (fastLane && !loneCr && lane.read(p, e)) {
+      parseRun(p);
+      lane.deliver(state);
+    } else if (!run) {
+      run = p;
     }
-  });
-  const auto t2 = Clock::now();
-  for (const Chunk& c : chunks) {
-    if (!c.error.empty()) fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, c.error);
+    p = found ? lf + 1 : c.end;
   }
-  for (const Chunk& c : chunks) {
-    if (!c.declined.empty()) throw Declined(c.declined);
+  parseRun(c.end);
+  if ((state.localPositions != c.positions || state.localTexCoords != c.texCoords ||
+       state.localNormals != c.normals) && c.declined.empty()) {
+    c.declined = "vertex records counted differently";  // never seen: a guard, not a path
   }
+}
 
-  // The aiMeshes Assimp would make, as ranges of faces.
-  std::vector<std::size_t> firstFace(chunks.size() + 1, 0), firstCorner(chunks.size() + 1, 0);
-  for (std::size_t i = 0; i < chunks.size(); ++i) {
-    firstFace[i + 1] = firstFace[i] + chunks[i].faceSize.size();
-    firstCorner[i + 1] = firstCorner[i] + chunks[i].v.size();
-  }
-  const std::size_t faceCount = firstFace.back(), cornerCount = firstCorner.back();
-  if (faceCount == 0) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
+/// The aiMeshes Assimp would make, as ranges [first, last) of the file's faces.
+std::vector<std::pair<std::size_t, std::size_t>> assimpParts(const std::vector<Chunk>& chunks,
+                                                             std::span<const std::size_t> firstFace) {
   std::vector<std::pair<std::size_t, std::size_t>> parts;
-  {
-    PartBuilder builder(parts);
-    for (std::size_t i = 0; i < chunks.size(); ++i) {
-      const Chunk& c = chunks[i];
-      std::size_t e = 0;
-      for (std::size_t f = 0; f < c.faceSize.size(); ++f) {
-        for (; e < c.events.size() && c.events[e].face <= f; ++e) builder.event(c.events[e]);
-        builder.face(firstFace[i] + f);
-      }
-      for (; e < c.events.size(); ++e) builder.event(c.events[e]);
+  PartBuilder builder(parts);
+  for (std::size_t i = 0; i < chunks.size(); ++i) {
+    const Chunk& c = chunks[i];
+    std::size_t e = 0;
+    for (std::size_t f = 0; f < c.faceSize.size(); ++f) {
+      for (; e < c.events.size() && c.events[e].face <= f; ++e) builder.event(c.events[e]);
+      builder.face(firstFace[i] + f);
     }
+    for (; e < c.events.size(); ++e) builder.event(c.events[e]);
   }
+  return parts;
+}
 
-  // One vertex per corner for the whole file, in file order (what Assimp's OBJ reader makes).
+/// One vertex per corner for the whole file, in file order (what Assimp's OBJ reader
+/// makes); `flags` gets each face's attribute bits.
+PolyMesh gatherCorners(const std::vector<Chunk>& chunks, const VertexTables& tables, std::span<const std::size_t> firstFace,
+                       std::span<const std::size_t> firstCorner, std::vector<std::uint8_t>& flags) {
+  const std::size_t faceCount = firstFace.back(), cornerCount = firstCorner.back();
   PolyMesh all;
   all.perCorner = true;
   resizePositions(all.positions, cornerCount);
   all.corners.resize(cornerCount);
   all.faceStart.resize(faceCount + 1);
-  std::vector<std::uint8_t> flags(faceCount);
-  const bool anyUv = texCoordCount > 0, anyNormal = normalCount > 0;
+  flags.assign(faceCount, 0);
+  const bool anyUv = !tables.texCoords.empty(), anyNormal = !tables.normals.empty();
   if (anyUv) all.uvs.resize(cornerCount);
   if (anyNormal) all.normals.resize(cornerCount);
   tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t i) {
@@ -625,17 +628,20 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
     for (std::size_t k = 0; k < c.v.size(); ++k) {
       const std::size_t out = firstCorner[i] + k;
       all.corners[out] = std::uint32_t(out);
-      all.positions[out] = positions[c.v[k]];
-      if (anyUv) all.uvs[out] = c.t[k] != kAbsent ? texCoords[c.t[k]] : vec2(0.0f);
-      if (anyNormal) all.normals[out] = c.n[k] != kAbsent ? normals[c.n[k]] : vec3(0.0f);
+      all.positions[out] = tables.positions[c.v[k]];
+      if (anyUv) all.uvs[out] = c.t[k] != kAbsent ? tables.texCoords[c.t[k]] : vec2(0.0f);
+      if (anyNormal) all.normals[out] = c.n[k] != kAbsent ? tables.normals[c.n[k]] : vec3(0.0f);
     }
   });
   all.faceStart[faceCount] = std::uint32_t(cornerCount);
-  chunks.clear();
-  const auto t3 = Clock::now();
+  return all;
+}
 
-  // Per part: attributes present on every face or on none (Assimp keeps a mesh's uvs and
-  // normals when any face has them, leaving the other corners zero: let it read those).
+/// The parts triangulated and joined into one Mesh, each keeping the uvs and normals its
+/// faces have (all or none: otherwise Assimp, which zero-fills the rest, reads the file).
+/// `missingNormals` counts the parts whose normals were generated.
+Mesh finishParts(PolyMesh all, const std::vector<std::pair<std::size_t, std::size_t>>& parts,
+                 std::span<const std::uint8_t> flags, bool joinVertices, unsigned& missingNormals) {
   struct PartAttributes {
     bool uvs, normals;
   };
@@ -649,34 +655,74 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
     if (any != every) throw Declined("uvs or normals on some faces of a mesh only");
     attributes.push_back({(any & 1) != 0, (any & 2) != 0});
   }
-
-  unsigned missingNormals = 0;
+  const std::size_t faceCount = all.faceStart.size() - 1;
   Mesh result;
+  bool generated = false;
   if (parts.size() == 1 && parts[0].first == 0 && parts[0].second == faceCount) {
     if (!attributes[0].uvs) all.uvs.clear();
     if (!attributes[0].normals) all.normals.clear();
-    bool generated = false;
-    result = finishPart(std::move(all), options.joinVertices, generated);
+    result = finishPart(std::move(all), joinVertices, generated);
     missingNormals += generated ? 1u : 0u;
-  } else {
-    for (std::size_t p = 0; p < parts.size(); ++p) {
-      const auto [first, last] = parts[p];
-      PolyMesh part;
-      part.perCorner = true;
-      const std::uint32_t c0 = all.faceStart[first], c1 = all.faceStart[last];
-      part.positions.assign(all.positions.begin() + c0, all.positions.begin() + c1);
-      if (attributes[p].uvs) part.uvs.assign(all.uvs.begin() + c0, all.uvs.begin() + c1);
-      if (attributes[p].normals) part.normals.assign(all.normals.begin() + c0, all.normals.begin() + c1);
-      part.corners.resize(c1 - c0);
-      for (std::uint32_t k = 0; k < c1 - c0; ++k) part.corners[k] = k;
-      part.faceStart.assign(all.faceStart.begin() + std::ptrdiff_t(first), all.faceStart.begin() + std::ptrdiff_t(last) + 1);
-      for (std::uint32_t& s : part.faceStart) s -= c0;
-      bool generated = false;
-      Mesh mesh = finishPart(std::move(part), options.joinVertices, generated);
-      missingNormals += generated ? 1u : 0u;
-      if (!mesh.indices.empty()) result.append(mesh);
-    }
+    return result;
   }
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    const auto [first, last] = parts[p];
+    PolyMesh part;
+    part.perCorner = true;
+    const std::uint32_t c0 = all.faceStart[first], c1 = all.faceStart[last];
+    part.positions.assign(all.positions.begin() + c0, all.positions.begin() + c1);
+    if (attributes[p].uvs) part.uvs.assign(all.uvs.begin() + c0, all.uvs.begin() + c1);
+    if (attributes[p].normals) part.normals.assign(all.normals.begin() + c0, all.normals.begin() + c1);
+    part.corners.resize(c1 - c0);
+    for (std::uint32_t k = 0; k < c1 - c0; ++k) part.corners[k] = k;
+    part.faceStart.assign(all.faceStart.begin() + std::ptrdiff_t(first), all.faceStart.begin() + std::ptrdiff_t(last) + 1);
+    for (std::uint32_t& start : part.faceStart) start -= c0;
+    Mesh mesh = finishPart(std::move(part), joinVertices, generated);
+    missingNormals += generated ? 1u : 0u;
+    if (!mesh.indices.empty()) result.append(mesh);
+  }
+  return result;
+}
+
+}  // namespace
+
+Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& options, bool fastLane) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const auto ms = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
+  const std::string name = path.string();
+  const MappedFile file(path);
+  if (file.size() == 0) fail(ErrorKind::Input, "cannot read mesh '{}': the file is empty", name);
+
+  std::vector<Chunk> chunks = splitIntoChunks(file.data(), file.data() + file.size());
+  tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t i) { countRecords(chunks[i]); });
+  VertexTables tables = allocateVertexTables(chunks);
+  const auto t1 = Clock::now();
+
+  tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t i) { parseChunk(chunks[i], tables, fastLane); });
+  const auto t2 = Clock::now();
+  for (const Chunk& c : chunks) {
+    if (!c.error.empty()) fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, c.error);
+  }
+  for (const Chunk& c : chunks) {
+    if (!c.declined.empty()) throw Declined(c.declined);
+  }
+
+  std::vector<std::size_t> firstFace(chunks.size() + 1, 0), firstCorner(chunks.size() + 1, 0);
+  for (std::size_t i = 0; i < chunks.size(); ++i) {
+    firstFace[i + 1] = firstFace[i] + chunks[i].faceSize.size();
+    firstCorner[i + 1] = firstCorner[i] + chunks[i].v.size();
+  }
+  if (firstFace.back() == 0) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
+  const auto parts = assimpParts(chunks, firstFace);
+  std::vector<std::uint8_t> flags;
+  PolyMesh all = gatherCorners(chunks, tables, firstFace, firstCorner, flags);
+  chunks.clear();
+  tables = {};
+  const auto t3 = Clock::now();
+
+  unsigned missingNormals = 0;
+  Mesh result = finishParts(std::move(all), parts, flags, options.joinVertices, missingNormals);
   warnMissingNormals(name, missingNormals, unsigned(parts.size()));
   log::debug("'{}': {:.1f} MB, {} chunks: map + count {:.0f} ms, parse {:.0f} ms, gather {:.0f} ms, finish {:.0f} ms",
              name, double(file.size()) / 1e6, firstFace.size() - 1, ms(t0, t1), ms(t1, t2), ms(t2, t3), ms(t3, Clock::now()));

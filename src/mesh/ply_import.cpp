@@ -97,28 +97,43 @@ std::string_view nextWord(std::string_view& text) {
   return word;
 }
 
-/// Checks a PLY file's header against the format's grammar, strictly (printable text, one
-/// space between words, known keywords and types only, each element and property once,
-/// counts that fit, a vertex and a face element glint can read), and its body against the
-/// header: the body is walked (every list length read) and must hold every element.
-/// Whatever passes, Draco's and Assimp's readers see the same elements glint saw and stay
-/// inside the file. Fails with a one-line error.
-Format checkLayout(std::string_view file, const std::string& name) {
-  struct Property {
-    std::size_t size = 0;       // of a value
-    std::size_t countSize = 0;  // of a list's length; 0 for a scalar property
-    bool signedCount = false;   // the length's type is char, short or int
-    std::string_view name;
-  };
-  struct Element {
-    std::string_view name;
-    std::uint64_t count = 0;
-    std::vector<Property> properties;
-  };
+/// A property of a PLY element as the header declares it.
+struct Property {
+  std::size_t size = 0;       // of a value
+  std::size_t countSize = 0;  // of a list's length; 0 for a scalar property
+  bool signedCount = false;   // the length's type is char, short or int
+  std::string_view name;
+};
+
+struct Element {
+  std::string_view name;
+  std::uint64_t count = 0;
+  std::vector<Property> properties;
+};
+
+/// A PLY header as read by readHeader: the format, the elements in order, and where the
+/// body starts.
+struct Layout {
+  Format format = Format::Ascii;
+  std::vector<Element> elements;
+  std::size_t bodyOffset = 0;
+
+  const Element* element(std::string_view n) const {
+    for (const Element& e : elements) {
+      if (e.name == n) return &e;
+    }
+    return nullptr;
+  }
+};
+
+/// Reads a PLY header strictly (printable text, one space between words, known keywords
+/// and types only, each element and property once, counts that fit in the file).
+Layout readHeader(std::string_view file, const std::string& name) {
   const auto bad = [&](std::string_view what, std::string_view line) {
     fail(ErrorKind::Input, "cannot read mesh '{}': {} ('{}')", name, what, printable(line.substr(0, 80)));
   };
-  std::size_t at = 0;
+  Layout layout;
+  std::size_t& at = layout.bodyOffset;
   const auto nextLine = [&]() -> std::optional<std::string_view> {
     if (at >= file.size()) return std::nullopt;
     const std::size_t eol = file.find('\n', at);
@@ -132,15 +147,14 @@ Format checkLayout(std::string_view file, const std::string& name) {
     fail(ErrorKind::Input, "cannot read mesh '{}': not a PLY file (it does not start with a 'ply' line)", name);
   }
   const std::optional<std::string_view> formatLine = nextLine();
-  Format format;
-  if (formatLine == "format ascii 1.0") format = Format::Ascii;
-  else if (formatLine == "format binary_little_endian 1.0") format = Format::LittleEndian;
-  else if (formatLine == "format binary_big_endian 1.0") format = Format::BigEndian;
+  if (formatLine == "format ascii 1.0") layout.format = Format::Ascii;
+  else if (formatLine == "format binary_little_endian 1.0") layout.format = Format::LittleEndian;
+  else if (formatLine == "format binary_big_endian 1.0") layout.format = Format::BigEndian;
   else {
     fail(ErrorKind::Input, "cannot read mesh '{}': its second line is not a PLY format line ('{}')", name,
          printable(formatLine.value_or("").substr(0, 80)));
   }
-  std::vector<Element> elements;
+  std::vector<Element>& elements = layout.elements;
   for (;;) {
     const std::optional<std::string_view> line = nextLine();
     if (!line) fail(ErrorKind::Input, "cannot read mesh '{}': its PLY header has no end_header line", name);
@@ -157,9 +171,7 @@ Format checkLayout(std::string_view file, const std::string& name) {
     if (w.size() == 3 && w[0] == "element") {
       // Each element once: the readers index elements by name, and Assimp frees what it
       // never allocated on a file with two (found by fuzz/mesh.cpp).
-      if (std::any_of(elements.begin(), elements.end(), [&](const Element& e) { return e.name == w[1]; })) {
-        bad("a PLY element declared twice", *line);
-      }
+      if (layout.element(w[1])) bad("a PLY element declared twice", *line);
       Element& e = elements.emplace_back();
       e.name = w[1];
       const auto [end, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
@@ -185,106 +197,167 @@ Format checkLayout(std::string_view file, const std::string& name) {
       bad("a PLY header line that is not a comment, element, property or end_header", *line);
     }
   }
-  // What both readers need to make triangles: vertices with x, y and z, and faces (or
-  // triangle strips) with a vertex_indices list. Anything else is refused here, not
-  // handed to Assimp, whose reader misreads such files (a 32 GB allocation for a
-  // big-endian file with other element names; found by fuzz/mesh.cpp).
-  const auto element = [&](std::string_view n) -> const Element* {
-    for (const Element& e : elements) {
-      if (e.name == n) return &e;
-    }
-    return nullptr;
-  };
+  return layout;
+}
+
+/// What both readers need to make triangles: vertices with x, y and z, and faces (or
+/// triangle strips) with a vertex_indices list. Anything else is refused here, not
+/// handed to Assimp, whose reader misreads such files (a 32 GB allocation for a
+/// big-endian file with other element names; found by fuzz/mesh.cpp).
+void checkTriangleElements(const Layout& layout, const std::string& name) {
   const auto has = [](const Element* e, std::string_view n, bool list) {
     return e && std::any_of(e->properties.begin(), e->properties.end(),
                             [&](const Property& p) { return p.name == n && (p.countSize != 0) == list; });
   };
-  const Element* vertex = element("vertex");
+  const Element* vertex = layout.element("vertex");
   if (!has(vertex, "x", false) || !has(vertex, "y", false) || !has(vertex, "z", false)) {
     fail(ErrorKind::Input, "cannot read mesh '{}': the PLY has no vertex element with x, y and z", name);
   }
-  const Element* faces = element("face");
-  const Element* strips = element("tristrips");
+  const Element* faces = layout.element("face");
+  const Element* strips = layout.element("tristrips");
   if (!has(faces, "vertex_indices", true) && !has(faces, "vertex_index", true) && !has(strips, "vertex_indices", true)) {
     fail(ErrorKind::Input, "cannot read mesh '{}': the PLY has no face element with a vertex_indices list", name);
   }
-  std::string_view body = file.substr(at);
-  for (const Element& e : elements) {
+}
+
+[[noreturn]] void failShortBody(const std::string& name, Format format, const Element& e) {
+  fail(ErrorKind::Input, "cannot read mesh '{}': the file ends inside its {} element '{}' of {} entries", name,
+       format == Format::Ascii ? "ASCII" : "binary", printable(e.name), e.count);
+}
+
+/// Walks an ASCII element's entries off the front of `body`: an entry per line, as the
+/// format has it, of printable words apart by blanks. Draco reads words, Assimp reads
+/// lines and stops a line at a NUL (an out-of-memory in Assimp on a line the two read
+/// differently; found by fuzz/mesh.cpp).
+void walkAsciiElement(std::string_view& body, const Element& e, const std::string& name) {
+  for (std::uint64_t entry = 0; entry < e.count; ++entry) {
+    if (body.empty()) failShortBody(name, Format::Ascii, e);
+    const std::size_t eol = std::min(body.find('\n'), body.size());
+    std::string_view line = body.substr(0, eol);
+    body.remove_prefix(std::min(body.size(), eol + 1));
+    if (line.ends_with('\r')) line.remove_suffix(1);
+    const auto badEntry = [&](std::string_view why) {
+      fail(ErrorKind::Input, "cannot read mesh '{}': entry {} of PLY element '{}' {}", name, entry, printable(e.name), why);
+    };
+    if (std::any_of(line.begin(), line.end(), [](char c) { return std::uint8_t(c) < 0x20 && c != '\t'; })) {
+      badEntry("has a control character");
+    }
+    for (const Property& p : e.properties) {
+      std::uint64_t values = 1;
+      if (p.countSize) {
+        const std::string_view word = nextWord(line);
+        const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), values);
+        if (ec != std::errc() || end != word.data() + word.size()) {
+          badEntry(fmt::format("has a list length '{}' that is not a count", printable(word.substr(0, 40))));
+        }
+      }
+      for (std::uint64_t v = 0; v < values; ++v) {
+        if (nextWord(line).empty()) badEntry("has fewer values than its properties");
+      }
+    }
+    if (!nextWord(line).empty()) badEntry("has more values than its properties");
+  }
+}
+
+/// Walks a binary element's entries off the front of `body`, reading every list length.
+void walkBinaryElement(std::string_view& body, Format format, const Element& e, const std::string& name) {
+  const bool lists = std::any_of(e.properties.begin(), e.properties.end(), [](const Property& p) { return p.countSize; });
+  if (!lists) {
+    std::size_t stride = 0;
+    for (const Property& p : e.properties) stride += p.size;
+    if (e.count > body.size() / stride) failShortBody(name, format, e);
+    body.remove_prefix(std::size_t(e.count) * stride);
+    return;
+  }
+  for (std::uint64_t entry = 0; entry < e.count; ++entry) {
+    for (const Property& p : e.properties) {
+      std::uint64_t values = 1;
+      if (p.countSize) {  // the length in the file's byte order
+        if (body.size() < p.countSize) failShortBody(name, format, e);
+        values = 0;
+        for (std::size_t b = 0; b < p.countSize; ++b) {
+          const std::size_t byte = format == Format::LittleEndian ? p.countSize - 1 - b : b;
+          values = values << 8 | std::uint8_t(body[byte]);
+        }
+        // Draco reads a length unsigned, Assimp as its type says: a negative one is
+        // refused, so that both read the same (Assimp reserved 32 GB for a char -1;
+        // found by fuzz/mesh.cpp).
+        if (p.signedCount && (values >> (8 * p.countSize - 1)) != 0) {
+          fail(ErrorKind::Input, "cannot read mesh '{}': entry {} of PLY element '{}' has a negative list length", name,
+               entry, printable(e.name));
+        }
+        body.remove_prefix(p.countSize);
+      }
+      if (values > body.size() / p.size) failShortBody(name, format, e);
+      body.remove_prefix(std::size_t(values * p.size));
+    }
+  }
+}
+
+/// Checks a PLY file's header against the format's grammar (readHeader), that it has the
+/// elements glint reads (checkTriangleElements), and its body against the header: the
+/// body is walked (every list length read) and must hold every element. Whatever passes,
+/// Draco's and Assimp's readers see the same elements glint saw and stay inside the
+/// file. Fails with a one-line error.
+Format checkLayout(std::string_view file, const std::string& name) {
+  const Layout layout = readHeader(file, name);
+  checkTriangleElements(layout, name);
+  std::string_view body = file.substr(layout.bodyOffset);
+  for (const Element& e : layout.elements) {
     if (e.count > 0 && e.properties.empty()) {
       fail(ErrorKind::Input, "cannot read mesh '{}': PLY element '{}' has {} entries but no properties", name,
            printable(e.name), e.count);
     }
     if (e.count == 0) continue;
-    const auto shortBody = [&] {
-      fail(ErrorKind::Input, "cannot read mesh '{}': the file ends inside its {} element '{}' of {} entries", name,
-           format == Format::Ascii ? "ASCII" : "binary", printable(e.name), e.count);
-    };
-    if (format == Format::Ascii) {
-      // An entry per line, as the format has it, of printable words apart by blanks: Draco
-      // reads words, Assimp reads lines and stops a line at a NUL (an out-of-memory in
-      // Assimp on a line the two read differently; found by fuzz/mesh.cpp).
-      for (std::uint64_t entry = 0; entry < e.count; ++entry) {
-        if (body.empty()) shortBody();
-        const std::size_t eol = std::min(body.find('\n'), body.size());
-        std::string_view line = body.substr(0, eol);
-        body.remove_prefix(std::min(body.size(), eol + 1));
-        if (line.ends_with('\r')) line.remove_suffix(1);
-        const auto badEntry = [&](std::string_view why) {
-          fail(ErrorKind::Input, "cannot read mesh '{}': entry {} of PLY element '{}' {}", name, entry, printable(e.name), why);
-        };
-        if (std::any_of(line.begin(), line.end(), [](char c) { return std::uint8_t(c) < 0x20 && c != '\t'; })) {
-          badEntry("has a control character");
-        }
-        for (const Property& p : e.properties) {
-          std::uint64_t values = 1;
-          if (p.countSize) {
-            const std::string_view word = nextWord(line);
-            const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), values);
-            if (ec != std::errc() || end != word.data() + word.size()) {
-              badEntry(fmt::format("has a list length '{}' that is not a count", printable(word.substr(0, 40))));
-            }
-          }
-          for (std::uint64_t v = 0; v < values; ++v) {
-            if (nextWord(line).empty()) badEntry("has fewer values than its properties");
-          }
-        }
-        if (!nextWord(line).empty()) badEntry("has more values than its properties");
-      }
-      continue;
-    }
-    const bool lists = std::any_of(e.properties.begin(), e.properties.end(), [](const Property& p) { return p.countSize; });
-    if (!lists) {
-      std::size_t stride = 0;
-      for (const Property& p : e.properties) stride += p.size;
-      if (e.count > body.size() / stride) shortBody();
-      body.remove_prefix(std::size_t(e.count) * stride);
-      continue;
-    }
-    for (std::uint64_t entry = 0; entry < e.count; ++entry) {
-      for (const Property& p : e.properties) {
-        std::uint64_t values = 1;
-        if (p.countSize) {  // the length in the file's byte order
-          if (body.size() < p.countSize) shortBody();
-          values = 0;
-          for (std::size_t b = 0; b < p.countSize; ++b) {
-            const std::size_t byte = format == Format::LittleEndian ? p.countSize - 1 - b : b;
-            values = values << 8 | std::uint8_t(body[byte]);
-          }
-          // Draco reads a length unsigned, Assimp as its type says: a negative one is
-          // refused, so that both read the same (Assimp reserved 32 GB for a char -1;
-          // found by fuzz/mesh.cpp).
-          if (p.signedCount && (values >> (8 * p.countSize - 1)) != 0) {
-            fail(ErrorKind::Input, "cannot read mesh '{}': entry {} of PLY element '{}' has a negative list length", name,
-                 entry, printable(e.name));
-          }
-          body.remove_prefix(p.countSize);
-        }
-        if (values > body.size() / p.size) shortBody();
-        body.remove_prefix(std::size_t(values * p.size));
-      }
+    if (layout.format == Format::Ascii) {
+      walkAsciiElement(body, e, name);
+    } else {
+      walkBinaryElement(body, layout.format, e, name);
     }
   }
-  return format;
+  return layout.format;
+}
+
+/// The faces' corners from the vertex_indices list, whatever its integer type, into
+/// mesh.faceStart and mesh.corners; every index checked against the vertex count.
+void readFaces(const draco::PlyElement& face, const draco::PlyProperty& list, int vertexCount, const std::string& name,
+               PolyMesh& mesh) {
+  const int faceCount = face.num_entries();
+  if (faceCount == 0) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
+  mesh.faceStart.resize(std::size_t(faceCount) + 1);
+  std::size_t corners = 0;
+  for (int f = 0; f < faceCount; ++f) {
+    const std::int64_t n = list.GetListEntryNumValues(f);
+    // No corners: corrupt (Assimp crashes or aborts on such files). 1–2: a point or line.
+    if (n <= 0) fail(ErrorKind::Input, "cannot read mesh '{}': face {} has no corners", name, f);
+    if (n < 3) throw Declined("a face with fewer than 3 corners");
+    mesh.faceStart[std::size_t(f)] = std::uint32_t(corners);
+    corners += std::size_t(n);
+  }
+  mesh.faceStart[std::size_t(faceCount)] = std::uint32_t(corners);
+  mesh.corners.resize(corners);
+  const auto* values = static_cast<const std::uint8_t*>(corners ? list.GetDataEntryAddress(0) : nullptr);
+  const auto indexAt = [&](std::size_t i) -> std::int64_t {
+    switch (list.data_type()) {
+      case draco::DT_INT8: return std::int8_t(values[i]);
+      case draco::DT_UINT8: return values[i];
+      case draco::DT_INT16: { std::int16_t t; std::memcpy(&t, values + 2 * i, 2); return t; }
+      case draco::DT_UINT16: { std::uint16_t t; std::memcpy(&t, values + 2 * i, 2); return t; }
+      case draco::DT_INT32: { std::int32_t t; std::memcpy(&t, values + 4 * i, 4); return t; }
+      case draco::DT_UINT32: { std::uint32_t t; std::memcpy(&t, values + 4 * i, 4); return t; }
+      default: throw Declined("face indices of an unusual type");
+    }
+  };
+  for (int f = 0; f < faceCount; ++f) {
+    const std::size_t offset = std::size_t(list.GetListEntryOffset(f));
+    for (std::uint32_t k = mesh.faceStart[std::size_t(f)]; k < mesh.faceStart[std::size_t(f) + 1]; ++k) {
+      const std::int64_t index = indexAt(offset + (k - mesh.faceStart[std::size_t(f)]));
+      if (index < 0 || index >= vertexCount) {
+        fail(ErrorKind::Input, "cannot read mesh '{}': face {} refers to vertex {} of {}", name, f, index, vertexCount);
+      }
+      mesh.corners[k] = std::uint32_t(index);
+    }
+  }
 }
 }  // namespace
 
@@ -349,43 +422,7 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
     for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.uvs[i] = vec2(a[i], b[i]);
   }
 
-  // Faces: the list's values, whatever their integer type.
-  const int faceCount = face->num_entries();
-  if (faceCount == 0) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
-  mesh.faceStart.resize(std::size_t(faceCount) + 1);
-  std::size_t corners = 0;
-  for (int f = 0; f < faceCount; ++f) {
-    const std::int64_t n = list->GetListEntryNumValues(f);
-    // No corners: corrupt (Assimp crashes or aborts on such files). 1–2: a point or line.
-    if (n <= 0) fail(ErrorKind::Input, "cannot read mesh '{}': face {} has no corners", name, f);
-    if (n < 3) throw Declined("a face with fewer than 3 corners");
-    mesh.faceStart[std::size_t(f)] = std::uint32_t(corners);
-    corners += std::size_t(n);
-  }
-  mesh.faceStart[std::size_t(faceCount)] = std::uint32_t(corners);
-  mesh.corners.resize(corners);
-  const auto* values = static_cast<const std::uint8_t*>(corners ? list->GetDataEntryAddress(0) : nullptr);
-  const auto indexAt = [&](std::size_t i) -> std::int64_t {
-    switch (list->data_type()) {
-      case draco::DT_INT8: return std::int8_t(values[i]);
-      case draco::DT_UINT8: return values[i];
-      case draco::DT_INT16: { std::int16_t t; std::memcpy(&t, values + 2 * i, 2); return t; }
-      case draco::DT_UINT16: { std::uint16_t t; std::memcpy(&t, values + 2 * i, 2); return t; }
-      case draco::DT_INT32: { std::int32_t t; std::memcpy(&t, values + 4 * i, 4); return t; }
-      case draco::DT_UINT32: { std::uint32_t t; std::memcpy(&t, values + 4 * i, 4); return t; }
-      default: throw Declined("face indices of an unusual type");
-    }
-  };
-  for (int f = 0; f < faceCount; ++f) {
-    const std::size_t offset = std::size_t(list->GetListEntryOffset(f));
-    for (std::uint32_t k = mesh.faceStart[std::size_t(f)]; k < mesh.faceStart[std::size_t(f) + 1]; ++k) {
-      const std::int64_t index = indexAt(offset + (k - mesh.faceStart[std::size_t(f)]));
-      if (index < 0 || index >= vertexCount) {
-        fail(ErrorKind::Input, "cannot read mesh '{}': face {} refers to vertex {} of {}", name, f, index, vertexCount);
-      }
-      mesh.corners[k] = std::uint32_t(index);
-    }
-  }
+  readFaces(*face, *list, vertexCount, name, mesh);
 
   // Before any step computes with them (the normal generator's grid, joining).
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {

@@ -37,6 +37,7 @@ void PipelineState::apply() const {
   } else {
     glBlendFunc(blend.src, blend.dst);
   }
+  enable(GL_TEXTURE_CUBE_MAP_SEAMLESS, seamlessCubeMap);
 }
 
 void resetState() {
@@ -44,6 +45,43 @@ void resetState() {
   glDisable(GL_SCISSOR_TEST);
   glUseProgram(0);
   glBindVertexArray(0);
+}
+
+std::vector<std::string> stateLeftBehind() {
+  std::vector<std::string> left;
+  const auto offByDefault = [&](GLenum cap, const char* name) {
+    if (glIsEnabled(cap)) left.emplace_back(name);
+  };
+  const auto integer = [](GLenum pname) {
+    GLint value = 0;
+    glGetIntegerv(pname, &value);
+    return value;
+  };
+  offByDefault(GL_SCISSOR_TEST, "GL_SCISSOR_TEST");
+  offByDefault(GL_PROGRAM_POINT_SIZE, "GL_PROGRAM_POINT_SIZE");
+  offByDefault(GL_RASTERIZER_DISCARD, "GL_RASTERIZER_DISCARD");
+  offByDefault(GL_PRIMITIVE_RESTART, "GL_PRIMITIVE_RESTART");
+  offByDefault(GL_COLOR_LOGIC_OP, "GL_COLOR_LOGIC_OP");
+  offByDefault(GL_SAMPLE_ALPHA_TO_COVERAGE, "GL_SAMPLE_ALPHA_TO_COVERAGE");
+  if (integer(GL_PIXEL_PACK_BUFFER_BINDING) != 0) left.emplace_back("GL_PIXEL_PACK_BUFFER bound");
+  if (integer(GL_PIXEL_UNPACK_BUFFER_BINDING) != 0) left.emplace_back("GL_PIXEL_UNPACK_BUFFER bound");
+  if (integer(GL_PACK_ALIGNMENT) != 4) left.emplace_back("GL_PACK_ALIGNMENT");
+  if (integer(GL_UNPACK_ALIGNMENT) != 4) left.emplace_back("GL_UNPACK_ALIGNMENT");
+  if (integer(GL_ACTIVE_TEXTURE) != GL_TEXTURE0) left.emplace_back("GL_ACTIVE_TEXTURE");
+  if (integer(GL_CONTEXT_PROFILE_MASK) & GL_CONTEXT_COMPATIBILITY_PROFILE_BIT) {
+    offByDefault(GL_TEXTURE_2D, "GL_TEXTURE_2D");
+    offByDefault(GL_TEXTURE_CUBE_MAP, "GL_TEXTURE_CUBE_MAP");
+    offByDefault(GL_NORMALIZE, "GL_NORMALIZE");
+    offByDefault(GL_LIGHTING, "GL_LIGHTING");
+    offByDefault(GL_TEXTURE_GEN_S, "GL_TEXTURE_GEN_S");
+    offByDefault(GL_TEXTURE_GEN_T, "GL_TEXTURE_GEN_T");
+    offByDefault(GL_TEXTURE_GEN_R, "GL_TEXTURE_GEN_R");
+    offByDefault(GL_VERTEX_ARRAY, "GL_VERTEX_ARRAY");
+    offByDefault(GL_NORMAL_ARRAY, "GL_NORMAL_ARRAY");
+    offByDefault(GL_COLOR_ARRAY, "GL_COLOR_ARRAY");
+    offByDefault(GL_TEXTURE_COORD_ARRAY, "GL_TEXTURE_COORD_ARRAY");
+  }
+  return left;
 }
 
 void clear(GLbitfield buffers, const float color[4], double depth, int stencil) {

@@ -67,7 +67,5 @@ struct Api {
 
 }  // namespace glint::video::backend
 
-extern "C" {
-/// The module's one export.
-using GlintVideoApiFn = const glint::video::backend::Api* (*)();
-}
+// The module's one export, loaded by core/locations.h's loadModule:
+//   extern "C" const glint::video::backend::Api* glint_video_api();

@@ -114,6 +114,9 @@ private:
 };
 }  // namespace
 
+// One function on purpose: the three stages (reader thread, processing here, writer
+// thread) share the queues, the image pool, the failure flag and the stats, and both
+// threads must be joined before any stage's error is rethrown. Each stage is one lambda.
 TranscodeStats transcode(Source& source, Sink& sink, FrameProcessor& processor, const TranscodeOptions& options) {
   const auto start = Clock::now();
   TranscodeStats stats;

@@ -9,12 +9,9 @@
 #include "glint/video/sink.h"
 #include "glint/video/source.h"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <mutex>
 #include <utility>
 
 #if !defined(GLINT_FFMPEG_MODULE) || !defined(GLINT_FFMPEG_MODULE_INSTALLED)
@@ -27,38 +24,14 @@ namespace fs = std::filesystem;
 namespace {
 const ModuleLocation kModule{GLINT_FFMPEG_MODULE, GLINT_FFMPEG_MODULE_INSTALLED, "GLINT_FFMPEG_MODULE"};
 
-// Loads the module once; never unloaded (objects it made may live until exit).
+// Loads the module once (core/locations.h's loadModule); never unloaded (objects it made
+// may live until exit). A failed load throws, and the next call tries again (a static
+// whose initialisation throws is not initialised).
 const backend::Api& api() {
-  static std::once_flag once;
-  static const backend::Api* loaded = nullptr;
-  static std::string error;
-  std::call_once(once, [] {
-    const auto candidates = moduleCandidates(kModule);
-    if (candidates.empty()) {
-      error = fmt::format("cannot load the video module '{}': not found ({})", fs::path(GLINT_FFMPEG_MODULE).filename().string(),
-                          moduleSearchDescription(kModule));
-      return;
-    }
-    for (const fs::path& path : candidates) {
-      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!handle) {
-        const char* reason = dlerror();
-        if (error.empty()) error = fmt::format("cannot load the video module '{}': {}", path.string(), reason ? reason : "dlopen failed");
-        continue;
-      }
-      auto entry = reinterpret_cast<GlintVideoApiFn>(dlsym(handle, "glint_video_api"));
-      const backend::Api* table = entry ? entry() : nullptr;
-      if (!table || table->abiVersion != backend::kVideoAbiVersion) {
-        if (error.empty()) error = fmt::format("cannot load the video module '{}': not a glint video module of this build", path.string());
-        continue;
-      }
-      loaded = table;
-      return;
-    }
-  });
-  if (!loaded) throw Error(ErrorKind::Internal, error);
-  loaded->setLogLevel(int(log::level()));  // the module's logger follows -q / -v
-  return *loaded;
+  static const backend::Api& loaded =
+      loadModule<backend::Api>(kModule, "video", "glint_video_api", backend::kVideoAbiVersion);
+  loaded.setLogLevel(int(log::level()));  // the module's logger follows -q / -v
+  return loaded;
 }
 
 void check(const backend::Status& status) {

@@ -42,8 +42,11 @@ TEST_F(GlTest, BufferStoresAndUpdates) {
   const float two = 20.0f;
   buffer.update(sizeof(float), sizeof(float), &two);
   std::array<float, 4> back{};
-  glGetNamedBufferSubData(buffer.id(), 0, sizeof(back), back.data());
+  buffer.read(0, sizeof(back), back.data());
   EXPECT_EQ(back, (std::array<float, 4>{1, 20, 3, 4}));
+  float third = 0.0f;
+  buffer.read(2 * sizeof(float), sizeof(float), &third);
+  EXPECT_EQ(third, 3.0f);
   EXPECT_THROW(buffer.update(12, 8, &two), Error);
 }
 
@@ -141,4 +144,29 @@ TEST_F(GlTest, DebugCallbackCountsErrorsAndNotableMessages) {
   glBindTexture(GL_TEXTURE_2D, 0xdeadbeef);  // not a texture name: GL_INVALID_OPERATION
   EXPECT_EQ(gl::debugErrorCount(), errors + 1);
   EXPECT_EQ(glGetError(), GLenum(GL_INVALID_OPERATION));
+}
+
+TEST_F(GlTest, TextureClearReadAndCopyFromAFramebuffer) {
+  gl::Texture tex(GL_TEXTURE_2D, "cleared");
+  tex.storage(GL_RGBA8, 4, 2);
+  const std::array<std::uint8_t, 4> value{10, 20, 30, 40};
+  tex.clear(0, GL_RGBA, GL_UNSIGNED_BYTE, value.data());
+  std::array<std::uint8_t, 4 * 4 * 2> texels{};
+  tex.read(0, GL_RGBA, GL_UNSIGNED_BYTE, texels.size(), texels.data());
+  for (std::size_t i = 0; i < texels.size(); ++i) EXPECT_EQ(texels[i], value[i % 4]) << i;
+
+  // A framebuffer cleared to one colour, blitted flipped into another, copied into the texture.
+  gl::RenderTarget a({4, 2}, GL_RGBA8, "a"), b({4, 2}, GL_RGBA8, "b");
+  const float red[4] = {1.0f, 0.0f, 0.0f, 1.0f}, blue[4] = {0.0f, 0.0f, 1.0f, 1.0f};
+  a.framebuffer().clearColor(0, red);
+  b.framebuffer().clearColor(0, blue);
+  a.framebuffer().blitTo(b.framebuffer(), {0, 0, 4, 1}, {0, 2, 4, 1}, GL_COLOR_BUFFER_BIT);  // a's row 0 → b's row 1
+  b.framebuffer().bind(GL_READ_FRAMEBUFFER);
+  tex.copyFromReadFramebuffer(0, 0, 4, 2);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  tex.read(0, GL_RGBA, GL_UNSIGNED_BYTE, texels.size(), texels.data());
+  EXPECT_EQ(texels[0], 0);     // GL row 0 of b: still blue
+  EXPECT_EQ(texels[2], 255);
+  EXPECT_EQ(texels[16], 255);  // GL row 1: red from a
+  EXPECT_EQ(texels[18], 0);
 }

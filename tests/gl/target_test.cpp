@@ -101,3 +101,22 @@ TEST_F(GlTest, ARegionClipsClearsAndBindingTheWholeTargetEndsIt) {
   EXPECT_GT(image.at(10, kSize.y - 1 - 20, 0), 0.5f);
   EXPECT_LT(image.at(9, kSize.y - 1 - 20, 0), 0.5f);
 }
+
+TEST_F(GlTest, PipelineStateSetsSeamlessCubeMapsAndResetTurnsThemOff) {
+  render::PipelineState{.seamlessCubeMap = true}.apply();
+  EXPECT_TRUE(glIsEnabled(GL_TEXTURE_CUBE_MAP_SEAMLESS));
+  EXPECT_TRUE(render::stateLeftBehind().empty());  // PipelineState's own: not left behind
+  render::resetState();
+  EXPECT_FALSE(glIsEnabled(GL_TEXTURE_CUBE_MAP_SEAMLESS));
+}
+
+TEST_F(GlTest, StateLeftBehindNamesWhatAPassDidNotRestore) {
+  render::resetState();
+  EXPECT_EQ(render::stateLeftBehind(), std::vector<std::string>{});
+  glEnable(GL_SCISSOR_TEST);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  EXPECT_EQ(render::stateLeftBehind(), (std::vector<std::string>{"GL_SCISSOR_TEST", "GL_UNPACK_ALIGNMENT"}));
+  glDisable(GL_SCISSOR_TEST);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  EXPECT_TRUE(render::stateLeftBehind().empty());
+}

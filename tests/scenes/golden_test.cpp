@@ -14,6 +14,7 @@
 // accept with `scripts/accept-golden [filter]`.
 #include "glint/core/error.h"
 #include "glint/gl/debug.h"
+#include "glint/render/state.h"
 #include "glint/scenes/runner.h"
 
 #include <gtest/gtest.h>
@@ -58,6 +59,8 @@ TEST_P(Golden, MatchesReference) {
   EXPECT_EQ(gl::debugErrorCount(), errorsBefore) << "GL errors while rendering (see log)";
   // Zero driver messages of medium severity or above too, for every gallery variant.
   EXPECT_EQ(gl::debugNotableCount(), notableBefore) << "GL messages of medium or high severity (see log)";
+  // Polite: what PipelineState does not set, the variant put back (render/state.h).
+  EXPECT_EQ(render::stateLeftBehind(), std::vector<std::string>{}) << "state the variant did not restore";
 
   const fs::path golden = fs::path(GLINT_GOLDEN_DIR) / (ref.fullName() + ".png");
   const fs::path outBase = fs::path(GLINT_TEST_OUTPUT_DIR) / "golden" / ref.fullName();

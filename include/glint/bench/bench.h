@@ -10,13 +10,17 @@
 // suites.add({...}); declare and call it in Suites::builtin() (bench/bench.cpp) and add
 // the file to bench/CMakeLists.txt.
 //
-//   suites.add({.name = "rtt", .description = "render-to-texture: copy vs FBO",
-//               .run = [](bench::Recorder& r) {
-//                 double copyMs = ..., fboMs = ...;
-//                 r.record({.group = "512x512", .name = "copy", .value = copyMs, .unit = "ms"});
-//                 r.record({.group = "512x512", .name = "fbo", .value = fboMs, .unit = "ms",
-//                           .ratioTo = "copy"});
-//               }});
+/// ```cpp
+/// glint::bench::Suites& suites = glint::bench::Suites::builtin();
+/// suites.add({.name = "rtt", .description = "render-to-texture: copy vs FBO",
+///             .run = [](glint::bench::Recorder& r) {
+///               const auto copy = [] { /* draw, then glCopyTexSubImage2D */ };
+///               const auto fbo = [] { /* draw into the texture's framebuffer */ };
+///               const double copyMs = glint::bench::wallMs(copy, 10), fboMs = glint::bench::wallMs(fbo, 10);
+///               r.record({.group = "512x512", .name = "copy", .value = copyMs, .unit = "ms"});
+///               r.record({.group = "512x512", .name = "fbo", .value = fboMs, .unit = "ms", .ratioTo = "copy"});
+///             }});
+/// ```
 
 #include <nlohmann/json.hpp>
 

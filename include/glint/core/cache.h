@@ -19,10 +19,15 @@
 // (core/file.h): under its final name it is always complete, so a reader that finds it
 // needs no lock at all.
 //
-//   const auto entry = glint::cachedFile(glint::cacheDirectory(), "stage-3f2a.bin",
-//                                        [&](const std::filesystem::path& tmp) { writeStage(tmp); });
-//   if (entry.built) glint::log::info("built {}", entry.path.string());
-//   readStage(entry.path);
+/// ```cpp
+/// #include <glint/core/file.h>
+/// #include <glint/core/log.h>
+/// #include <fstream>
+/// const auto entry = glint::cachedFile(glint::cacheDirectory(), "stage-3f2a.txt",
+///                                      [&](const std::filesystem::path& tmp) { std::ofstream(tmp) << "the stage\n"; });
+/// if (entry.built) glint::log::info("built {}", entry.path.string());
+/// const std::string stage = glint::readTextFile(entry.path);
+/// ```
 
 #include <filesystem>
 #include <functional>

@@ -5,8 +5,17 @@
 // Error with a one-line, human-readable message. Front ends print the message
 // and exit with exitCode(kind); nothing else is printed, no stack traces.
 //
-//   throw glint::Error(glint::ErrorKind::Input, "cannot read 'foo.png': no such file");
-//   glint::fail(glint::ErrorKind::Usage, "size must be WxH, got '{}'", text);
+/// ```cpp
+/// #include <cstdlib>
+/// const std::string text = "1920";  // a --size the user typed
+/// try {
+///   if (text.find('x') == std::string::npos) glint::fail(glint::ErrorKind::Usage, "size must be WxH, got '{}'", text);
+///   throw glint::Error(glint::ErrorKind::Input, "cannot read 'foo.png': no such file");
+/// } catch (const glint::Error& e) {
+///   fmt::print(stderr, "{}\n", e.what());
+///   std::exit(glint::exitCode(e.kind()));  // 2 for Usage
+/// }
+/// ```
 
 #include <fmt/format.h>
 

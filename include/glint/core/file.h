@@ -8,9 +8,12 @@
 // leaves its temporary, named ".<stem>.tmp<pid>-<n><ext>"; the next write into that
 // directory removes such files whose process is gone.
 //
-//   glint::writeAtomically("out.png", [&](const std::filesystem::path& tmp) {
-//     saveImage(image, tmp);    // tmp keeps the extension, so format detection works
-//   });
+/// ```cpp
+/// #include <fstream>
+/// glint::writeAtomically("out.txt", [&](const std::filesystem::path& tmp) {
+///   std::ofstream(tmp) << "complete or absent\n";  // tmp keeps the extension, so format detection works
+/// });
+/// ```
 
 #include <filesystem>
 #include <functional>
@@ -30,9 +33,14 @@ void writeAtomically(const std::filesystem::path& destination,
 /// temporary(), then commit() renames it to the destination. Destroyed without commit(),
 /// it removes the temporary file. Error(Output) from the constructor as checkWritable.
 ///
-///   AtomicFile file("out.mkv");
-///   encodeInto(file.temporary());
-///   file.commit();
+/// ```cpp
+/// #include <fstream>
+/// glint::AtomicFile file("log.txt");
+/// std::ofstream out(file.temporary());
+/// for (int frame = 0; frame < 3; ++frame) out << "frame " << frame << "\n";
+/// out.close();
+/// file.commit();  // without it, the destructor removes the temporary
+/// ```
 class AtomicFile {
 public:
   explicit AtomicFile(const std::filesystem::path& destination);

@@ -6,9 +6,15 @@
 //   Fnv1a    64-bit FNV-1a over bytes: a stable content hash for cache keys, input
 //            fingerprints and hash-map keys. Not cryptographic.
 //
-//   glint::Fnv1a h;
-//   h.add(mesh.positions).add(lightCount);   // spans of trivially copyable values, or values
-//   const std::uint64_t key = h.value();
+/// ```cpp run
+/// #include <vector>
+/// const std::vector<float> positions{0.0f, 1.0f, 2.0f};
+/// const int lightCount = 2;
+/// glint::Fnv1a h;
+/// h.add(positions).add(lightCount);  // ranges of trivially copyable values, or values
+/// const std::uint64_t key = h.value();
+/// const std::uint32_t noise = glint::hash32(7);  // the same on every machine
+/// ```
 
 #include <cstddef>
 #include <cstdint>
@@ -27,6 +33,25 @@ constexpr std::uint32_t hash32(std::uint32_t x) {
   x ^= x >> 16;
   return x;
 }
+
+/// A deterministic sequence of uniform numbers built on hash32: the same numbers on every
+/// machine and standard library (std::uniform_real_distribution's are not), for procedural
+/// content such as the Pipe Dream stage and its score. Not for statistics.
+struct HashSequence {
+  std::uint32_t state = 0;
+  /// The next number in [0, 1), with 24 bits of resolution.
+  float next() {
+    state = hash32(state + 0x9E3779B9u);
+    return float(state >> 8) * (1.0f / 16777216.0f);
+  }
+  /// Uniform in [lo, hi).
+  float range(float lo, float hi) { return lo + (hi - lo) * next(); }
+  /// Uniform integer in [0, n), n > 0.
+  int below(int n) {
+    const int k = int(next() * float(n));
+    return k < n - 1 ? k : n - 1;
+  }
+};
 
 /// 64-bit FNV-1a, fed byte by byte. Values are hashed by their object representation,
 /// so callers that need +0 and -0 (or other equal values with different bits) to hash

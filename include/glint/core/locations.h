@@ -3,7 +3,9 @@
 // downloaded data (environment maps, the Stanford bunny) and the running executable
 // (image/image.h's I/O module is looked up beside it).
 //
-//   const fs::path exr = glint::findDataFile("env/courtyard.exr", "environment 'courtyard'");
+/// ```cpp
+/// const std::filesystem::path exr = glint::findDataFile("env/courtyard.exr", "environment 'courtyard'");
+/// ```
 //
 // Data is what scripts/setup fetches into <source>/data; `cmake --install` copies it to
 // <prefix>/share/glint. findDataFile looks in these directories, first match wins:
@@ -56,6 +58,19 @@ struct ModuleLocation {
 std::vector<std::filesystem::path> moduleCandidates(const ModuleLocation& module);
 /// Where moduleCandidates() looks, for error messages: one line.
 std::string moduleSearchDescription(const ModuleLocation& module);
+
+/// Loads a module: dlopen()s the first candidate that loads and calls its C entry point
+/// `entry`, a function without arguments that returns the module's function table, whose
+/// first member is the int ABI version the module was built with. A table of another
+/// version is refused (a stale build). The module stays mapped for the life of the
+/// process. Error(Internal), one line, when no candidate loads: `what` ("image I/O",
+/// "video"), the module and the first candidate's reason, or where it was searched.
+const void* loadModuleTable(const ModuleLocation& module, std::string_view what, const char* entry, int abiVersion);
+/// The same, typed: `Table` is the module's function table (its first member the version).
+template <class Table>
+const Table& loadModule(const ModuleLocation& module, std::string_view what, const char* entry, int abiVersion) {
+  return *static_cast<const Table*>(loadModuleTable(module, what, entry, abiVersion));
+}
 
 /// The first dataDirectories()/`relative` that is a regular file. Error(Input), one line,
 /// when there is none: `what` (e.g. "environment 'courtyard'"), every directory searched,

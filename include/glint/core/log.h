@@ -5,7 +5,12 @@
 // (`glint list`, `--json` reports). The level is global; `--quiet` sets Warn,
 // `--verbose` sets Debug.
 //
-//   glint::log::info("rendered {} variants in {:.1f} s", n, seconds);
+/// ```cpp
+/// const int n = 12;
+/// const double seconds = 3.25;
+/// glint::log::info("rendered {} variants in {:.1f} s", n, seconds);
+/// glint::log::setLevel(glint::log::Level::Warn);  // what --quiet does
+/// ```
 
 #include <fmt/format.h>
 

@@ -8,9 +8,16 @@
 //
 // A total of 0 means unknown (a live source): the count is drawn without a bar.
 //
-//   glint::Progress progress("gallery", variants.size());
-//   for (...) { work(); progress.advance(); }
-//   progress.finish();   // also called by the destructor
+/// ```cpp
+/// #include <vector>
+/// const std::vector<int> variants(40);
+/// glint::Progress progress("gallery", variants.size());
+/// for (int variant : variants) {
+///   progress.setDetail(std::to_string(variant));
+///   progress.advance();
+/// }
+/// progress.finish();  // also called by the destructor
+/// ```
 
 #include <atomic>
 #include <chrono>

@@ -6,10 +6,14 @@
 // trailing text, no "nan" or "inf"), independent of the C locale, and fail with
 // Error(Usage) whose one line quotes the text. They are fuzzed (fuzz/options.cpp).
 //
-//   const ivec2 size = parseSize("1920x1080");          // {1920, 1080}
-//   const float f = parseFloat("0.25", "--exposure");    // 0.25
-//   const vec3 p = parseVec3("1,2.5,-3", "--light");     // {1, 2.5, -3}
-//   const double mib = parseMemorySize("4G", "--max-memory");  // 4096
+/// ```cpp run
+/// const glint::ivec2 size = glint::parseSize("1920x1080");                // {1920, 1080}
+/// const float f = glint::parseFloat("0.25", "--exposure");                 // 0.25
+/// const int n = glint::parseInt("8", "--threads", 1, 256);                 // 8
+/// const glint::vec3 p = glint::parseVec3("1,2.5,-3", "--light");           // {1, 2.5, -3}
+/// const double mib = glint::parseMemorySize("4G", "--max-memory");         // 4096
+/// const auto fields = glint::splitFields("a,,b", ',');                     // {"a", "", "b"}
+/// ```
 
 #include "glint/core/math.h"
 

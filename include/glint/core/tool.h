@@ -19,12 +19,22 @@
 //                 seconds (per phase and total), peak memory and warnings, and writes the
 //                 report atomically to F, or to stdout for "-".
 //
-//   ToolRun run("bake", settings);                  // settings from app/tool_options.h
-//   options.cancel = &run.cancelFlag();
-//   { auto timed = run.phase("load"); low = loadMesh(path); }
-//   run.throwIfInterrupted();                        // Error(Interrupted) → exit 130
-//   run.report()["rays"] = stats.rays;
-//   run.finish();                                     // after the outputs are written
+/// ```cpp
+/// #include <vector>
+/// glint::ToolSettings settings;  // from the command line: addToolOptions in app/main.cpp
+/// settings.threads = 4;
+/// glint::ToolRun run("bake", settings);
+/// const std::atomic<bool>* cancel = &run.cancelFlag();  // handed to the library, which polls it
+/// run.checkMemory(512.0, "a 4096² bake");              // Error(Usage) over --max-memory
+/// std::vector<float> texels;
+/// {
+///   auto timed = run.phase("load");
+///   texels.assign(std::size_t(4096) * 4096, 0.0f);
+/// }
+/// run.throwIfInterrupted();  // Error(Interrupted) → exit 130
+/// run.report()["texels"] = texels.size();
+/// run.finish();  // after the outputs are written
+/// ```
 //
 // One ToolRun at a time per process (it owns the signal handlers).
 
@@ -38,7 +48,8 @@
 
 namespace glint {
 
-/// The options every tool takes (bound to --threads, -q and --json by app/tool_options.h).
+/// The options every tool takes, bound to --threads, -q/--quiet, --max-memory and --json by
+/// addToolOptions (app/main.cpp, declared in app/common.h).
 struct ToolSettings {
   int threads = 0;   ///< worker threads; 0 = every core
   bool quiet = false;  ///< warnings and errors only: no progress bar, no info lines

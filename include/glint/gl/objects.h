@@ -27,6 +27,7 @@
 
 #include <epoxy/gl.h>
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <string_view>
@@ -52,7 +53,8 @@ public:
     return *this;
   }
 
-  /// The GL name. Use only inside gl/ and at interop boundaries (ImGui textures).
+  /// The GL name, for calls the classes here do not wrap: keep such calls inside gl/, or
+  /// at an interop boundary (ImGui's texture ids, another library's GL code).
   GLuint id() const { return m_id; }
   explicit operator bool() const { return m_id != 0; }
   /// Gives up ownership: the caller must delete the object.
@@ -94,6 +96,15 @@ public:
   void update(std::size_t offset, std::size_t bytes, const void* data);
   /// glBindBufferBase for uniform/storage buffers.
   void bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, m_id); }
+  /// glBindBuffer: a bind point without an index (GL_PIXEL_PACK_BUFFER / UNPACK for
+  /// asynchronous transfers, GL_ARRAY_BUFFER for the fixed-function path's pointers).
+  /// Unbind with unbind(target) when done, so later pixel transfers use client memory.
+  void bind(GLenum target) const { glBindBuffer(target, m_id); }
+  static void unbind(GLenum target) { glBindBuffer(target, 0); }
+  /// Copies `bytes` bytes at `offset` into `out` (glGetNamedBufferSubData; waits for the GPU).
+  void read(std::size_t offset, std::size_t bytes, void* out) const;
+  /// glMapNamedBufferRange over [offset, offset + bytes); nullptr when GL refuses.
+  void* map(std::size_t offset, std::size_t bytes, GLbitfield access) const;
 
 private:
   std::size_t m_size = 0;
@@ -148,6 +159,19 @@ public:
   /// Min/mag filter and wrap in one call.
   void filtering(GLenum minFilter, GLenum magFilter, GLenum wrap = GL_REPEAT) const;
   void bind(GLuint unit) const { glBindTextureUnit(unit, m_id); }
+  /// glBindTexture(target(), ...) on the active texture unit: the fixed-function path's
+  /// way, which glEnable(GL_TEXTURE_2D / CUBE_MAP) then reads. Prefer bind(unit).
+  void bindToActiveUnit() const { glBindTexture(m_target, m_id); }
+  /// Binds one level as an image for compute-shader loads and stores (glBindImageTexture).
+  void bindImage(GLuint unit, GLenum access, GLenum format, int level = 0) const;
+  /// Reads level `level` back (glGetTextureImage). With a buffer bound to
+  /// GL_PIXEL_PACK_BUFFER, `out` is an offset into it and the read is asynchronous.
+  void read(int level, GLenum format, GLenum type, std::size_t bytes, void* out) const;
+  /// Sets every texel of level `level` to `value` (glClearTexImage; nullptr: zeros).
+  void clear(int level, GLenum format, GLenum type, const void* value) const;
+  /// Copies a rectangle of the read framebuffer into level 0 at (0, 0)
+  /// (glCopyTextureSubImage2D: seeds/002's copy-to-texture).
+  void copyFromReadFramebuffer(int x, int y, int width, int height) const;
 
   GLenum target() const { return m_target; }
   GLenum internalFormat() const { return m_format; }
@@ -221,6 +245,15 @@ public:
   /// Throws Error(Internal) naming the status and the failing attachment when incomplete.
   void checkComplete() const;
   bool isDefault() const { return m_id == 0; }
+  /// Clears colour attachment `drawBuffer` (the index into drawBuffers) to `rgba`, whatever
+  /// is bound (glClearNamedFramebufferfv). Honours the colour mask, as glClear does.
+  void clearColor(int drawBuffer, const float rgba[4]) const;
+  /// Clears depth and stencil at once (glClearNamedFramebufferfi); honours their masks.
+  void clearDepthStencil(float depth, int stencil) const;
+  /// Copies `from` (x0, y0, x1, y1) of this framebuffer's read buffer into `to` of
+  /// `target` (glBlitNamedFramebuffer); to.y0 > to.y1 flips vertically.
+  void blitTo(const Framebuffer& target, std::array<int, 4> from, std::array<int, 4> to, GLbitfield mask,
+              GLenum filter = GL_NEAREST) const;
   void bind(GLenum target = GL_FRAMEBUFFER) const { glBindFramebuffer(target, m_id); }
 
 private:

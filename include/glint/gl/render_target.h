@@ -24,10 +24,19 @@ namespace glint::gl {
 /// then sets the viewport to the rectangle and scissors to it, so draws *and clears* stay
 /// inside; binding a whole target turns the scissor test off again.
 ///
-///   const gl::Target left = frame.target.column(0, 2), right = frame.target.column(1, 2);
-///   left.bind();  drawWith(cubeMap);     // viewport + scissor: the left half
-///   right.bind(); drawWith(sphereMap);
-///   frame.target.bind();                 // the whole frame, scissor off
+/// ```cpp
+/// const glint::gl::RenderTarget frame({1280, 720});
+/// const glint::gl::Target whole = frame.target();
+/// const glint::gl::Target left = whole.column(0, 2), right = whole.column(1, 2);
+/// left.bind();  // viewport + scissor: the left half
+/// glClearColor(0.2f, 0.3f, 0.8f, 1.0f);
+/// glClear(GL_COLOR_BUFFER_BIT);  // clears the left half only
+/// right.bind();
+/// glClearColor(0.8f, 0.3f, 0.2f, 1.0f);
+/// glClear(GL_COLOR_BUFFER_BIT);
+/// whole.bind();  // the whole frame, scissor off
+/// const glint::Image pixels = glint::gl::readColor(*whole.framebuffer, whole.size);
+/// ```
 struct Target {
   const Framebuffer* framebuffer = nullptr;  ///< never null in a frame
   ivec2 size{0};    ///< the size of what is drawn: the whole framebuffer, or the rectangle

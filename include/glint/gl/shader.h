@@ -15,12 +15,13 @@
 // "path"` (relative to shaders/) pastes a file once per program stage; includes
 // are expanded before compilation and `#line` directives keep line numbers, so a
 // compile error reads
-//     shaders/basics/triangle.frag:12: error: 'colr' undeclared
+//     shaders/env/reflect.frag:12: error: 'colr' undeclared
 //
-//   auto program = gl::Program::fromFiles({"basics/triangle.vert", "basics/triangle.frag"},
-//                                         {"VISUALIZE_DEPTH"});
-//   program.use();
-//   program.set("uColor", vec3(1, 0, 0));
+/// ```cpp
+/// const auto program = glint::gl::Program::fromFiles({"env/reflect.vert", "env/reflect.frag"}, {"SPHERE_MAP"});
+/// program.use();
+/// program.set("uTint", glint::vec3(1.0f, 0.8f, 0.6f));
+/// ```
 
 #include "glint/gl/objects.h"
 

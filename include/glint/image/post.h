@@ -21,9 +21,12 @@
 //   - x grows to the right, y grows DOWN (row index). A derivative ∂/∂y is positive where
 //     the image gets brighter towards the bottom (cv::Sobel's dy on a top-first image).
 //
-//   const Image photo = loadImage("street.png");
-//   const Image sepia = sepiaReference(photo, {.i = 0.2f, .q = 0.0f});   // the seed's values
-//   const KuwaharaReference k = kuwaharaReference(photo, {.size = 3});
+/// ```cpp
+/// const glint::Image photo = glint::postInput(glint::loadImage("street.png"));  // U8 RGBA
+/// const glint::Image sepia = glint::sepiaReference(photo, {.i = 0.2f, .q = 0.0f});  // the seed's values
+/// const glint::KuwaharaReference k = glint::kuwaharaReference(photo, {.size = 3});
+/// glint::saveImage(glint::quantizeToU8(k.image), "street-posterized.png");  // what an RGBA8 target holds
+/// ```
 
 #include "glint/core/math.h"
 #include "glint/image/image.h"

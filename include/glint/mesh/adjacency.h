@@ -13,10 +13,16 @@
 // coincident seam vertices bit-identical for this reason; an imported mesh whose
 // seams differ in the last bit shows up here as open edges.
 //
-//   const EdgeMap map = EdgeMap::build(mesh);
-//   if (!map.isClosedManifold()) log::warn("{} open edges", map.count(EdgeKind::Open));
-//   for (const Edge& e : map.edges())
-//     for (const EdgeFace& f : map.faces(e)) { /* f.face runs a→b when f.orientation > 0 */ }
+/// ```cpp run
+/// #include <glint/core/log.h>
+/// const glint::Mesh mesh = glint::makeTorus(1.0f, 0.35f, 16, 8);
+/// const glint::EdgeMap map = glint::EdgeMap::build(mesh);
+/// if (!map.isClosedManifold()) glint::log::warn("{} open edges", map.count(glint::EdgeKind::Open));
+/// for (const glint::Edge& e : map.edges())
+///   for (const glint::EdgeFace& f : map.faces(e)) {
+///     const auto corners = map.corners(f.face);  // f.face runs e.a → e.b when f.orientation > 0
+///   }
+/// ```
 //
 // Edge cases
 //   - A triangle with two corners at one welded position is *degenerate*: it has no

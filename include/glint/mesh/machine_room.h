@@ -15,8 +15,10 @@
 // sets are. The stage is `modules` instrument modules on a square grid (each about 8.7k
 // triangles), so the triangle count grows with the stage, not with the tessellation:
 //
-//   glint::Mesh stage = glint::makeMachineRoom({.modules = 64});   // ≈ 560k triangles
-//   auto lights = glint::machineRoomLights({.modules = 64});        // key and fill, above
+/// ```cpp
+/// const glint::Mesh stage = glint::makeMachineRoom({.modules = 64});  // ≈ 560k triangles
+/// const std::array<glint::vec3, 2> lights = glint::machineRoomLights({.modules = 64});  // key and fill, above
+/// ```
 //
 // Deterministic: the same options give the same mesh, bit for bit, everywhere.
 
@@ -57,9 +59,14 @@ std::array<vec3, 2> machineRoomLights(const MachineRoomOptions& options = {});
 // Normals are smooth along curved surfaces and flat across edges. Polygons grow with
 // `detail` (segments around tubes, samples along curves, cells of the room's grids):
 //
-//   const glint::InstrumentMachine machine = glint::makeInstrumentMachine({.detail = 4});
-//   machine.staticMesh.triangleCount();   // the geometry glint::cut cuts
-//   machine.lights;                       // key and fill: positions, ranges, intensities
+/// ```cpp
+/// #include <algorithm>
+/// const glint::InstrumentMachine machine = glint::makeInstrumentMachine({.detail = 4});
+/// const std::size_t triangles = machine.staticMesh.triangleCount();  // the geometry glint::cut cuts
+/// float reach = 0.0f;
+/// for (const glint::MachineLight& light : machine.lights)  // key and fill: positions, ranges, intensities
+///   reach = std::max(reach, light.range);
+/// ```
 //
 // Deterministic: the same options give the same machine, bit for bit.
 

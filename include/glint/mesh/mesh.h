@@ -97,8 +97,10 @@ struct MeshLoadOptions {
 /// corrupt or has no triangles. Missing normals are generated as smooth normals, the
 /// normalized sum of the unit normals of the faces at each position (a warning is logged).
 ///
-///   Mesh high = loadMesh("statue.obj", {.joinVertices = false});
-///   Mesh reference = loadMesh("statue.obj", {.parser = MeshParser::Assimp});
+/// ```cpp
+/// const glint::Mesh high = glint::loadMesh("statue.obj", {.joinVertices = false});  // for a ray tracer
+/// const glint::Mesh reference = glint::loadMesh("statue.obj", {.parser = glint::MeshParser::Assimp});
+/// ```
 Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
 }  // namespace glint

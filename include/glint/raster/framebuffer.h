@@ -7,10 +7,16 @@
 // OpenGL's window convention: row 0 is the BOTTOM row. The *Image functions flip
 // to image convention (row 0 = top) so saved pictures look like a GL screenshot.
 //
-//   raster::Framebuffer fb(500, 500);
-//   fb.clear(vec4(0.2f, 0.2f, 0.2f, 1.0f));   // colour, depth 1, stencil 0, overdraw 0
-//   raster::drawTriangles(fb, state, vertices);
-//   saveImage(raster::colorImage(fb), "out.png");
+/// ```cpp
+/// #include <glint/raster/pipeline.h>
+/// const std::vector<glint::raster::Vertex> vertices = {
+///     {{-1, -1, 0, 1}, {}}, {{1, -1, 0, 1}, {}}, {{0, 1, 0, 1}, {}}};  // white without varyings
+/// const glint::raster::State state{.depthTest = true};
+/// glint::raster::Framebuffer fb(500, 500);
+/// fb.clear(glint::vec4(0.2f, 0.2f, 0.2f, 1.0f));  // colour, depth 1, stencil 0, overdraw 0
+/// glint::raster::drawTriangles(fb, state, vertices);
+/// glint::saveImage(glint::raster::colorImage(fb), "out.png");
+/// ```
 //
 // Formats mirror the GL buffers an oracle is compared against:
 //   ColorFormat::Unorm8   GL_RGBA8 (the default framebuffer): every colour written is clamped

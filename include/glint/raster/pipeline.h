@@ -15,12 +15,15 @@
 //   fragment shader      optional callback; default outputs varying 0 (or white)
 //   per-fragment ops     stencil → depth → blend → colour mask (fragment_ops.h)
 //
-//   std::vector<raster::Vertex> tri = {
-//       {vec4(-0.8f, 0.8f, 0.3f, 1.0f), {vec4(1, 0, 0, 1)}},   // position, varying 0 = colour
-//       {vec4(0.8f, 0.8f, -0.2f, 1.0f), {vec4(0, 1, 0, 1)}},
-//       {vec4(0.0f, -0.8f, -0.2f, 1.0f), {vec4(0, 0, 1, 1)}}};
-//   raster::Framebuffer fb(500, 500);
-//   raster::DrawStats stats = raster::drawTriangles(fb, raster::State{.depthTest = true}, tri);
+/// ```cpp run
+/// using glint::vec4;
+/// const std::vector<glint::raster::Vertex> tri = {
+///     {vec4(-0.8f, 0.8f, 0.3f, 1.0f), {vec4(1, 0, 0, 1)}},  // position, varying 0 = colour
+///     {vec4(0.8f, 0.8f, -0.2f, 1.0f), {vec4(0, 1, 0, 1)}},
+///     {vec4(0.0f, -0.8f, -0.2f, 1.0f), {vec4(0, 0, 1, 1)}}};
+/// glint::raster::Framebuffer fb(500, 500);
+/// const glint::raster::DrawStats stats = glint::raster::drawTriangles(fb, glint::raster::State{.depthTest = true}, tri);
+/// ```
 //
 // Bad input never crashes and never draws garbage: a triangle with any NaN or infinite
 // position coordinate is dropped whole (counted in DrawStats::rejected); zero-area triangles

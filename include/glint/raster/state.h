@@ -5,11 +5,13 @@
 // `State{}` renders exactly what GL renders before any glEnable/glDepthFunc/...
 // call. Change only what a test needs, with designated initialisers:
 //
-//   raster::State state{
-//       .viewport = raster::Viewport{0, 0, 500, 500},   // glViewport(0, 0, 500, 500)
-//       .depthTest = true,                               // glEnable(GL_DEPTH_TEST)
-//       .depthFunc = raster::CompareFunc::LessEqual,     // glDepthFunc(GL_LEQUAL)
-//   };
+/// ```cpp
+/// const glint::raster::State state{
+///     .viewport = glint::raster::Viewport{0, 0, 500, 500},  // glViewport(0, 0, 500, 500)
+///     .depthTest = true,                                     // glEnable(GL_DEPTH_TEST)
+///     .depthFunc = glint::raster::CompareFunc::LessEqual,    // glDepthFunc(GL_LEQUAL)
+/// };
+/// ```
 //
 // Field order follows the pipeline (transform, rasterization, per-fragment
 // operations) and designated initialisers must keep that order.

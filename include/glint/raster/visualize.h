@@ -6,8 +6,12 @@
 // each E_i over the whole window, so one sees the half-planes whose intersection is the
 // triangle:
 //
-//   auto panels = raster::edgeFunctionsImage({dvec2(50, 450), dvec2(450, 450), dvec2(250, 50)}, 500, 500);
-//   saveImage(panels, "edges.png");   // three 500×500 panels, E0 | E1 | E2
+/// ```cpp
+/// using glint::dvec2;
+/// const glint::Image panels =
+///     glint::raster::edgeFunctionsImage({dvec2(50, 450), dvec2(450, 450), dvec2(250, 50)}, 500, 500);
+/// glint::saveImage(panels, "edges.png");  // three 500×500 panels, E0 | E1 | E2
+/// ```
 //
 // Colour map (diverging, symmetric): negative values blue, zero white, positive red,
 // saturated at ±scale pixels of signed distance; the zero line itself (the edge's line,

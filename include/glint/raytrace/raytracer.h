@@ -17,15 +17,18 @@
 //
 // A first example
 //
-//   glint::Mesh sphere = glint::makeUvSphere(1.0f, 64, 32);
-//   glint::raytrace::Scene scene(sphere);            // builds the BVH (Embree)
-//   glint::raytrace::Ray ray{.origin = {0, 0, 5}, .direction = {0, 0, -1}};
-//   if (auto hit = scene.intersect(ray)) {
-//     vec3 p = ray.at(hit->t);                        // ≈ (0, 0, 1)
-//     vec3 n = glint::raytrace::interpolate(*hit, sphere.normals, sphere.indices);
-//   }
-//   bool blocked = scene.occluded({.origin = p, .direction = toLight, .tnear = 1e-4f,
-//                                  .tfar = distanceToLight});
+/// ```cpp run
+/// const glint::Mesh sphere = glint::makeUvSphere(1.0f, 64, 32);
+/// const glint::raytrace::Scene scene(sphere);  // builds the BVH (Embree)
+/// const glint::raytrace::Ray ray{.origin = {0, 0, 5}, .direction = {0, 0, -1}};
+/// if (const auto hit = scene.intersect(ray)) {
+///   const glint::vec3 p = ray.at(hit->t);  // ≈ (0, 0, 1)
+///   const glint::vec3 n = glint::raytrace::interpolate(*hit, sphere.normals, sphere.indices);
+///   const glint::vec3 toLight = glint::vec3(0, 10, 0) - p;  // a light at (0, 10, 0)
+///   // tfar = 1: the segment ends at the light (direction is not unit length)
+///   const bool blocked = scene.occluded({.origin = p, .direction = toLight, .tnear = 1e-4f, .tfar = 1.0f});
+/// }
+/// ```
 //
 // Semantics, spelled out
 //   - Hits are accepted for tnear ≤ t ≤ tfar, both faces (no back-face culling).

@@ -5,17 +5,25 @@
 // and the point it looks at. Build one with lookAt() or orbit() (both right-handed, GL
 // clip space, depth [−1, 1] → window [0, 1]):
 //
-//   auto cam = render::Camera::orbit({0, 0, 0}, 4.5f, 0.0f, 0.15f, 45.0f, 16.0f / 9.0f);
-//   program.set("uViewProj", cam.viewProjection());
+/// ```cpp
+/// #include <glint/gl/shader.h>
+/// const auto cam = glint::render::Camera::orbit({0, 0, 0}, 4.5f, 0.0f, 0.15f, 45.0f, 16.0f / 9.0f);
+/// const auto program = glint::gl::Program::fromFiles({"filtering/ground.vert", "filtering/ground.frag"});
+/// program.set("uViewProj", cam.viewProjection());
+/// ```
 //
 // An OrbitControl is a user's change to a camera — what `glint view` makes of mouse drags:
 // it turns the eye around the camera's target, moves it nearer or further, and moves eye
 // and target together. The identity control changes nothing, bit for bit:
 //
-//   render::OrbitControl view;            // identity
-//   view.orbitBy(0.3f, 0.1f, cam);        // 0.3 rad around world up, eye 0.1 rad higher
-//   view.zoomBy(0.5f);                    // half the distance to the target
-//   const render::Camera moved = view.apply(cam);
+/// ```cpp run
+/// namespace render = glint::render;
+/// const auto cam = render::Camera::orbit({0, 0, 0}, 4.5f, 0.0f, 0.15f, 45.0f, 16.0f / 9.0f);
+/// render::OrbitControl view;      // identity
+/// view.orbitBy(0.3f, 0.1f, cam);  // 0.3 rad around world up, eye 0.1 rad higher
+/// view.zoomBy(0.5f);              // half the distance to the target
+/// const render::Camera moved = view.apply(cam);
+/// ```
 
 #include "glint/core/math.h"
 

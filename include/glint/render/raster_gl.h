@@ -6,16 +6,29 @@
 // data with OpenGL, so a test or a side-by-side scene states its geometry and its
 // operations once and both pipelines are guaranteed to run the same ones:
 //
-//   raster::State state{.depthTest = true, .depthFunc = raster::CompareFunc::LessEqual};
-//   render::RasterTriangles gpu(vertices);             // upload once
-//   render::applyRasterState(state, target.size());    // GL state
-//   gpu.draw();                                        // GL draw
-//   raster::drawTriangles(fb, state, vertices);        // the same draw on the CPU
+/// ```cpp
+/// #include <glint/gl/render_target.h>
+/// namespace raster = glint::raster;
+/// const std::vector<raster::Vertex> vertices = {
+///     {{-0.8f, -0.8f, 0.5f, 1}, {{1, 0, 0, 1}}}, {{0.8f, -0.8f, 0.5f, 1}, {{0, 1, 0, 1}}},
+///     {{0.0f, 0.8f, -0.5f, 1}, {{0, 0, 1, 1}}}};
+/// const raster::State state{.depthTest = true, .depthFunc = raster::CompareFunc::LessEqual};
+/// const glint::gl::RenderTarget target({500, 500});  // with a current GL context
+/// target.target().bind();
+/// const glint::render::RasterTriangles gpu(vertices);          // upload once
+/// glint::render::applyRasterState(state, target.size());       // GL state
+/// gpu.draw();                                                  // GL draw
+/// raster::Framebuffer fb(500, 500);
+/// raster::drawTriangles(fb, state, vertices);                  // the same draw on the CPU
+/// ```
 //
 // Everything in raster::State is mapped: viewport (unset = the whole framebuffer),
 // depth range, depth test/func/mask, two-sided stencil, culling and front face, colour
-// mask, blending with separate RGB/alpha factors and equations. Header-only: it adds
-// no link dependency on glint_raster (its headers used here are plain data).
+// mask, blending with separate RGB/alpha factors and equations. Header-only, and it adds
+// no link dependency on glint_raster: it uses raster's types (State, Vertex), which need
+// nothing compiled, and calls none of its functions. (The raster headers it includes do
+// declare the CPU pipeline, drawTriangles above among them; a program that calls those
+// links glint_raster itself.)
 //
 // RasterTriangles runs shaders/raster/clip.vert (gl_Position = the clip position,
 // varying 0 passed through) and shaders/raster/varying.frag (output varying 0): the

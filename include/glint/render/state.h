@@ -8,15 +8,20 @@
 // the same state; a 3D pass says that it tests depth. Designated initialisers read like
 // documentation:
 //
-//   render::PipelineState{.depthTest = true, .depthFunc = GL_LEQUAL, .cull = true}.apply();
-//   render::PipelineState{.depthTest = true, .depthWrite = false, .colorMask = {false, false, false, false},
-//                         .stencil = {.enabled = true, .front = {.dppass = GL_INVERT}}}.apply();
+/// ```cpp
+/// using glint::render::PipelineState;
+/// PipelineState{.depthTest = true, .depthFunc = GL_LEQUAL, .cull = true}.apply();
+/// PipelineState{.depthTest = true, .depthWrite = false, .colorMask = {false, false, false, false},
+///               .stencil = {.enabled = true, .front = {.dppass = GL_INVERT}}}.apply();
+/// ```
 
 #include "glint/core/math.h"
 
 #include <epoxy/gl.h>
 
 #include <array>
+#include <string>
+#include <vector>
 
 namespace glint::render {
 
@@ -62,6 +67,9 @@ struct PipelineState {
   GLenum polygonMode = GL_FILL;
   StencilState stencil;
   BlendState blend;
+  /// GL_TEXTURE_CUBE_MAP_SEAMLESS: cube maps filter across face edges instead of clamping at
+  /// them (a visible seam). Off by default, as in GL; a pass that samples a cube map sets it.
+  bool seamlessCubeMap = false;
 
   /// Sets every piece of state above on the current context.
   void apply() const;
@@ -71,6 +79,13 @@ struct PipelineState {
 /// and unbinds program and vertex array. Front ends call it before every frame so no
 /// scene inherits state from the one drawn before it.
 void resetState();
+
+/// The pieces of state that PipelineState does not cover and that a pass must therefore
+/// restore (the scissor test, program point size, pixel-transfer buffers and alignment,
+/// the active texture unit; with a compatibility profile the fixed-function enables and
+/// client arrays), named where they are not at OpenGL's initial value. Empty when a pass
+/// cleaned up after itself: the golden tests check it after every variant.
+std::vector<std::string> stateLeftBehind();
 
 /// glClear with every write mask enabled first. glClear honours glColorMask, glDepthMask
 /// and glStencilMask — a classic trap when the previous pass turned depth writes off —

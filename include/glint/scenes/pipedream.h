@@ -17,11 +17,15 @@
 // change to any of them cuts again, with a progress bar) and loaded in a fraction of that
 // afterwards. Polygons grow with `detail`:
 //
-//   auto stage = glint::scenes::pipedream::loadStage({.detail = 2});
-//   glint::render::pipedream::Renderer renderer(stage->machine, stage->geometry);
-//   const auto pose = glint::render::pipedream::poseAt(stage->machine, stage->score, 3.0);
-//   renderer.render(pose, glint::scenes::pipedream::namedCamera(0, 16.0f / 9.0f), target,
-//                   glint::render::pipedream::Mode::Full);
+/// ```cpp
+/// const auto stage = glint::scenes::pipedream::loadStage({.detail = 2});  // with a current GL context
+/// glint::render::pipedream::Renderer renderer(stage->machine, stage->geometry);
+/// const glint::gl::RenderTarget frame({1280, 720});
+/// const glint::gl::Target target = frame.target();
+/// const auto pose = glint::render::pipedream::poseAt(stage->machine, stage->score, 3.0);
+/// renderer.render(pose, glint::scenes::pipedream::namedCamera(0, target.aspect()), target,
+///                 glint::render::pipedream::Mode::Full);
+/// ```
 
 #include "glint/cut/cache.h"
 #include "glint/mesh/machine_room.h"

@@ -7,10 +7,13 @@
 // can run them through the reference pipeline alone and write its intermediate
 // pictures (depth, edge functions, overdraw) too.
 //
-//   const auto setup = scenes::referenceSetup("stencil-count", {500, 500});
-//   raster::Framebuffer fb(500, 500, {.depth = raster::DepthFormat::Unorm24});
-//   fb.clear(setup.clearColor, setup.clearDepth, setup.clearStencil);
-//   for (const auto& draw : setup.draws) raster::drawTriangles(fb, draw.state, draw.vertices);
+/// ```cpp run
+/// namespace raster = glint::raster;
+/// const glint::scenes::ReferenceSetup setup = glint::scenes::referenceSetup("stencil-count", {500, 500});
+/// raster::Framebuffer fb(500, 500, {.depth = raster::DepthFormat::Unorm24});
+/// fb.clear(setup.clearColor, setup.clearDepth, setup.clearStencil);
+/// for (const glint::scenes::ReferenceDraw& draw : setup.draws) raster::drawTriangles(fb, draw.state, draw.vertices);
+/// ```
 
 #include "glint/core/math.h"
 #include "glint/raster/pipeline.h"

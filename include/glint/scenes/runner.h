@@ -2,11 +2,13 @@
 // glint/scenes/runner.h — rendering registry variants headless: the one code path
 // behind `glint render`, `glint gallery`, the reference-image tests and benchmarks.
 //
-//   scenes::ContextPool contexts(/*debug=*/true);   // GL errors logged and counted
-//   auto ref = scenes::Registry::builtin().resolve("basics/triangle/depth");
-//   contexts.use(ref.scene->profile);
-//   auto result = scenes::renderVariant(ref, {.size = {500, 500}});
-//   saveImage(result.image, "depth.png");
+/// ```cpp
+/// glint::scenes::ContextPool contexts(/*debug=*/true);  // GL errors logged and counted
+/// const glint::scenes::VariantRef ref = glint::scenes::Registry::builtin().resolve("basics/triangle/depth");
+/// contexts.use(ref.scene->profile);
+/// const glint::scenes::RenderResult result = glint::scenes::renderVariant(ref, {.size = {500, 500}});
+/// glint::saveImage(result.image, "depth.png");
+/// ```
 
 #include "glint/gl/context.h"
 #include "glint/image/image.h"

@@ -50,7 +50,11 @@ struct FrameInput {
   /// itself in headless renders. Call it once per frame with the camera the scene defines
   /// (before Camera::cropped for split screens):
   ///
-  ///   const render::Camera camera = frame.camera(render::Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.35f, 45.0f, 16.0f / 9.0f));
+  /// ```cpp
+  /// const glint::scenes::FrameInput frame{};  // what Scene::render receives
+  /// const glint::render::Camera camera =
+  ///     frame.camera(glint::render::Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.35f, 45.0f, frame.target.aspect()));
+  /// ```
   render::Camera camera(const render::Camera& defined) const {
     definedCamera = defined;
     return view.apply(defined);

@@ -77,7 +77,7 @@ void Dot3Classic::draw(const Dot3Polygon& polygon, std::span<const u8vec3> color
     // combine operation to DOT3 ... set the output to be an RGB value ... set the two operands".
     glActiveTexture(GL_TEXTURE0);
     glBindSampler(0, 0);
-    glBindTexture(GL_TEXTURE_2D, normalMap.id());
+    normalMap.bindToActiveUnit();
     glEnable(GL_TEXTURE_2D);
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_COMBINE);
     glTexEnvi(GL_TEXTURE_ENV, GL_COMBINE_RGB, GL_DOT3_RGB);
@@ -95,7 +95,7 @@ void Dot3Classic::draw(const Dot3Polygon& polygon, std::span<const u8vec3> color
     // the previous output ... second operand will be the base texture".
     glActiveTexture(GL_TEXTURE1);
     glBindSampler(1, 0);
-    glBindTexture(GL_TEXTURE_2D, base.id());
+    base.bindToActiveUnit();
     glEnable(GL_TEXTURE_2D);
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_COMBINE);
     glTexEnvi(GL_TEXTURE_ENV, GL_COMBINE_RGB, GL_MODULATE);

@@ -30,9 +30,10 @@ void resetFixedFunction() {
   }
 }
 
-void beginMirror(const mat4& model, const Camera& camera, vec3 tint) {
+/// `cubeMap`: the mirror samples a cube map (filtered seamlessly across its faces).
+void beginMirror(const mat4& model, const Camera& camera, vec3 tint, bool cubeMap) {
   glUseProgram(0);  // fixed function: no program bound
-  PipelineState{.depthTest = true, .cull = true}.apply();
+  PipelineState{.depthTest = true, .cull = true, .seamlessCubeMap = cubeMap}.apply();
   loadMatrix(GL_PROJECTION, camera.projection);
   loadMatrix(GL_MODELVIEW, camera.view * model);
   glEnable(GL_NORMALIZE);  // texgen needs unit eye-space normals, whatever the model scale
@@ -59,8 +60,8 @@ ClassicMesh::ClassicMesh(const Mesh& mesh, std::string_view label) {
 void ClassicMesh::draw() const {
   constexpr GLsizei kStride = 6 * sizeof(float);
   glBindVertexArray(0);  // client-state arrays live in the default vertex array object
-  glBindBuffer(GL_ARRAY_BUFFER, m_vertices.id());
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indices.id());
+  m_vertices.bind(GL_ARRAY_BUFFER);
+  m_indices.bind(GL_ELEMENT_ARRAY_BUFFER);
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_NORMAL_ARRAY);
   glVertexPointer(3, GL_FLOAT, kStride, nullptr);
@@ -82,12 +83,11 @@ ClassicEnvironment::ClassicEnvironment() {
 
 void ClassicEnvironment::drawSkybox(const gl::Texture& cube, const Camera& camera) const {
   glUseProgram(0);
-  PipelineState{.depthTest = false, .depthWrite = false}.apply();
+  PipelineState{.depthTest = false, .depthWrite = false, .seamlessCubeMap = true}.apply();
   loadMatrix(GL_PROJECTION, camera.projection);
   loadMatrix(GL_MODELVIEW, mat4(camera.rotation()));  // rotation only: the sky is at infinity
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_CUBE_MAP, cube.id());
+  cube.bindToActiveUnit();
   glEnable(GL_TEXTURE_CUBE_MAP);
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
   // Each corner's texture coordinate is its own direction; perspective-correct
@@ -107,9 +107,8 @@ void ClassicEnvironment::drawSkybox(const gl::Texture& cube, const Camera& camer
 
 void ClassicEnvironment::drawCubeMapped(const ClassicMesh& mesh, const mat4& model, const Camera& camera,
                                         const gl::Texture& cube, vec3 tint) const {
-  beginMirror(model, camera, tint);
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-  glBindTexture(GL_TEXTURE_CUBE_MAP, cube.id());
+  beginMirror(model, camera, tint, true);
+  cube.bindToActiveUnit();
   glEnable(GL_TEXTURE_CUBE_MAP);
   // Seed 000: "set the texture generation to Reflection Map mode ... three dimensions".
   for (GLenum coord : {GL_S, GL_T, GL_R}) glTexGeni(coord, GL_TEXTURE_GEN_MODE, GL_REFLECTION_MAP);
@@ -122,8 +121,8 @@ void ClassicEnvironment::drawCubeMapped(const ClassicMesh& mesh, const mat4& mod
 
 void ClassicEnvironment::drawSphereMapped(const ClassicMesh& mesh, const mat4& model, const Camera& camera,
                                           const gl::Texture& sphereMap, vec3 tint) const {
-  beginMirror(model, camera, tint);
-  glBindTexture(GL_TEXTURE_2D, sphereMap.id());
+  beginMirror(model, camera, tint, false);
+  sphereMap.bindToActiveUnit();
   glEnable(GL_TEXTURE_2D);
   // "...while spherical map mode uses two dimensions."
   for (GLenum coord : {GL_S, GL_T}) glTexGeni(coord, GL_TEXTURE_GEN_MODE, GL_SPHERE_MAP);

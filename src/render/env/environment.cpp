@@ -4,6 +4,7 @@
 #include "glint/core/locations.h"
 #include "glint/image/envmap.h"
 #include "glint/render/gpu_mesh.h"
+#include "glint/render/state.h"
 
 #include <cmath>
 
@@ -118,9 +119,9 @@ gl::Texture sphereMapFromCube(const gl::Texture& cube, const SphereMapOptions& o
   fb.checkComplete();
   fb.bind();
   glViewport(0, 0, options.size, options.size);
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  PipelineState{.depthTest = false, .depthWrite = false, .seamlessCubeMap = true}.apply();
   cube.bind(0);
-  pass.draw();
+  pass.drawWithCurrentState();
   glBindTextureUnit(0, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   map.generateMipmap();

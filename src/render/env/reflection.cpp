@@ -11,9 +11,9 @@ void Skybox::draw(const gl::Texture& cube, const Camera& camera) const {
   // Rotation only: the sky is infinitely far away, so translation must not move it.
   const mat4 rotation = mat4(camera.rotation());
   m_pass.program().set("uInvViewProj", glm::inverse(camera.projection * rotation));
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // filter across face edges, not clamp at them
+  PipelineState{.depthTest = false, .depthWrite = false, .seamlessCubeMap = true}.apply();
   cube.bind(0);
-  m_pass.draw();
+  m_pass.drawWithCurrentState();
   glBindTextureUnit(0, 0);
 }
 
@@ -41,8 +41,7 @@ void Reflector::draw(const GpuMesh& mesh, const mat4& model, const Camera& camer
   m_program.set("uProj", camera.projection);
   m_program.set("uEyeToEnv", eyeToEnv);
   m_program.set("uTint", tint);
-  PipelineState{.depthTest = true, .cull = true}.apply();
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  PipelineState{.depthTest = true, .cull = true, .seamlessCubeMap = true}.apply();
   environment.bind(0);
   m_program.use();
   mesh.draw();
@@ -66,9 +65,9 @@ void Bubble::draw(const GpuMesh& sphere, const mat4& model, const Camera& camera
   // through. Depth is tested but not written, so nothing behind is lost.
   PipelineState{.depthTest = true, .depthWrite = false,
                 .cull = true,
-                .blend = {.enabled = true, .src = GL_ONE, .dst = GL_ONE_MINUS_SRC_ALPHA}}
+                .blend = {.enabled = true, .src = GL_ONE, .dst = GL_ONE_MINUS_SRC_ALPHA},
+                .seamlessCubeMap = true}
       .apply();
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
   cube.bind(0);
   m_program.use();
   sphere.draw();

@@ -284,7 +284,7 @@ void Renderer::drawScene() {
   state.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, kBackground);
   const vec4 noWeights(0.0f);
-  glClearNamedFramebufferfv(m_sceneFbo.id(), GL_COLOR, 1, &noWeights.x);
+  m_sceneFbo.clearColor(1, &noWeights.x);
 
   for (const gl::Program* p : {&m_lit, &m_shadowed}) {
     p->set("uViewProj", m_camera.viewProjection());

@@ -15,16 +15,6 @@ constexpr float kMalletRaise = 0.65f;   // radians the mallet rests above its st
 constexpr double kStrokeDown = 0.16, kStrokeUp = 0.4;
 constexpr float kMalletHead = 0.075f;   // head radius of the unit mallet (InstrumentMachine::mallet)
 
-struct Random {
-  std::uint32_t state;
-  float next() {
-    state = hash32(state + 0x9E3779B9u);
-    return float(state >> 8) * (1.0f / 16777216.0f);
-  }
-  float range(float lo, float hi) { return lo + (hi - lo) * next(); }
-  int below(int n) { return std::min(n - 1, int(next() * float(n))); }
-};
-
 const vec3 kUp{0.0f, 1.0f, 0.0f};
 
 /// A parabola from `from` through an apex `apex` metres above the higher end to `to`:
@@ -93,7 +83,7 @@ BallState ballAt(const BallFlight& f, double t) {
 
 Score makeScore(const InstrumentMachine& m, std::uint32_t seed, double interval) {
   Score score;
-  Random rng{seed * 2654435761u + 7u};
+  HashSequence rng{seed * 2654435761u + 7u};
   const float r = m.ballRadius;
   const int launches = int(std::floor(score.period / interval + 1e-9));
   for (int k = 0; k < launches; ++k) {

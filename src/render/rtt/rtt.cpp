@@ -39,7 +39,7 @@ void CopyToTexture::render(const gl::Target& window, const DrawFn& draw, vec4 cl
   draw({m_size, m_size});
   window.framebuffer->bind(GL_READ_FRAMEBUFFER);
   if (!window.framebuffer->isDefault()) glNamedFramebufferReadBuffer(window.framebuffer->id(), GL_COLOR_ATTACHMENT0);
-  glCopyTextureSubImage2D(m_texture.id(), 0, 0, 0, 0, 0, m_size, m_size);
+  m_texture.copyFromReadFramebuffer(0, 0, m_size, m_size);
   m_texture.generateMipmap();
   window.bind();
 }

@@ -33,8 +33,7 @@ void WaterSurface::draw(const Camera& camera, const gl::Texture& waveState, cons
   environment.bind(2);
   poolFloor.bind(3);
   for (GLuint unit = 0; unit < 4; ++unit) gl::Sampler::unbind(unit);
-  PipelineState{.depthTest = true}.apply();
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  PipelineState{.depthTest = true, .seamlessCubeMap = true}.apply();
   m_program.use();
   m_grid.draw();
 }

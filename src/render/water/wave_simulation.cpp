@@ -29,7 +29,7 @@ WaveSimulation::WaveSimulation(ivec2 size, const sim::WaveParams& params, const 
 
 void WaveSimulation::reset() {
   const float zero[2] = {0.0f, 0.0f};
-  for (auto& texture : m_state) glClearTexImage(texture.id(), 0, GL_RG, GL_FLOAT, zero);
+  for (auto& texture : m_state) texture.clear(0, GL_RG, GL_FLOAT, zero);
   m_steps = 0;
   m_stepsBase = 0;
   m_timeBase = 0;
@@ -112,7 +112,7 @@ void WaveSimulation::upload(const sim::WaveField& field) {
 sim::WaveField WaveSimulation::download() const {
   sim::WaveField field(m_size);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(state().id(), 0, GL_RG, GL_FLOAT, GLsizei(field.data().size() * sizeof(vec2)), field.data().data());
+  state().read(0, GL_RG, GL_FLOAT, field.data().size() * sizeof(vec2), field.data().data());
   return field;
 }
 

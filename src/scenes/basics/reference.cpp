@@ -212,8 +212,8 @@ private:
     m_gl = gl::RenderTarget(size, GL_RGBA8, "reference-gl");
     m_gl.framebuffer().bind();
     render::PipelineState{}.apply();  // clear with every write mask on
-    glClearNamedFramebufferfv(m_gl.framebuffer().id(), GL_COLOR, 0, &m_setup.clearColor.x);
-    glClearNamedFramebufferfi(m_gl.framebuffer().id(), GL_DEPTH_STENCIL, 0, m_setup.clearDepth, m_setup.clearStencil);
+    m_gl.framebuffer().clearColor(0, &m_setup.clearColor.x);
+    m_gl.framebuffer().clearDepthStencil(m_setup.clearDepth, m_setup.clearStencil);
     for (const ReferenceDraw& draw : m_setup.draws) {
       const render::RasterTriangles triangles(draw.vertices, "reference-draw");
       render::applyRasterState(draw.state, size);
@@ -229,7 +229,7 @@ private:
   /// under glStencilFunc(GL_EQUAL, k), in raster::stencilImage's colours.
   void showStencilCounts(std::uint32_t maxCount) {
     const vec4 black(0.0f, 0.0f, 0.0f, 1.0f);
-    glClearNamedFramebufferfv(m_gl.framebuffer().id(), GL_COLOR, 0, &black.x);
+    m_gl.framebuffer().clearColor(0, &black.x);
     glViewport(0, 0, m_size.x, m_size.y);
     for (std::uint32_t k = 1; k <= maxCount; ++k) {
       render::PipelineState{.depthTest = false,

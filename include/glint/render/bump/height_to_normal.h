@@ -3,10 +3,16 @@
 // fragment shader on a full-screen quad reads the four texels around each texel (n, s, e,
 // w) of a height texture and writes the encoded normal into a framebuffer object.
 //
-//   render::bump::HeightToNormalPass pass;
-//   gl::Texture normals(GL_TEXTURE_2D, "normals");
-//   normals.storage(GL_RGBA8, height.width(), height.height());
-//   pass.run(height, normals, {.scale = 8.0f, .wrap = true});
+/// ```cpp
+/// #include <glint/image/heightfield.h>
+/// #include <glint/render/bump/textures.h>
+/// namespace bump = glint::render::bump;
+/// const glint::gl::Texture height = bump::uploadImage(glint::makeBrickHeight(512), {.label = "height"});
+/// bump::HeightToNormalPass pass;  // with a current GL context
+/// glint::gl::Texture normals(GL_TEXTURE_2D, "normals");
+/// normals.storage(GL_RGBA8, height.width(), height.height());
+/// pass.run(height, normals, {.scale = 8.0f, .wrap = true});
+/// ```
 //
 // The arithmetic is image/normalmap.h's heightNormal, line for line
 // (shaders/bump/height_to_normal.frag), so the GPU and CPU maps agree within one 8-bit step

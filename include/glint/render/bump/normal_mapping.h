@@ -23,10 +23,22 @@
 // Rotations, uniform scales and mirrors in `model` are handled; non-uniform scale bends
 // the frame, as in every engine.
 //
-//   render::bump::NormalMapping shader({.normal = render::bump::ShadingNormal::TangentMap});
-//   gl::Texture map = render::bump::uploadImage(baked.normal, {.label = "baked-normals"});
-//   render::bump::DirectionalLight sun{.direction = glm::normalize(vec3(1, 2, 1))};
-//   shader.draw(lowMesh, model, camera, {&sun, 1}, {}, &map);
+/// ```cpp
+/// #include <glint/image/normalmap.h>
+/// #include <glint/mesh/tangents.h>
+/// #include <glint/render/bump/textures.h>
+/// namespace bump = glint::render::bump;
+/// glint::Mesh low = glint::loadMesh("low.obj");
+/// glint::generateTangents(low);  // the frame the map was baked in
+/// const glint::render::GpuMesh lowMesh(low);
+/// const glint::Image normals = glint::prepareNormalMap(glint::loadImage("baked.png"), "baked.png");  // checked
+/// const glint::gl::Texture map = bump::uploadImage(normals, {.label = "baked-normals"});
+/// const glint::mat4 model(1.0f);
+/// const auto camera = glint::render::Camera::orbit({0, 0, 0}, 3.0f, 0.5f, 0.3f, 45.0f, 16.0f / 9.0f);
+/// const bump::NormalMapping shader({.normal = bump::ShadingNormal::TangentMap});
+/// const bump::DirectionalLight sun{.direction = glm::normalize(glint::vec3(1, 2, 1))};
+/// shader.draw(lowMesh, model, camera, {&sun, 1}, {}, &map);
+/// ```
 //
 // State: depth test on, back faces culled, texture units 0 (normal map) and 1 (albedo map)
 // with no sampler objects; the program is left bound, the texture units cleared.

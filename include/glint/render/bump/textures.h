@@ -8,7 +8,13 @@
 // in a height map (up in the picture) is then +v — the bitangent direction of MikkTSpace —
 // which is what image/normalmap.h's OpenGL-style normal maps assume.
 //
-//   gl::Texture normals = render::bump::uploadImage(heightToNormalMap(height), {.label = "normal-map"});
+/// ```cpp
+/// #include <glint/image/heightfield.h>
+/// #include <glint/image/normalmap.h>
+/// const glint::Image height = glint::makeBrickHeight(512);
+/// const glint::gl::Texture normals =
+///     glint::render::bump::uploadImage(glint::heightToNormalMap(height), {.label = "normal-map"});
+/// ```
 
 #include "glint/gl/objects.h"
 #include "glint/image/image.h"

@@ -7,9 +7,22 @@
 // a depth renderbuffer the size of a face is shared by all six. After the sixth face
 // glGenerateMipmap rebuilds the mip chain, so a reflecting object can filter it.
 //
-//   render::env::DynamicCubeMap local(128);
-//   local.render(bubbleCentre, [&](const render::Camera& face) { drawLocalScene(face); });
-//   bubble.draw(sphere, model, camera, local.texture(), time);
+/// ```cpp
+/// #include <glint/render/env/environment.h>
+/// #include <glint/render/env/reflection.h>
+/// namespace env = glint::render::env;
+/// const glint::gl::Texture sky = env::cubeFromEquirect(env::loadEquirect(env::findEnvironment("courtyard")));
+/// const env::Skybox skybox;  // the local scenery here: whatever the bubble should reflect
+/// const env::Bubble bubble;
+/// const glint::render::GpuMesh sphere(glint::makeUvSphere());
+/// const glint::vec3 bubbleCentre(0.0f, 1.0f, 0.0f);
+/// const glint::mat4 model = glm::scale(glm::translate(glint::mat4(1.0f), bubbleCentre), glint::vec3(0.5f));
+/// const auto camera = glint::render::Camera::orbit(bubbleCentre, 3.0f, 0.0f, 0.2f, 45.0f, 16.0f / 9.0f);
+/// const float time = 2.0f;
+/// env::DynamicCubeMap local(128);
+/// local.render(bubbleCentre, [&](const glint::render::Camera& face) { skybox.draw(sky, face); });
+/// bubble.draw(sphere, model, camera, local.texture(), time);
+/// ```
 //
 // Face cameras look along each face's major axis with a 90° field of view and the up
 // vectors of the OpenGL cube map convention (−Y for the side faces, ±Z for ±Y), so what

@@ -15,10 +15,17 @@
 // shaders/env/texgen.glsl: eye-space reflection vector r = u − 2n(n·u), rotated into the
 // environment's frame.
 //
-//   render::env::Skybox sky;
-//   render::env::Reflector mirror({.lookup = render::env::Lookup::CubeMap});
-//   sky.draw(cube, camera);
-//   mirror.draw(sphereMesh, glm::mat4(1.0f), camera, cube);
+/// ```cpp
+/// #include <glint/render/env/environment.h>
+/// namespace env = glint::render::env;
+/// const glint::gl::Texture cube = env::cubeFromEquirect(env::loadEquirect(env::findEnvironment("courtyard")));
+/// const glint::render::GpuMesh sphereMesh(glint::makeUvSphere());
+/// const auto camera = glint::render::Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.2f, 45.0f, 16.0f / 9.0f);
+/// const env::Skybox sky;
+/// const env::Reflector mirror({.lookup = env::Lookup::CubeMap});
+/// sky.draw(cube, camera);
+/// mirror.draw(sphereMesh, glint::mat4(1.0f), camera, cube);
+/// ```
 
 #include "glint/gl/objects.h"
 #include "glint/gl/shader.h"

@@ -14,8 +14,14 @@
 // the plane is oblique; anisotropic filtering keeps it sharp there and is closest to the
 // truth. Anisotropy costs fill rate; query the maximum and stay within it.
 //
-//   render::filtering::GroundPlane ground(makeCheckerboard(512, 8));
-//   ground.draw(render::filtering::GroundPlane::camera(size, 0.0f), modes[3]);
+/// ```cpp
+/// #include <glint/image/pattern.h>
+/// namespace filtering = glint::render::filtering;
+/// const filtering::GroundPlane ground(glint::makeCheckerboard(512, 8));  // with a current GL context
+/// const filtering::FilterMode trilinear = filtering::standardModes()[3];
+/// ground.draw(filtering::GroundPlane::camera({1280, 720}, 0.0f), trilinear);
+/// const filtering::FilterQuality quality = filtering::measureFiltering(ground, trilinear);
+/// ```
 
 #include "glint/gl/objects.h"
 #include "glint/gl/shader.h"

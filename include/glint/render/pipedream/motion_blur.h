@@ -24,8 +24,11 @@
 //                                                   the streak's length the ball covers
 //   lodBias = log2(1 + stretch / d) · lodScale       one mip level per doubling of length
 //
-//   const auto mesh = glint::render::pipedream::buildBlurBall(32, 16);
-//   const auto blur = glint::render::pipedream::blurOf(velocity, 0.12f, 1.0f / 30.0f);
+/// ```cpp run
+/// const glint::vec3 velocity(4.0f, 1.0f, 0.0f);  // metres per second
+/// const glint::render::pipedream::BlurBallMesh mesh = glint::render::pipedream::buildBlurBall(32, 16);
+/// const glint::render::pipedream::BallBlur blur = glint::render::pipedream::blurOf(velocity, 0.12f, 1.0f / 30.0f);
+/// ```
 
 #include "glint/core/math.h"
 

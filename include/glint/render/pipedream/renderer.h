@@ -41,8 +41,16 @@
 // caster's volume (the whole static scene included) and an additive pass where the
 // stencil is zero.
 //
-//   render::pipedream::Renderer renderer(machine, geometry);
-//   renderer.render(pose, camera, frame.target, render::pipedream::Mode::Full);
+/// ```cpp
+/// #include <glint/scenes/pipedream.h>
+/// namespace pipedream = glint::render::pipedream;
+/// const auto stage = glint::scenes::pipedream::loadStage();  // machine, score and the cut geometry
+/// pipedream::Renderer renderer(stage->machine, stage->geometry);  // with a current 4.5 context
+/// const glint::gl::RenderTarget frame({1280, 720});
+/// const pipedream::MachinePose pose = pipedream::poseAt(stage->machine, stage->score, 3.0);
+/// const glint::render::Camera camera = glint::scenes::pipedream::namedCamera(0, frame.target().aspect());
+/// renderer.render(pose, camera, frame.target(), pipedream::Mode::Full);
+/// ```
 
 #include "glint/gl/objects.h"
 #include "glint/gl/render_target.h"

@@ -18,10 +18,15 @@
 // onto their drums on the beat. Everything is a function of time: the score loops with
 // `period`, and flights that cross the end of the loop carry over into the next.
 //
-//   const glint::InstrumentMachine machine = glint::makeInstrumentMachine();
-//   const auto score = glint::render::pipedream::makeScore(machine);
-//   const auto pose = glint::render::pipedream::poseAt(machine, score, 3.25);
-//   for (const auto& ball : pose.balls) use(ball.position, ball.velocity);
+/// ```cpp run
+/// #include <algorithm>
+/// const glint::InstrumentMachine machine = glint::makeInstrumentMachine({.detail = 1});
+/// const glint::render::pipedream::Score score = glint::render::pipedream::makeScore(machine);
+/// const glint::render::pipedream::MachinePose pose = glint::render::pipedream::poseAt(machine, score, 3.25);
+/// float fastest = 0.0f;
+/// for (const glint::render::pipedream::BallState& ball : pose.balls)
+///   fastest = std::max(fastest, glm::length(ball.velocity));  // ball.position: where to draw it
+/// ```
 
 #include "glint/core/math.h"
 #include "glint/mesh/machine_room.h"

@@ -17,9 +17,14 @@
 // saying so instead of copying garbage. A headless context has no window: "the window" is
 // the frame's target framebuffer (FrameInput::target).
 //
-//   render::rtt::FramebufferTexture fbo(256);
-//   fbo.render([&](ivec2 size) { content.draw(size, time); });
-//   fbo.texture().bind(0);
+/// ```cpp
+/// namespace rtt = glint::render::rtt;
+/// const rtt::RttContent content;  // with a current GL context
+/// const float time = 1.5f;
+/// rtt::FramebufferTexture fbo(256);
+/// fbo.render([&](glint::ivec2 size) { content.draw(size, time); });
+/// fbo.texture().bind(0);  // sample it, mipmaps included
+/// ```
 
 #include "glint/gl/objects.h"
 #include "glint/gl/render_target.h"

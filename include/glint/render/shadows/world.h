@@ -76,7 +76,10 @@ enum class SceneView {
 /// The camera of `view` at `aspect` (width / height), with the near and far planes the
 /// scenes draw with (z-fail scenes then move the far plane to infinity):
 ///
-///   const Camera camera = sceneCamera(SceneView::Demo, 16.0f / 9.0f);
+/// ```cpp run
+/// using namespace glint::render::shadows;
+/// const glint::render::Camera camera = sceneCamera(SceneView::Demo, 16.0f / 9.0f);
+/// ```
 Camera sceneCamera(SceneView view, float aspect);
 
 /// bunny/bunny.ply in glint's data (core/locations.h's findDataFile; scripts/setup fetches

@@ -11,9 +11,16 @@
 // Objects keep their own transforms (World::objects[i].transform), read at draw time,
 // so an animated World needs no re-upload.
 //
-//   shadows::WorldRenderer scene(world);
-//   render::PipelineState{}.apply();
-//   scene.draw(world, camera, shadows::LightTerms::Full);
+/// ```cpp
+/// #include <glint/render/state.h>
+/// namespace shadows = glint::render::shadows;
+/// glint::render::shadows::World world = shadows::makeDemoWorld();
+/// const shadows::WorldRenderer scene(world);  // with a current GL context
+/// const glint::render::Camera camera = shadows::sceneCamera(shadows::SceneView::Demo, 16.0f / 9.0f);
+/// shadows::animateDemoWorld(world, 1.5);  // moves objects: no re-upload
+/// glint::render::PipelineState{.depthTest = true}.apply();
+/// scene.draw(world, camera, shadows::LightTerms::Full);
+/// ```
 
 #include "glint/gl/shader.h"
 #include "glint/render/camera.h"

@@ -18,9 +18,16 @@
 // `glint render --time t` runs the same steps headless: the picture at a time is always the
 // same. Drops follow sim::rainDrop's schedule (by step number).
 //
-//   render::water::WaveSimulation waves({256, 256});
-//   waves.advanceTo(frame.time);
-//   normals.run(waves.state(), normalMap, {.scale = 40.0f});   // heights are in .r
+/// ```cpp
+/// #include <glint/render/bump/height_to_normal.h>
+/// glint::render::water::WaveSimulation waves({256, 256});  // with a current GL context
+/// glint::render::bump::HeightToNormalPass normals;
+/// glint::gl::Texture normalMap(GL_TEXTURE_2D, "water-normals");
+/// normalMap.storage(GL_RGBA8, 256, 256);
+/// const double time = 2.5;  // FrameInput::time
+/// waves.advanceTo(time);
+/// normals.run(waves.state(), normalMap, {.scale = 40.0f});  // heights are in .r
+/// ```
 
 #include "glint/gl/objects.h"
 #include "glint/render/gpu_mesh.h"
