@@ -10,6 +10,7 @@
 //   const float f = parseFloat("0.25", "--exposure");    // 0.25
 //   const vec3 p = parseVec3("1,2.5,-3", "--light");     // {1, 2.5, -3}
 //   const double mib = parseMemorySize("4G", "--max-memory");  // 4096
+//   const ShardSpec part = parseShard("2/8", "--shard");      // {2, 8}
 
 #include "glint/core/math.h"
 
@@ -41,6 +42,16 @@ int parseInt(std::string_view text, std::string_view what, int lo, int hi);
 /// A memory size in MiB: "4096" (MiB), "512M", "1.5G", "2T" (binary units; a trailing
 /// "iB" or "B" is allowed: "4GiB"). Positive and finite.
 double parseMemorySize(std::string_view text, std::string_view what);
+
+/// One part of a job split `count` ways: `--shard index/count`, 1 ≤ index ≤ count.
+struct ShardSpec {
+  int index = 1;
+  int count = 1;
+};
+
+/// "i/n": two integers (parseInt's form: no spaces, no '+') with 1 ≤ i ≤ n. Error(Usage)
+/// "<what> must be i/n with 1 ≤ i ≤ n, got '<text>'" for anything else.
+ShardSpec parseShard(std::string_view text, std::string_view what);
 
 /// "x,y,z": three finite numbers.
 vec3 parseVec3(std::string_view text, std::string_view what);
