@@ -10,7 +10,6 @@
 //   const float f = parseFloat("0.25", "--exposure");    // 0.25
 //   const vec3 p = parseVec3("1,2.5,-3", "--light");     // {1, 2.5, -3}
 //   const double mib = parseMemorySize("4G", "--max-memory");  // 4096
-//   const ShardSpec part = parseShard("2/8", "--shard");      // {2, 8}
 
 #include "glint/core/math.h"
 

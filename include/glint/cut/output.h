@@ -20,8 +20,15 @@
 // Every file is written atomically (core/file.h). Error(Usage) for another extension,
 // Error(Output) when the file cannot be written.
 //
-//   glint::cut::saveCutMesh(result.mesh, options.lights, "room_cut.glb");
-//   glint::cut::saveCutMesh(result.mesh, options.lights, "room_cut.ply");
+/// ```cpp
+/// std::vector<glint::cut::Light> lights;  // room.glb's KHR_lights_punctual lights
+/// const glint::Mesh scene = glint::cut::loadScene({"walls.obj", "room.glb"}, &lights);
+/// glint::cut::CutOptions options;
+/// options.lights = lights;
+/// const glint::cut::CutResult result = glint::cut::cut(scene, options);
+/// glint::cut::saveCutMesh(result.mesh, result.lights, "room_cut.glb");
+/// glint::cut::saveCutMesh(result.mesh, result.lights, "room_cut.ply");
+/// ```
 
 #include "glint/cut/cutter.h"
 
