@@ -158,7 +158,6 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     options.maxFront = parseDistance(a->maxFront, "--max-front");
     options.maxRear = parseDistance(a->maxRear, "--max-rear");
     options.selection = a->frontFirst ? bake::HitSelection::FrontFirst : bake::HitSelection::Closest;
-    if (a->padding < 0) fail(ErrorKind::Usage, "--padding must not be negative, got {}", a->padding);
     options.padding = a->padding;
     options.fillAll = a->fillAll;
     options.ambientOcclusion = !a->ao.empty();
@@ -179,20 +178,8 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     }
     if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
     for (const auto& path : outputs) checkWritable(path);
-    {
-      // Peak memory, measured on the studded-torus pair (1024² → 16384², 262k triangles;
-      // 16384²: 4,959 MiB): ~64 MiB of process, about twice the input files (mesh and BVH),
-      // ~19.5 bytes per texel for the normal map and its buffers, ~5 for each extra map.
-      std::error_code ec;
-      double inputBytes = 0.0;
-      for (const std::string* in : {&a->low, &a->high, &a->cage}) {
-        if (!in->empty()) inputBytes += double(std::filesystem::file_size(*in, ec)) * (ec ? 0.0 : 1.0);
-      }
-      const double texels = double(size.x) * double(size.y);
-      const int extraMaps = int(!a->ao.empty()) + int(!a->height.empty()) + int(!a->missMask.empty());
-      run.checkMemory(64.0 + (2.0 * inputBytes + texels * (19.5 + 5.0 * extraMaps)) / (1 << 20),
-                      fmt::format("a {}x{} bake", size.x, size.y));
-    }
+    run.checkMemory(bake::estimatePeakMemoryMiB(options, {a->low, a->high, a->cage}),
+                    fmt::format("a {}x{} bake", size.x, size.y));
     // OpenImageIO is needed for a detail map and for outputs other than PNG (libspng).
     bool needsImageIo = !a->detail.empty();
     for (std::size_t i = 0; i < outputs.size(); ++i) {
@@ -251,28 +238,8 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     report["low"] = a->low;
     report["high"] = a->high;
     report["output"] = a->output;
-    report["width"] = options.width;
-    report["height"] = options.height;
-    report["samples_per_texel"] = options.samples;
-    report["space"] = a->space;
-    report["directx"] = options.directX;
-    report["low_triangles"] = low.triangleCount();
-    report["high_triangles"] = high->triangleCount();
-    report["texels"] = s.texels;
-    report["covered_texels"] = s.coveredTexels;
-    report["conservative_texels"] = s.conservativeTexels;
-    report["padded_texels"] = s.paddedTexels;
-    report["samples"] = s.samples;
-    report["rays"] = s.rays;
-    report["ao_rays"] = s.aoRays;
-    report["hits"] = s.hits;
-    report["misses"] = s.misses;
-    report["hit_ratio"] = s.hitRatio();
-    report["max_front"] = s.frontDistance;
-    report["max_rear"] = s.rearDistance;
-    report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays) / s.traceSeconds : 0.0;
-    report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
-    report["bvh_quality"] = s.lowQualityBvh ? "low" : "medium";
+    report.update(bake::toJson(options));
+    report.update(bake::toJson(s));
     for (const auto& w : result.warnings) run.recordWarning(w);
     run.finish();
     return 0;

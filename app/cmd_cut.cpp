@@ -5,16 +5,16 @@
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
+#include "glint/core/text.h"
 #include "glint/cut/cutter.h"
 #include "glint/cut/output.h"
 #include "glint/mesh/mesh.h"
 
 #include <fmt/format.h>
 
-#include <cmath>
+#include <filesystem>
 #include <memory>
 #include <optional>
-#include <sstream>
 
 namespace glint::app {
 
@@ -25,15 +25,6 @@ struct CutArgs {
   std::string shard;
   ToolSettings tool;
 };
-
-/// "i/n" (1-based) → (i − 1, n).
-std::pair<int, int> parseShard(const std::string& text) {
-  int i = 0, n = 0;
-  char slash = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' || n < 1 || i < 1 || i > n)
-    fail(ErrorKind::Usage, "--shard must be i/n with 1 ≤ i ≤ n, got '{}'", text);
-  return {i - 1, n};
-}
 
 constexpr const char* kFooter = R"(How it works (ATI's "Pipe Dream" shadow cutting, seed 001):
   A beam is "a pyramid-shaped volume": from the light through a polygon, bounded by
@@ -88,9 +79,9 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
     (void)global;
     ToolRun run("cut", a->tool);
     if (!a->shard.empty() && !a->merge.empty()) fail(ErrorKind::Usage, "--shard and --merge do not go together");
-    std::optional<std::pair<int, int>> shard;
+    std::optional<ShardSpec> shard;
     if (!a->shard.empty()) {
-      shard = parseShard(a->shard);
+      shard = parseShard(a->shard, "--shard");
       if (a->outputs.size() != 1) fail(ErrorKind::Usage, "--shard writes one shard file: give one -o");
     } else {
       for (const auto& o : a->outputs) cut::checkOutputFormat(o);
@@ -106,32 +97,24 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
     Mesh scene;
     {
       auto timed = run.phase("load");
-      for (const auto& input : a->inputs) {
-        const Mesh part = loadMesh(input);
-        if (scene.positions.empty()) scene = part;
-        else scene.append(part);
-        if (a->lights.empty() && a->merge.empty())
-          for (cut::Light& l : cut::loadGltfLights(input)) options.lights.push_back(std::move(l));
-      }
+      // Without --light, the glTF inputs' lights (not when merging: the shards carry theirs).
+      const bool gltfLights = a->lights.empty() && a->merge.empty();
+      scene = cut::loadScene(std::vector<std::filesystem::path>(a->inputs.begin(), a->inputs.end()),
+                             gltfLights ? &options.lights : nullptr);
     }
     if (options.lights.empty() && a->merge.empty())
       fail(ErrorKind::Usage, "no lights: give --light x,y,z (or a glTF scene with KHR_lights_punctual lights)");
     run.throwIfInterrupted();
-    // Peak memory, measured on the machine-room scene with two lights (9.4k → 1.01M → 2.03M
-    // triangles: 206 → 1,369 → 2,602 MiB): ~200 MiB, and ~0.65 KB per input triangle plus
-    // ~0.3 KB per triangle and light (beams, pieces, output).
-    run.checkMemory(200.0 + double(scene.triangleCount()) * (650.0 + 300.0 * double(std::max<std::size_t>(options.lights.size(), 2))) / (1 << 20),
+    run.checkMemory(cut::estimatePeakMemoryMiB(scene.triangleCount(), options.lights.size()),
                     fmt::format("cutting {} triangles for {} light(s)", scene.triangleCount(), options.lights.size()));
 
     auto& report = run.report();
     report["inputs"] = a->inputs;
-    nlohmann::ordered_json lights = nlohmann::ordered_json::array();
-    for (const auto& l : options.lights) lights.push_back({{"name", l.name}, {"position", {l.position.x, l.position.y, l.position.z}}});
-    report["lights"] = lights;
+    report["lights"] = cut::toJson(options.lights);
 
     if (shard) {
-      options.shardIndex = shard->first;
-      options.shardCount = shard->second;
+      options.shardIndex = shard->index - 1;
+      options.shardCount = shard->count;
       const cut::Shard part = cut::cutShard(scene, options);
       run.addSeconds("prepare", part.stats.prepareSeconds);
       run.addSeconds("cut", part.stats.cutSeconds);
@@ -142,9 +125,7 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
       }
       report["shard"] = a->shard;
       report["output"] = a->outputs.front();
-      report["input_triangles"] = part.stats.inputTriangles;
-      report["receivers"] = part.stats.receivers;
-      report["clipped_pairs"] = part.stats.clippedPairs;
+      report.update(cut::toJson(part));
       log::info("cut: shard {} ({} of {} triangles) → {} in {:.2f} s", a->shard, part.stats.receivers,
                 part.stats.inputTriangles, a->outputs.front(), run.elapsed());
       run.finish();
@@ -158,14 +139,7 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
         auto timed = run.phase("read shards");
         for (const auto& path : a->merge) shards.push_back(cut::loadShard(path));
       }
-      if (!a->lights.empty()) {
-        const auto& theirs = shards.front().lights;
-        bool same = theirs.size() == options.lights.size();
-        for (std::size_t i = 0; same && i < theirs.size(); ++i) same = theirs[i].position == options.lights[i].position;
-        if (!same) fail(ErrorKind::Usage, "--light differs from the lights the shards were cut with (leave it out to use theirs)");
-      }
-      options.lights = shards.front().lights;
-      result = cut::mergeShards(scene, std::move(shards), options);
+      result = cut::mergeShards(scene, std::move(shards), options);  // checks --light against the shards'
     } else {
       result = cut::cut(scene, options);
     }
@@ -176,37 +150,14 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
     for (const auto& w : result.warnings) run.recordWarning(w);
     {
       auto timed = run.phase("write");
-      for (const auto& o : a->outputs) cut::saveCutMesh(result.mesh, options.lights, o);
+      for (const auto& o : a->outputs) cut::saveCutMesh(result.mesh, result.lights, o);
     }
     log::info("cut: {} triangles → {} polygons ({:.2f}×), {} lights, {} clipped pairs; {:.2f} s", s.inputTriangles,
               s.outputPolygons, double(s.outputPolygons) / double(std::max<std::uint64_t>(1, s.inputTriangles)),
-              options.lights.size(), s.clippedPairs, run.elapsed());
+              result.lights.size(), s.clippedPairs, run.elapsed());
 
     report["outputs"] = a->outputs;
-    report["input_triangles"] = s.inputTriangles;
-    report["output_polygons"] = s.outputPolygons;
-    report["output_triangles"] = s.outputTriangles;
-    report["output_vertices"] = s.outputVertices;
-    report["polygons_per_input_triangle"] = double(s.outputPolygons) / double(std::max<std::uint64_t>(1, s.inputTriangles));
-    report["pieces_before_merge"] = s.facesBeforeMerge;
-    report["degenerate_triangles"] = s.degenerateTriangles;
-    report["collapsed_triangles"] = s.collapsedTriangles;
-    report["dropped_slivers"] = s.droppedSlivers;
-    nlohmann::ordered_json perLight = nlohmann::ordered_json::array();
-    for (const auto& l : s.lights)
-      perLight.push_back({{"name", l.name},
-                          {"lit_polygons", l.litPolygons},
-                          {"shadowed_polygons", l.shadowedPolygons},
-                          {"lit_area", l.litArea},
-                          {"shadowed_area", l.shadowedArea},
-                          {"grazing_triangles", l.grazingTriangles}});
-    report["per_light"] = perLight;
-    report["candidates"] = s.candidates;
-    report["occluders"] = s.occluders;
-    report["clipped_pairs"] = s.clippedPairs;
-    report["cuts"] = s.cuts;
-    report["clipped_pairs_per_second"] = s.cutSeconds > 0 ? double(s.clippedPairs) / s.cutSeconds : 0.0;
-    report["predicates"] = {{"symbolic", s.symbolicPredicates}, {"interval", s.filteredPredicates}, {"exact", s.exactPredicates}};
+    report.update(cut::toJson(s));
     run.finish();
     return 0;
   }, .readsImages = false};

@@ -90,20 +90,11 @@ bool overlapsTexel(const UvTriangle& t, ivec2 texel) {
   return true;
 }
 
-void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<raytrace::Ray>* rayLog) {
-  // Counted on the stack, stored once: neighbouring tiles' counters share cache lines, and
-  // two threads incrementing them per sample would pass those lines back and forth.
-  Counters counters;
-  const int W = ctx.options.width, H = ctx.options.height, k = ctx.root, S = k * k;
-  const int x0 = (tileIndex % ctx.tilesX) * kTile, y0 = (tileIndex / ctx.tilesX) * kTile;
-  const int tw = std::min(kTile, W - x0), th = std::min(kTile, H - y0);
-  // Reused per thread: a fresh 32×32×36 buffer per tile would cost page faults and zeroing.
-  thread_local std::vector<Slot> slots;
-  slots.assign(std::size_t(tw * th * S), Slot{});
-  int prediction = 0;  // which side of the low poly the hits are on (see traceGroup)
-  const auto& bin = ctx.bins[std::size_t(tileIndex)];
-
-  // 1. Samples: the first triangle (lowest id) containing a sample owns it.
+/// A tile's sample slots (S per texel, row by row): the first triangle (lowest id) of the
+/// tile's bin containing a sample owns it. Counts samples inside several triangles.
+void placeSamples(const Context& ctx, int x0, int y0, int tw, int th, const std::vector<int>& bin, std::span<Slot> slots,
+                  Counters& counters) {
+  const int S = ctx.root * ctx.root;
   for (int id : bin) {
     const UvTriangle& t = ctx.tris[std::size_t(id)];
     const int bx0 = std::max(t.lo.x, x0), bx1 = std::min(t.hi.x, x0 + tw - 1);
@@ -122,18 +113,84 @@ void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<r
       }
     }
   }
+}
 
-  // 2. Trace. Texels are gathered until they hold at least kGroup samples, which are then
-  // traced together (coherent groups for Embree's packets, whatever the sample count),
-  // and the results averaged back per texel.
-  struct Pending {
-    std::size_t texel;
-    std::size_t first, count;
-    bool conservative;
-  };
-  // One group's samples, results and texels, on the stack: no heap, no thread-local
-  // lookups in the inner loops. A group is traced once it holds kGroup samples; a texel
-  // adds at most 64 (the most --samples allows), which bounds the capacity.
+/// Conservative coverage of a texel no sample landed in: a triangle touching the texel
+/// gives one sample at its point closest to the texel centre (nearest such triangle; ties
+/// to the lowest id), in `slot`. False when no triangle touches it.
+bool conservativeSample(const Context& ctx, const std::vector<int>& bin, int x, int y, Slot& slot) {
+  const vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
+  float bestDistance = 1e30f;
+  for (int id : bin) {
+    const UvTriangle& t = ctx.tris[std::size_t(id)];
+    if (x < t.lo.x || x > t.hi.x || y < t.lo.y || y > t.hi.y || !overlapsTexel(t, {x, y})) continue;
+    const vec2 w = closestBarycentric(t, centre);
+    const vec2 p = (1.0f - w.x - w.y) * t.a + w.x * t.b + w.y * t.c;
+    const float d = glm::distance(p, centre);
+    if (d < bestDistance) {
+      bestDistance = d;
+      slot = {id, w};
+    }
+  }
+  return slot.tri >= 0;
+}
+
+/// A texel whose samples are waiting in a group: results [first, first + count).
+struct Pending {
+  std::size_t texel;
+  std::size_t first, count;
+  bool conservative;
+};
+
+/// The texel's samples averaged into ctx.texels (the normal normalized), and counted.
+void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleResult> results, Counters& counters) {
+  vec3 sum(0.0f);
+  float ao = 0.0f, height = 0.0f;
+  std::size_t missed = 0;
+  for (std::size_t i = p.first; i < p.first + p.count; ++i) {
+    const detail::SampleResult& r = results[i];
+    sum += r.value;
+    ao += r.ao;
+    height += r.height;
+    missed += r.hit ? 0 : 1;
+  }
+  counters.samples += p.count;
+  counters.hits += p.count - missed;
+  counters.misses += missed;
+  ++counters.covered;
+  counters.conservative += p.conservative ? 1 : 0;
+  float* out = &ctx.texels[p.texel * std::size_t(ctx.channels)];
+  const float len = p.count == 1 ? 1.0f : glm::length(sum);  // one sample: already unit length
+  const vec3 n = len == 1.0f ? sum : len > 0.0f ? sum * (1.0f / len) : vec3(0.0f, 0.0f, 1.0f);
+  out[0] = n.x;
+  out[1] = n.y;
+  out[2] = n.z;
+  const float count = float(p.count);
+  if (ctx.aoChannel >= 0) out[ctx.aoChannel] = ao / count;
+  if (ctx.heightChannel >= 0) out[ctx.heightChannel] = height / count;
+  if (ctx.missChannel >= 0) out[ctx.missChannel] = float(missed) / count;
+  ctx.covered[p.texel] = 1;
+}
+
+void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<raytrace::Ray>* rayLog) {
+  // Counted on the stack, stored once: neighbouring tiles' counters share cache lines, and
+  // two threads incrementing them per sample would pass those lines back and forth.
+  Counters counters;
+  const int W = ctx.options.width, H = ctx.options.height, k = ctx.root, S = k * k;
+  const int x0 = (tileIndex % ctx.tilesX) * kTile, y0 = (tileIndex / ctx.tilesX) * kTile;
+  const int tw = std::min(kTile, W - x0), th = std::min(kTile, H - y0);
+  // Reused per thread: a fresh 32×32×36 buffer per tile would cost page faults and zeroing.
+  thread_local std::vector<Slot> slots;
+  slots.assign(std::size_t(tw * th * S), Slot{});
+  int prediction = 0;  // which side of the low poly the hits are on (see traceGroup)
+  const auto& bin = ctx.bins[std::size_t(tileIndex)];
+  placeSamples(ctx, x0, y0, tw, th, bin, slots, counters);
+
+  // Texels are gathered until they hold at least kGroup samples, which are then traced
+  // together (coherent groups for Embree's packets, whatever the sample count), and the
+  // results averaged back per texel. One group's samples, results and texels are on the
+  // stack: no heap, no thread-local lookups in the inner loops. A texel adds at most 64
+  // samples (the most --samples allows), which bounds the capacity.
   constexpr std::size_t kGroup = 64, kCapacity = detail::kMaxGroup;
   static_assert(kCapacity >= kGroup + 64);
   std::array<Pending, kCapacity> pending;
@@ -143,34 +200,7 @@ void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<r
   const auto flush = [&] {
     detail::traceGroup(ctx, std::span(inputs).first(inputCount), std::span(results).first(inputCount), counters, rayLog,
                        prediction);
-    for (const Pending& p : std::span(pending).first(pendingCount)) {
-      vec3 sum(0.0f);
-      float ao = 0.0f, height = 0.0f;
-      std::size_t missed = 0;
-      for (std::size_t i = p.first; i < p.first + p.count; ++i) {
-        const detail::SampleResult& r = results[i];
-        sum += r.value;
-        ao += r.ao;
-        height += r.height;
-        missed += r.hit ? 0 : 1;
-      }
-      counters.samples += p.count;
-      counters.hits += p.count - missed;
-      counters.misses += missed;
-      ++counters.covered;
-      counters.conservative += p.conservative ? 1 : 0;
-      float* out = &ctx.texels[p.texel * std::size_t(ctx.channels)];
-      const float len = p.count == 1 ? 1.0f : glm::length(sum);  // one sample: already unit length
-      const vec3 n = len == 1.0f ? sum : len > 0.0f ? sum * (1.0f / len) : vec3(0.0f, 0.0f, 1.0f);
-      out[0] = n.x;
-      out[1] = n.y;
-      out[2] = n.z;
-      const float count = float(p.count);
-      if (ctx.aoChannel >= 0) out[ctx.aoChannel] = ao / count;
-      if (ctx.heightChannel >= 0) out[ctx.heightChannel] = height / count;
-      if (ctx.missChannel >= 0) out[ctx.missChannel] = float(missed) / count;
-      ctx.covered[p.texel] = 1;
-    }
+    for (const Pending& p : std::span(pending).first(pendingCount)) storeTexel(ctx, p, results, counters);
     pendingCount = inputCount = 0;
   };
   for (int y = y0; y < y0 + th; ++y) {
@@ -178,26 +208,7 @@ void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<r
       Slot* texelSlots = &slots[std::size_t(((y - y0) * tw + (x - x0)) * S)];
       bool any = false;
       for (int s = 0; s < S && !any; ++s) any = texelSlots[s].tri >= 0;
-      bool conservative = false;
-      if (!any) {
-        // Conservative coverage: a triangle touching the texel gives one sample at its
-        // point closest to the texel centre (nearest such triangle; ties to the lowest id).
-        const vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
-        float bestDistance = 1e30f;
-        for (int id : bin) {
-          const UvTriangle& t = ctx.tris[std::size_t(id)];
-          if (x < t.lo.x || x > t.hi.x || y < t.lo.y || y > t.hi.y || !overlapsTexel(t, {x, y})) continue;
-          const vec2 w = closestBarycentric(t, centre);
-          const vec2 p = (1.0f - w.x - w.y) * t.a + w.x * t.b + w.y * t.c;
-          const float d = glm::distance(p, centre);
-          if (d < bestDistance) {
-            bestDistance = d;
-            texelSlots[0] = {id, w};
-          }
-        }
-        if (texelSlots[0].tri < 0) continue;
-        conservative = true;
-      }
+      if (!any && !conservativeSample(ctx, bin, x, y, texelSlots[0])) continue;
       const std::size_t texel = std::size_t(y) * std::size_t(W) + std::size_t(x);
       const std::size_t first = inputCount;
       for (int s = 0; s < S; ++s) {
@@ -211,7 +222,7 @@ void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<r
         in.uv = vec2(p.x / float(W), p.y / float(H));
         in.seed = texel * 4096u + std::uint64_t(s);
       }
-      pending[pendingCount++] = {texel, first, inputCount - first, conservative};
+      pending[pendingCount++] = {texel, first, inputCount - first, !any};
       if (inputCount >= kGroup) flush();
     }
   }
@@ -246,37 +257,11 @@ Image channelImage(const Context& ctx, int first, int count, bool flipRows, Pixe
   return image;
 }
 
-}  // namespace
-
-BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
-  BakeResult result;
-  BakeStats& stats = result.stats;
-  auto start = Clock::now();
-  detail::Prepared in = detail::prepareInputs(low, high, options, stats, result.warnings);
-  const double checkSeconds = secondsSince(start);  // (these split the phases in the debug log)
-  // Not robust (watertight) traversal: ~15 % faster; the rare ray that slips through a
-  // shared vertex is retried (trace.cpp). Never Embree's high-quality (spatial split) BVH:
-  // a bake's short rays along the low poly's normals trace no faster through it — 4.26 M
-  // rays of a 2048² bake took 0.33 s either way — while it builds 4× slower (1 M
-  // triangles: 0.94 s against 0.22 s on two cores). The low-quality (Morton) build is
-  // 2–3× quicker again than the medium one (262k triangles: 0.03 s against 0.06–0.08 s;
-  // 1 M: 0.15 s against 0.30–0.45 s) and its rays cost the same up to tens of rays per
-  // triangle; at 150 (2048², 36 per texel, 1 M triangles) they took 4–8 % longer, more
-  // than the build saves: medium from 64 rays per triangle on.
-  const double expectedRays = double(options.width) * double(options.height) * double(options.samples) *
-                              (options.ambientOcclusion ? 1.0 + double(options.aoSamples) : 1.0);
-  const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
-  // The high poly is read in place (it outlives the scene): no copy of its vertices.
-  const raytrace::Scene scene(*in.high, {.quality = fewRays ? raytrace::SceneOptions::Quality::Fast
-                                                            : raytrace::SceneOptions::Quality::Default,
-                                         .shareMeshes = true});
-  stats.bvhBytes = scene.memoryBytes();
-  stats.lowQualityBvh = fewRays;
-  const double bvhSeconds = secondsSince(start) - checkSeconds;
-  const auto setupStart = Clock::now();
-
-  Context ctx{options, in, scene};
-  const int W = options.width, H = options.height;
+/// The tables the tiles share: sample offsets, ray distances, the high poly's corner
+/// normals and the low poly's corners side by side, the channels and the texel storage.
+void setUpContext(Context& ctx, BakeStats& stats) {
+  const BakeOptions& options = ctx.options;
+  const detail::Prepared& in = ctx.in;
   ctx.root = int(std::lround(std::sqrt(double(options.samples))));
   for (int s = 0; s < ctx.root * ctx.root; ++s) {  // stratified: the centres of a root × root grid
     ctx.sampleOffsets.emplace_back((float(s % ctx.root) + 0.5f) / float(ctx.root), (float(s / ctx.root) + 0.5f) / float(ctx.root));
@@ -284,7 +269,7 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   ctx.front = options.maxFront.resolve(in.diagonal);
   ctx.rear = options.maxRear.resolve(in.diagonal);
   ctx.aoDistance = options.aoDistance.resolve(in.diagonal);
-  ctx.epsilon = 1e-5f * std::max(in.diagonal, scene.bounds().diagonal());
+  ctx.epsilon = 1e-5f * std::max(in.diagonal, ctx.scene.bounds().diagonal());
   ctx.worldNormalMatrix = glm::transpose(glm::inverse(mat3(options.objectToWorld)));
   const std::vector<std::uint32_t>& highIndices = in.high->indices;
   bool identity = in.high->normals.size() == highIndices.size();
@@ -313,30 +298,30 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   if (options.ambientOcclusion) ctx.aoChannel = ctx.channels++;
   if (options.heightMap) ctx.heightChannel = ctx.channels++;
   if (options.missMask) ctx.missChannel = ctx.channels++;
-  stats.texels = std::uint64_t(W) * std::uint64_t(H);
+  stats.texels = std::uint64_t(options.width) * std::uint64_t(options.height);
   const std::size_t texelValues = std::size_t(stats.texels) * std::size_t(ctx.channels);
   ctx.texelStorage = std::make_unique_for_overwrite<float[]>(texelValues);
   ctx.texels = std::span<float>(ctx.texelStorage.get(), texelValues);
   ctx.covered.assign(std::size_t(stats.texels), 0);
+}
 
-  const double setupSeconds = secondsSince(setupStart);
-  stats.prepareSeconds = secondsSince(start);  // the phases cover the whole of bake()
-  // Triangles in texel space, binned into tiles (in id order, so bins are sorted).
-  start = Clock::now();
-  const double cpuStart = processCpuSeconds();
+/// The low poly's triangles in texel space, binned into tiles (in id order, so bins are
+/// sorted). Triangles without UV area, or wholly outside 0..1, are in no bin.
+void binTriangles(Context& ctx) {
+  const int W = ctx.options.width, H = ctx.options.height;
+  const Mesh& low = ctx.in.low;
   ctx.tilesX = (W + kTile - 1) / kTile;
   ctx.tilesY = (H + kTile - 1) / kTile;
   ctx.bins.resize(std::size_t(ctx.tilesX * ctx.tilesY));
-  ctx.tris.resize(in.low.triangleCount());
+  ctx.tris.resize(low.triangleCount());
   for (std::size_t i = 0; i < ctx.tris.size(); ++i) {
     UvTriangle& t = ctx.tris[i];
-    const auto corner = [&](int k) { return in.low.uvs[in.low.indices[3 * i + std::size_t(k)]] * vec2(float(W), float(H)); };
+    const auto corner = [&](int k) { return low.uvs[low.indices[3 * i + std::size_t(k)]] * vec2(float(W), float(H)); };
     t.a = corner(0);
     t.b = corner(1);
     t.c = corner(2);
     const float area = edge(t.a, t.b, t.c);
-    const vec2 uvA = in.low.uvs[in.low.indices[3 * i]], uvB = in.low.uvs[in.low.indices[3 * i + 1]],
-               uvC = in.low.uvs[in.low.indices[3 * i + 2]];
+    const vec2 uvA = low.uvs[low.indices[3 * i]], uvB = low.uvs[low.indices[3 * i + 1]], uvC = low.uvs[low.indices[3 * i + 2]];
     if (std::fabs((uvB.x - uvA.x) * (uvC.y - uvA.y) - (uvB.y - uvA.y) * (uvC.x - uvA.x)) <= 1e-12f || area == 0.0f) continue;
     t.invArea = 1.0f / area;
     const vec2 mn = glm::min(t.a, glm::min(t.b, t.c)), mx = glm::max(t.a, glm::max(t.b, t.c));
@@ -346,7 +331,12 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
     for (int ty = t.lo.y / kTile; ty <= t.hi.y / kTile; ++ty)
       for (int tx = t.lo.x / kTile; tx <= t.hi.x / kTile; ++tx) ctx.bins[std::size_t(ty * ctx.tilesX + tx)].push_back(int(i));
   }
+}
 
+/// Every tile with triangles, in parallel; their counters summed into `stats`, their rays
+/// appended to options.rayLog in tile order. Error(Interrupted) when cancelled.
+void bakeTiles(Context& ctx, BakeStats& stats) {
+  const BakeOptions& options = ctx.options;
   const std::size_t tileCount = ctx.bins.size();
   std::vector<Counters> tileCounters(tileCount);
   std::vector<std::vector<raytrace::Ray>> tileRays(options.rayLog ? tileCount : 0);
@@ -376,17 +366,19 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
     stats.aoRays += c.aoRays;
     stats.overlappingSamples += c.overlaps;
   }
-  stats.traceSeconds = secondsSince(start);
-  stats.traceCpuSeconds = processCpuSeconds() - cpuStart;
   if (options.rayLog) {
     for (auto& rays : tileRays) options.rayLog->insert(options.rayLog->end(), rays.begin(), rays.end());
   }
+}
+
+/// Overlapping UVs, and samples that found nothing: logged and returned as warnings.
+void warnAboutSamples(const Context& ctx, const BakeStats& stats, std::vector<std::string>& warnings) {
   if (stats.overlappingSamples) {
     const std::string message = fmt::format(
         "low-poly mesh: {} samples lie in more than one UV triangle (overlapping or mirrored-onto-itself UVs); "
         "each texel takes the lowest-numbered triangle", stats.overlappingSamples);
     log::warn("{}", message);
-    result.warnings.push_back(message);
+    warnings.push_back(message);
   }
   if (stats.samples > 0 && stats.misses * 10 > stats.samples) {
     const std::string message = fmt::format(
@@ -394,18 +386,15 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
         "--max-rear or check that the meshes overlap", 100.0 * double(stats.misses) / double(stats.samples),
         ctx.front, ctx.rear);
     log::warn("{}", message);
-    result.warnings.push_back(message);
+    warnings.push_back(message);
   }
+}
 
-  // Dilation, then the maps as images (row 0 on top).
-  start = Clock::now();
-  std::vector<std::uint8_t> filled = ctx.covered;
-  if (options.padding > 0 || options.fillAll) {
-    stats.paddedTexels = dilate(ctx.texels, ctx.channels, W, H, filled,
-                                {.passes = options.fillAll ? -1 : options.padding, .unitVectorChannels = 3});
-  }
-  const double dilationSeconds = secondsSince(start);
-  const auto imagesStart = Clock::now();
+/// The baked texels as the result's images (row 0 on top), after `filled` (the covered
+/// texels and those dilation filled) is known: maps, and the coverage image.
+void makeImages(Context& ctx, const std::vector<std::uint8_t>& filled, BakeResult& result) {
+  const BakeOptions& options = ctx.options;
+  const int W = options.width, H = options.height;
   const vec3 background = options.space == NormalSpace::Tangent ? vec3(0.0f, 0.0f, 1.0f) : vec3(0.0f);
   std::vector<std::uint8_t> islands = ctx.covered;
   ctx.covered = filled;
@@ -421,7 +410,7 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   if (ctx.heightChannel >= 0) {
     result.height = channelImage(ctx, ctx.heightChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
   }
-  ctx.covered = islands;
+  ctx.covered = islands;  // the miss mask is not dilated
   if (ctx.missChannel >= 0) {
     result.missMask = channelImage(ctx, ctx.missChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
   }
@@ -435,6 +424,61 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
       }
     }
   });
+}
+
+}  // namespace
+
+BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
+  BakeResult result;
+  BakeStats& stats = result.stats;
+  stats.lowTriangles = low.triangleCount();
+  stats.highTriangles = high.triangleCount();
+  auto start = Clock::now();
+  detail::Prepared in = detail::prepareInputs(low, high, options, stats, result.warnings);
+  const double checkSeconds = secondsSince(start);  // (these split the phases in the debug log)
+  // Not robust (watertight) traversal: ~15 % faster; the rare ray that slips through a
+  // shared vertex is retried (trace.cpp). Never Embree's high-quality (spatial split) BVH:
+  // a bake's short rays along the low poly's normals trace no faster through it — 4.26 M
+  // rays of a 2048² bake took 0.33 s either way — while it builds 4× slower (1 M
+  // triangles: 0.94 s against 0.22 s on two cores). The low-quality (Morton) build is
+  // 2–3× quicker again than the medium one (262k triangles: 0.03 s against 0.06–0.08 s;
+  // 1 M: 0.15 s against 0.30–0.45 s) and its rays cost the same up to tens of rays per
+  // triangle; at 150 (2048², 36 per texel, 1 M triangles) they took 4–8 % longer, more
+  // than the build saves: medium from 64 rays per triangle on.
+  const double expectedRays = double(options.width) * double(options.height) * double(options.samples) *
+                              (options.ambientOcclusion ? 1.0 + double(options.aoSamples) : 1.0);
+  const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
+  // The high poly is read in place (it outlives the scene): no copy of its vertices.
+  const raytrace::Scene scene(*in.high, {.quality = fewRays ? raytrace::SceneOptions::Quality::Fast
+                                                            : raytrace::SceneOptions::Quality::Default,
+                                         .shareMeshes = true});
+  stats.bvhBytes = scene.memoryBytes();
+  stats.lowQualityBvh = fewRays;
+  const double bvhSeconds = secondsSince(start) - checkSeconds;
+  const auto setupStart = Clock::now();
+  Context ctx{options, in, scene};
+  setUpContext(ctx, stats);
+  const double setupSeconds = secondsSince(setupStart);
+  stats.prepareSeconds = secondsSince(start);  // the phases cover the whole of bake()
+
+  start = Clock::now();
+  const double cpuStart = processCpuSeconds();
+  binTriangles(ctx);
+  bakeTiles(ctx, stats);
+  stats.traceSeconds = secondsSince(start);
+  stats.traceCpuSeconds = processCpuSeconds() - cpuStart;
+  warnAboutSamples(ctx, stats, result.warnings);
+
+  // Dilation, then the maps as images (row 0 on top).
+  start = Clock::now();
+  std::vector<std::uint8_t> filled = ctx.covered;
+  if (options.padding > 0 || options.fillAll) {
+    stats.paddedTexels = dilate(ctx.texels, ctx.channels, options.width, options.height, filled,
+                                {.passes = options.fillAll ? -1 : options.padding, .unitVectorChannels = 3});
+  }
+  const double dilationSeconds = secondsSince(start);
+  const auto imagesStart = Clock::now();
+  makeImages(ctx, filled, result);
   result.low = std::move(in.low);
   stats.dilateSeconds = secondsSince(start);
   log::debug("bake: checks and tangents {:.0f} ms, BVH {:.0f} ms ({} quality), setup {:.0f} ms, trace {:.0f} ms, "

@@ -185,6 +185,7 @@ void validateOptions(const BakeOptions& options) {
   if (options.maxFront.value < 0.0f || options.maxRear.value < 0.0f || options.aoDistance.value < 0.0f) {
     fail(ErrorKind::Usage, "ray distances must not be negative");
   }
+  if (options.padding < 0) fail(ErrorKind::Usage, "--padding must not be negative, got {}", options.padding);
 }
 
 }  // namespace glint::bake

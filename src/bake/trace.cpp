@@ -257,6 +257,11 @@ SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const 
 
 }  // namespace
 
+// One function of ~125 lines on purpose: it is the bake's inner loop, a few stages over
+// one group's samples that share the thread's scratch arrays, the sweep direction and the
+// front/rear tally. Its layout (rays filled in place, the normals prefetched before the
+// lean pass, lanes encoded together) is what the measurements in its comments timed; the
+// parts that stand alone (geometryAt, Caster, shade, store, encodeLanes) are functions.
 void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results,
                 Counters& counters, std::vector<raytrace::Ray>* rayLog, int& prediction) {
   if (samples.size() > kMaxGroup) fail(ErrorKind::Internal, "bake: a group of {} samples (at most {})", samples.size(), kMaxGroup);

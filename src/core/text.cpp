@@ -81,6 +81,16 @@ int parseInt(std::string_view text, std::string_view what, int lo, int hi) {
   return value;
 }
 
+ShardSpec parseShard(std::string_view text, std::string_view what) {
+  const std::size_t slash = text.find('/');
+  ShardSpec part;
+  if (slash == std::string_view::npos || !wholeInt(text.substr(0, slash), part.index) ||
+      !wholeInt(text.substr(slash + 1), part.count) || part.index < 1 || part.index > part.count) {
+    fail(ErrorKind::Usage, "{} must be i/n with 1 ≤ i ≤ n, got '{}'", what, printable(text));
+  }
+  return part;
+}
+
 double parseMemorySize(std::string_view text, std::string_view what) {
   std::string_view number = text;
   for (std::string_view suffix : {"iB", "B"}) {

@@ -20,6 +20,71 @@ float up(double x) {
   float f = float(x);
   return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
+
+/// Binned surface area heuristic over the centres' `axis`: the scene mixes large floor
+/// triangles and small pipe facets, where median splits make boxes that overlap a lot.
+/// Partitions order[begin, end) (each side sorted by index) and returns where the right
+/// side starts, or `mid` when no split has triangles on both sides.
+std::uint32_t sahSplit(std::vector<std::uint32_t>& order, std::uint32_t begin, std::uint32_t end, int axis,
+                       const dvec3& clo, const dvec3& extent, std::span<const dvec3> lo, std::span<const dvec3> hi,
+                       const std::vector<dvec3>& centres, std::uint32_t mid) {
+  constexpr int kBins = 16;
+  struct Bin {
+    dvec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
+    std::uint32_t count = 0;
+  };
+  Bin bins[kBins];
+  const auto binOf = [&](std::uint32_t tri) {
+    return std::min(kBins - 1, int(double(kBins) * (centres[tri][axis] - clo[axis]) / extent[axis]));
+  };
+  for (std::uint32_t i = begin; i < end; ++i) {
+    Bin& b = bins[binOf(order[i])];
+    b.lo = glm::min(b.lo, lo[order[i]]);
+    b.hi = glm::max(b.hi, hi[order[i]]);
+    ++b.count;
+  }
+  const auto area = [](const dvec3& l, const dvec3& h) {
+    const dvec3 d = glm::max(h - l, dvec3(0.0));
+    return d.x * d.y + d.y * d.z + d.z * d.x;
+  };
+  double rightArea[kBins];
+  std::uint32_t rightCount[kBins];
+  dvec3 rl(std::numeric_limits<double>::infinity()), rh(-rl);
+  std::uint32_t rc = 0;
+  for (int b = kBins - 1; b > 0; --b) {
+    rl = glm::min(rl, bins[b].lo);
+    rh = glm::max(rh, bins[b].hi);
+    rc += bins[b].count;
+    rightArea[b] = area(rl, rh);
+    rightCount[b] = rc;
+  }
+  dvec3 ll(std::numeric_limits<double>::infinity()), lh(-ll);
+  std::uint32_t lc = 0;
+  double best = std::numeric_limits<double>::infinity();
+  int split = -1;
+  for (int b = 1; b < kBins; ++b) {
+    ll = glm::min(ll, bins[b - 1].lo);
+    lh = glm::max(lh, bins[b - 1].hi);
+    lc += bins[b - 1].count;
+    if (lc == 0 || rightCount[b] == 0) continue;
+    const double cost = area(ll, lh) * double(lc) + rightArea[b] * double(rightCount[b]);
+    if (cost < best) {
+      best = cost;
+      split = b;
+    }
+  }
+  if (split > 0) {
+    auto* m = std::partition(order.data() + begin, order.data() + end,
+                             [&](std::uint32_t tri) { return binOf(tri) < split; });
+    mid = std::uint32_t(m - order.data());
+    // partition's order depends on nothing but the input order: deterministic; sort
+    // each side by index so that it also does not depend on the library's partition.
+    std::sort(order.begin() + begin, order.begin() + mid);
+    std::sort(order.begin() + mid, order.begin() + end);
+  }
+  return mid;
+}
+
 }  // namespace
 
 TriangleBvh::TriangleBvh(std::span<const dvec3> lo, std::span<const dvec3> hi, std::span<const std::uint8_t> include) {
@@ -62,68 +127,12 @@ void TriangleBvh::build(std::span<const dvec3> lo, std::span<const dvec3> hi, st
       m_nodes[t.node] = node;
       continue;
     }
-    // Binned surface area heuristic over the centres' longest axis: the scene mixes
-    // large floor triangles and small pipe facets, where median splits make boxes that
-    // overlap a lot. Ties broken by index, so the tree never depends on sort details.
+    // Split by the surface area heuristic over the centres' longest axis (sahSplit), else
+    // at the median. Ties broken by index, so the tree never depends on sort details.
     const dvec3 extent = chi - clo;
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-    constexpr int kBins = 16;
     std::uint32_t mid = (t.begin + t.end) / 2;
-    if (extent[axis] > 0.0) {
-      struct Bin {
-        dvec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
-        std::uint32_t count = 0;
-      };
-      Bin bins[kBins];
-      const auto binOf = [&](std::uint32_t tri) {
-        return std::min(kBins - 1, int(double(kBins) * (centres[tri][axis] - clo[axis]) / extent[axis]));
-      };
-      for (std::uint32_t i = t.begin; i < t.end; ++i) {
-        Bin& b = bins[binOf(m_order[i])];
-        b.lo = glm::min(b.lo, lo[m_order[i]]);
-        b.hi = glm::max(b.hi, hi[m_order[i]]);
-        ++b.count;
-      }
-      const auto area = [](const dvec3& l, const dvec3& h) {
-        const dvec3 d = glm::max(h - l, dvec3(0.0));
-        return d.x * d.y + d.y * d.z + d.z * d.x;
-      };
-      double rightArea[kBins];
-      std::uint32_t rightCount[kBins];
-      dvec3 rl(std::numeric_limits<double>::infinity()), rh(-rl);
-      std::uint32_t rc = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        rl = glm::min(rl, bins[b].lo);
-        rh = glm::max(rh, bins[b].hi);
-        rc += bins[b].count;
-        rightArea[b] = area(rl, rh);
-        rightCount[b] = rc;
-      }
-      dvec3 ll(std::numeric_limits<double>::infinity()), lh(-ll);
-      std::uint32_t lc = 0;
-      double best = std::numeric_limits<double>::infinity();
-      int split = -1;
-      for (int b = 1; b < kBins; ++b) {
-        ll = glm::min(ll, bins[b - 1].lo);
-        lh = glm::max(lh, bins[b - 1].hi);
-        lc += bins[b - 1].count;
-        if (lc == 0 || rightCount[b] == 0) continue;
-        const double cost = area(ll, lh) * double(lc) + rightArea[b] * double(rightCount[b]);
-        if (cost < best) {
-          best = cost;
-          split = b;
-        }
-      }
-      if (split > 0) {
-        auto* m = std::partition(m_order.data() + t.begin, m_order.data() + t.end,
-                                 [&](std::uint32_t tri) { return binOf(tri) < split; });
-        mid = std::uint32_t(m - m_order.data());
-        // partition's order depends on nothing but the input order: deterministic; sort
-        // each side by index so that it also does not depend on the library's partition.
-        std::sort(m_order.begin() + t.begin, m_order.begin() + mid);
-        std::sort(m_order.begin() + mid, m_order.begin() + t.end);
-      }
-    }
+    if (extent[axis] > 0.0) mid = sahSplit(m_order, t.begin, t.end, axis, clo, extent, lo, hi, centres, mid);
     if (mid == t.begin || mid == t.end) {
       mid = (t.begin + t.end) / 2;
       std::nth_element(m_order.begin() + t.begin, m_order.begin() + mid, m_order.begin() + t.end,

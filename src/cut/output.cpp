@@ -4,6 +4,8 @@
 #include "glint/core/file.h"
 #include "glint/core/text.h"
 
+#include "lights.h"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -28,8 +30,6 @@ std::string lower(std::string s) {
   return s;
 }
 
-std::string lightName(const Light& l, std::size_t i) { return l.name.empty() ? fmt::format("light{}", i) : l.name; }
-
 /// Polygon corner to start from: one whose neighbours both turn (see triangulate()).
 std::size_t apex(const CutMesh& m, std::size_t p) {
   const std::size_t s = m.polygonStart[p], n = m.cornerCount(p);
@@ -53,89 +53,75 @@ int addView(tinygltf::Model& model, std::size_t offset, std::size_t length, int 
   return int(model.bufferViews.size() - 1);
 }
 
-void saveGltf(const CutMesh& mesh, const std::vector<Light>& lights, const std::filesystem::path& path, bool binary) {
-  const Triangles tris = triangulate(mesh);
-  // Triangles grouped by mask, in mask order; each group its own vertices.
-  std::map<LightMask, std::vector<std::uint32_t>> groups;
-  for (std::uint32_t t = 0; t < tris.trianglePolygon.size(); ++t)
-    groups[mesh.polygonMask[tris.trianglePolygon[t]]].push_back(t);
-
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "glint cut";
-  tinygltf::Buffer buffer;
-  tinygltf::Mesh gm;
-  gm.name = "cut";
-  for (const auto& [mask, triangles] : groups) {
-    std::vector<std::uint32_t> remap(tris.mesh.positions.size(), 0xFFFFFFFFu);
-    std::vector<vec3> positions;
-    std::vector<std::uint32_t> indices;
-    for (std::uint32_t t : triangles)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t v = tris.mesh.indices[3 * std::size_t(t) + std::size_t(k)];
-        if (remap[v] == 0xFFFFFFFFu) {
-          remap[v] = std::uint32_t(positions.size());
-          positions.push_back(tris.mesh.positions[v]);
-        }
-        indices.push_back(remap[v]);
+/// One primitive of the glTF mesh: the triangles of one light mask, with their own
+/// vertices (positions, grey COLOR_0) appended to `buffer`, and the mask in its extras.
+tinygltf::Primitive addPrimitive(tinygltf::Model& model, tinygltf::Buffer& buffer, const Triangles& tris,
+                                 const std::vector<std::uint32_t>& triangles, LightMask mask,
+                                 const std::vector<Light>& lights) {
+  std::vector<std::uint32_t> remap(tris.mesh.positions.size(), 0xFFFFFFFFu);
+  std::vector<vec3> positions;
+  std::vector<std::uint32_t> indices;
+  for (std::uint32_t t : triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = tris.mesh.indices[3 * std::size_t(t) + std::size_t(k)];
+      if (remap[v] == 0xFFFFFFFFu) {
+        remap[v] = std::uint32_t(positions.size());
+        positions.push_back(tris.mesh.positions[v]);
       }
-    const vec3 colour = maskColor(mask, int(lights.size()));
-    std::vector<vec3> colours(positions.size(), colour);
-    vec3 lo(std::numeric_limits<float>::infinity()), hi(-lo);
-    for (const vec3& p : positions) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
+      indices.push_back(remap[v]);
     }
-    const std::size_t posOffset = buffer.data.size();
-    append(buffer.data, positions.data(), positions.size() * sizeof(vec3));
-    const std::size_t colOffset = buffer.data.size();
-    append(buffer.data, colours.data(), colours.size() * sizeof(vec3));
-    const std::size_t idxOffset = buffer.data.size();
-    append(buffer.data, indices.data(), indices.size() * 4);
-
-    tinygltf::Accessor pos;
-    pos.bufferView = addView(model, posOffset, positions.size() * sizeof(vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
-    pos.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    pos.count = positions.size();
-    pos.type = TINYGLTF_TYPE_VEC3;
-    pos.minValues = {lo.x, lo.y, lo.z};
-    pos.maxValues = {hi.x, hi.y, hi.z};
-    model.accessors.push_back(pos);
-    tinygltf::Accessor col = pos;
-    col.bufferView = addView(model, colOffset, colours.size() * sizeof(vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
-    col.minValues.clear();
-    col.maxValues.clear();
-    model.accessors.push_back(col);
-    tinygltf::Accessor idx;
-    idx.bufferView = addView(model, idxOffset, indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    idx.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    idx.count = indices.size();
-    idx.type = TINYGLTF_TYPE_SCALAR;
-    model.accessors.push_back(idx);
-
-    tinygltf::Primitive prim;
-    const int base = int(model.accessors.size()) - 3;
-    prim.attributes["POSITION"] = base;
-    prim.attributes["COLOR_0"] = base + 1;
-    prim.indices = base + 2;
-    prim.mode = TINYGLTF_MODE_TRIANGLES;
-    tinygltf::Value::Array litBy;
-    for (std::size_t l = 0; l < lights.size(); ++l)
-      if (mask & (LightMask(1) << l)) litBy.emplace_back(lightName(lights[l], l));
-    tinygltf::Value::Object extras;
-    extras["light_mask"] = tinygltf::Value(double(mask));
-    extras["lit_by"] = tinygltf::Value(litBy);
-    prim.extras = tinygltf::Value(extras);
-    gm.primitives.push_back(prim);
+  const vec3 colour = maskColor(mask, int(lights.size()));
+  std::vector<vec3> colours(positions.size(), colour);
+  vec3 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+  for (const vec3& p : positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
   }
-  model.buffers.push_back(buffer);
-  model.meshes.push_back(gm);
-  tinygltf::Node node;
-  node.mesh = 0;
-  node.name = "cut";
-  model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
+  const std::size_t posOffset = buffer.data.size();
+  append(buffer.data, positions.data(), positions.size() * sizeof(vec3));
+  const std::size_t colOffset = buffer.data.size();
+  append(buffer.data, colours.data(), colours.size() * sizeof(vec3));
+  const std::size_t idxOffset = buffer.data.size();
+  append(buffer.data, indices.data(), indices.size() * 4);
+
+  tinygltf::Accessor pos;
+  pos.bufferView = addView(model, posOffset, positions.size() * sizeof(vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+  pos.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  pos.count = positions.size();
+  pos.type = TINYGLTF_TYPE_VEC3;
+  pos.minValues = {lo.x, lo.y, lo.z};
+  pos.maxValues = {hi.x, hi.y, hi.z};
+  model.accessors.push_back(pos);
+  tinygltf::Accessor col = pos;
+  col.bufferView = addView(model, colOffset, colours.size() * sizeof(vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+  col.minValues.clear();
+  col.maxValues.clear();
+  model.accessors.push_back(col);
+  tinygltf::Accessor idx;
+  idx.bufferView = addView(model, idxOffset, indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  idx.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  idx.count = indices.size();
+  idx.type = TINYGLTF_TYPE_SCALAR;
+  model.accessors.push_back(idx);
+
+  tinygltf::Primitive prim;
+  const int base = int(model.accessors.size()) - 3;
+  prim.attributes["POSITION"] = base;
+  prim.attributes["COLOR_0"] = base + 1;
+  prim.indices = base + 2;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  tinygltf::Value::Array litBy;
+  for (std::size_t l = 0; l < lights.size(); ++l)
+    if (mask & (LightMask(1) << l)) litBy.emplace_back(lightName(lights[l], l));
+  tinygltf::Value::Object extras;
+  extras["light_mask"] = tinygltf::Value(double(mask));
+  extras["lit_by"] = tinygltf::Value(litBy);
+  prim.extras = tinygltf::Value(extras);
+  return prim;
+}
+
+/// The lights as KHR_lights_punctual point lights, each on a node of `scene`.
+void addLights(tinygltf::Model& model, tinygltf::Scene& scene, const std::vector<Light>& lights) {
   for (std::size_t l = 0; l < lights.size(); ++l) {
     tinygltf::Light light;
     light.name = lightName(lights[l], l);
@@ -151,6 +137,32 @@ void saveGltf(const CutMesh& mesh, const std::vector<Light>& lights, const std::
     model.nodes.push_back(ln);
     scene.nodes.push_back(int(model.nodes.size() - 1));
   }
+}
+
+void saveGltf(const CutMesh& mesh, const std::vector<Light>& lights, const std::filesystem::path& path, bool binary) {
+  const Triangles tris = triangulate(mesh);
+  // Triangles grouped by mask, in mask order; each group its own vertices.
+  std::map<LightMask, std::vector<std::uint32_t>> groups;
+  for (std::uint32_t t = 0; t < tris.trianglePolygon.size(); ++t)
+    groups[mesh.polygonMask[tris.trianglePolygon[t]]].push_back(t);
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "glint cut";
+  tinygltf::Buffer buffer;
+  tinygltf::Mesh gm;
+  gm.name = "cut";
+  for (const auto& [mask, triangles] : groups)
+    gm.primitives.push_back(addPrimitive(model, buffer, tris, triangles, mask, lights));
+  model.buffers.push_back(buffer);
+  model.meshes.push_back(gm);
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.name = "cut";
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  addLights(model, scene, lights);
   model.scenes.push_back(scene);
   model.defaultScene = 0;
 
@@ -220,6 +232,18 @@ vec3 maskColor(LightMask mask, int lightCount) {
   const int lit = std::popcount(mask & (lightCount >= 32 ? ~LightMask(0) : (LightMask(1) << lightCount) - 1));
   const float grey = 0.2f + 0.8f * float(lit) / float(std::max(1, lightCount));
   return vec3(grey);
+}
+
+Mesh loadScene(const std::vector<std::filesystem::path>& paths, std::vector<Light>* gltfLights) {
+  Mesh scene;
+  for (const auto& path : paths) {
+    const Mesh part = loadMesh(path);
+    if (scene.positions.empty()) scene = part;
+    else scene.append(part);
+    if (gltfLights)
+      for (Light& l : loadGltfLights(path)) gltfLights->push_back(std::move(l));
+  }
+  return scene;
 }
 
 std::vector<Light> loadGltfLights(const std::filesystem::path& path) {

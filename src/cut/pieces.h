@@ -6,10 +6,15 @@
 
 #include "receiver.h"
 
+#include <chrono>
 #include <memory>
 #include <vector>
 
 namespace glint::cut {
+
+using Clock = std::chrono::steady_clock;
+/// Seconds since `start`, for CutStats' phases.
+inline double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 struct PieceBlock {
   std::vector<std::uint32_t> receiver;      ///< triangle per entry
@@ -45,7 +50,8 @@ struct Prepared {
   std::vector<std::string> warnings;
 };
 
-/// Validates and prepares; `bvh` false skips the BVH and the light checks (merging).
+/// Validates and prepares (prepare.cpp); `bvh` false skips the BVH, the convex solids and
+/// the light warnings (merging).
 Prepared prepare(const Mesh& mesh, const std::vector<Light>& lights, bool bvh);
 
 /// The hash of a scene and its lights that shards carry.

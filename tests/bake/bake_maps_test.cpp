@@ -11,8 +11,12 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 using namespace glint;
 using namespace bake_test;
@@ -355,6 +359,9 @@ TEST(BakeMaps, BadInputIsOneLineErrorOrWarning) {
   bake::BakeOptions badSize = o;
   badSize.width = 0;
   expectError(good, good, badSize, ErrorKind::Usage, "size");
+  bake::BakeOptions badPadding = o;
+  badPadding.padding = -1;
+  expectError(good, good, badPadding, ErrorKind::Usage, "--padding must not be negative");
 
   // Warnings, still baked: no normals, mirrored UVs (and the overlap they cause), degenerate triangles.
   Mesh noNormals = good;
@@ -372,4 +379,43 @@ TEST(BakeMaps, BadInputIsOneLineErrorOrWarning) {
   r = bake::bake(degenerate, good, o);
   EXPECT_EQ(r.stats.degenerateUvTriangles, 2u);
   EXPECT_GT(r.stats.coveredTexels, 100u);
+}
+
+// What `glint bake --json` reports and --max-memory checks, from the library alone.
+TEST(BakeMaps, ReportAndMemoryEstimate) {
+  log::setLevel(log::Level::Error);
+  const Mesh low = makeUvSphere(1.0f, 16, 8), high = makeUvSphere(1.0f, 32, 16);
+  bake::BakeOptions options;
+  options.width = 64;
+  options.height = 32;
+  options.samples = 4;
+  options.space = NormalSpace::Object;
+  options.directX = true;
+  const bake::BakeResult result = bake::bake(low, high, options);
+  const nlohmann::ordered_json o = bake::toJson(options);
+  EXPECT_EQ(o.dump(), R"({"width":64,"height":32,"samples_per_texel":4,"space":"object","directx":true})");
+  const nlohmann::ordered_json s = bake::toJson(result.stats);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : s.items()) keys.push_back(key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"low_triangles", "high_triangles", "texels", "covered_texels",
+                                            "conservative_texels", "padded_texels", "samples", "rays", "ao_rays", "hits",
+                                            "misses", "hit_ratio", "max_front", "max_rear", "rays_per_second", "bvh_mib",
+                                            "bvh_quality"}));
+  EXPECT_EQ(s["low_triangles"], low.triangleCount());
+  EXPECT_EQ(s["high_triangles"], high.triangleCount());
+  EXPECT_EQ(s["texels"], 64u * 32u);
+  EXPECT_EQ(s["rays"], result.stats.rays);
+  EXPECT_DOUBLE_EQ(s["hit_ratio"].get<double>(), result.stats.hitRatio());
+  EXPECT_EQ(s["bvh_quality"], result.stats.lowQualityBvh ? "low" : "medium");
+
+  // ~64 MiB, twice the input files, 19.5 bytes per texel and 5 per extra map.
+  const std::filesystem::path file = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "bake-estimate.bin";
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream(file, std::ios::binary) << std::string(1 << 19, 'x');
+  bake::BakeOptions big;
+  big.width = big.height = 1024;
+  EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5);
+  EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {file, "", "missing.obj"}), 64.0 + 1.0 + 19.5);
+  big.ambientOcclusion = big.missMask = true;
+  EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 29.5);
 }

@@ -102,6 +102,24 @@ TEST(Text, EscapesHtml) {
   EXPECT_EQ(escapeHtml("<a href=\"x\">&</a>"), "&lt;a href=&quot;x&quot;&gt;&amp;&lt;/a&gt;");
 }
 
+TEST(Text, ShardIsTwoPlainIntegersInOrder) {
+  const ShardSpec part = parseShard("2/8", "--shard");
+  EXPECT_EQ(part.index, 2);
+  EXPECT_EQ(part.count, 8);
+  EXPECT_EQ(parseShard("1/1", "--shard").count, 1);
+  // sscanf("%d/%d") took the first three (leading blanks, a sign); nothing else may pass.
+  for (const char* bad : {" 1/2", "+1/2", "1/ 2", "1/2 ", "1/2x", "1 /2", "0/2", "3/2", "-1/2", "1/0", "1/-2", "1",
+                          "/2", "1/", "1//2", "1/2/3", "", "1.0/2", "99999999999/2"}) {
+    try {
+      parseShard(bad, "--shard");
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Usage) << bad;
+      EXPECT_NE(std::string(e.what()).find("--shard must be i/n"), std::string::npos) << e.what();
+    }
+  }
+}
+
 #include "glint/core/locations.h"
 
 #include <cstdlib>

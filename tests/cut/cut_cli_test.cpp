@@ -126,6 +126,13 @@ TEST(CutCli, ShardsMergeToTheSameFile) {
   EXPECT_TRUE(oneLine(missing.output)) << missing.output;
   EXPECT_NE(missing.output.find("shard 2/3 is missing"), std::string::npos) << missing.output;
   EXPECT_FALSE(fs::exists(d / "bad.ply"));
+  // Lights other than the shards': a usage error, and no output.
+  const auto moved = runGlint("-q cut " + q(in) + " --light -1.1,10.9,2.3 --light 2.4,7.1,0.6 --merge" + parts + " -o " +
+                              q(d / "bad.ply"));
+  EXPECT_EQ(moved.status, 2) << moved.output;
+  EXPECT_TRUE(oneLine(moved.output)) << moved.output;
+  EXPECT_NE(moved.output.find("--light differs"), std::string::npos) << moved.output;
+  EXPECT_FALSE(fs::exists(d / "bad.ply"));
 }
 
 TEST(CutCli, LightsComeFromTheGltfScene) {
@@ -164,6 +171,10 @@ TEST(CutCli, BadInputIsAOneLineErrorAndLeavesNothing) {
       {q(in) + " -o " + q(d / "o.ply") + " --light 1,2", 2, "--light"},
       {q(in) + " -o " + q(d / "o.ply") + " --light 1,2,inf", 2, "--light"},
       {q(in) + " -o " + q(d / "o.ply") + kLights + " --shard 3/2", 2, "--shard"},
+      // Strict: no blanks or signs around the numbers (sscanf took " 1/2"), nothing after them.
+      {q(in) + " -o " + q(d / "o.ply") + kLights + " --shard ' 1/2'", 2, "--shard must be i/n"},
+      {q(in) + " -o " + q(d / "o.ply") + kLights + " --shard 1/2x", 2, "--shard must be i/n"},
+      {q(in) + " -o " + q(d / "o.ply") + kLights + " --shard +1/2", 2, "--shard must be i/n"},
       {q(in) + " -o " + q(d / "o.ply") + " --merge " + q(d / "garbage.ply"), 3, "not a glint cut shard"},
   };
   for (const Case& c : cases) {

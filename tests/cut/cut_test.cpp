@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
 #include <filesystem>
@@ -241,12 +242,63 @@ TEST(Cut, ShardsMergeIntoTheSameMesh) {
   }
   const CutResult merged = mergeShards(scene, shards);
   expectSame(whole.mesh, merged.mesh);
+  ASSERT_EQ(merged.lights.size(), 1u);  // the shards' lights, names included
+  EXPECT_EQ(merged.lights[0].name, "key");
+  // Lights in the options must be the shards' (by position); none: theirs.
+  CutOptions same;
+  same.lights = {{.position = {0.3f, 9.0f, 0.2f}}};
+  expectSame(whole.mesh, mergeShards(scene, shards, same).mesh);
+  CutOptions other;
+  other.lights = {{.position = {0.3f, 9.5f, 0.2f}, .name = "key"}};
+  try {
+    mergeShards(scene, shards, other);
+    ADD_FAILURE() << "other lights accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Usage);
+    EXPECT_NE(std::string(e.what()).find("differs from the lights the shards were cut with"), std::string::npos);
+  }
   // A missing shard, a shard twice, another scene: one-line errors.
   EXPECT_THROW(mergeShards(scene, {shards[0], shards[1]}), Error);
   EXPECT_THROW(mergeShards(scene, {shards[0], shards[1], shards[1]}), Error);
   EXPECT_THROW(mergeShards(soup(121, 5), shards), Error);
   std::filesystem::resize_file(dir / "part1.shard", 100);
   EXPECT_THROW(loadShard(dir / "part1.shard"), Error);
+}
+
+// What `glint cut --json` reports and --max-memory checks, from the library alone.
+TEST(Cut, ReportAndMemoryEstimate) {
+  const Mesh scene = boxOverFloor();
+  CutOptions options;
+  options.lights = {{.position = {0.1f, 5.0f, 0.2f}, .name = "lamp"}, {.position = {2.0f, 4.0f, -1.0f}}};
+  const CutResult r = cut::cut(scene, options);
+  const nlohmann::ordered_json j = toJson(r.stats);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : j.items()) keys.push_back(key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"input_triangles", "output_polygons", "output_triangles", "output_vertices",
+                                            "polygons_per_input_triangle", "pieces_before_merge", "degenerate_triangles",
+                                            "collapsed_triangles", "dropped_slivers", "per_light", "candidates",
+                                            "occluders", "clipped_pairs", "cuts", "clipped_pairs_per_second",
+                                            "predicates"}));
+  EXPECT_EQ(j["input_triangles"], scene.triangleCount());
+  EXPECT_EQ(j["output_polygons"], r.mesh.polygonCount());
+  EXPECT_DOUBLE_EQ(j["polygons_per_input_triangle"].get<double>(),
+                   double(r.mesh.polygonCount()) / double(scene.triangleCount()));
+  ASSERT_EQ(j["per_light"].size(), 2u);
+  EXPECT_EQ(j["per_light"][0]["name"], "lamp");
+  EXPECT_EQ(j["per_light"][1]["name"], "light1");
+  EXPECT_EQ(j["per_light"][0]["lit_polygons"].get<std::uint64_t>() + j["per_light"][0]["shadowed_polygons"].get<std::uint64_t>(),
+            r.mesh.polygonCount());
+  EXPECT_EQ(j["predicates"]["exact"], r.stats.exactPredicates);
+  EXPECT_EQ(toJson(options.lights).dump(),
+            R"([{"name":"lamp","position":[0.10000000149011612,5.0,0.20000000298023224]},{"name":"","position":[2.0,4.0,-1.0]}])");
+  options.shardCount = 2;
+  const Shard half = cutShard(scene, options);
+  EXPECT_EQ(toJson(half).dump(), fmt::format(R"({{"input_triangles":{},"receivers":{},"clipped_pairs":{}}})",
+                                             scene.triangleCount(), half.stats.receivers, half.stats.clippedPairs));
+  // ~200 MiB, 650 bytes per triangle and 300 per triangle and light (at least two lights).
+  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(0, 1), 200.0);
+  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(1 << 20, 1), 200.0 + 650.0 + 600.0);
+  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(1 << 20, 4), 200.0 + 650.0 + 1200.0);
 }
 
 TEST(Cut, DegenerateInputIsCarriedThroughWithWarnings) {

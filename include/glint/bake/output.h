@@ -2,8 +2,11 @@
 // glint/bake/output.h — turning baked maps into files: pixel depth per format, and the
 // height map's scaling into integer formats.
 //
-//   PixelType type = bake::outputType("normal.png", 16);   // U16
-//   saveImage(bake::forOutput(result.normal, type), "normal.png");
+/// ```cpp
+/// const glint::Image normal(64, 64, 3, glint::PixelType::F32);  // e.g. bake::BakeResult::normal
+/// const glint::PixelType type = glint::bake::outputType("normal.png", 16);   // U16
+/// glint::saveImage(glint::bake::forOutput(normal, type), "normal.png");
+/// ```
 //
 // Formats and depths (the extension decides the format):
 //   .png   8 (default) or 16 bits          .tga   8 bits

@@ -46,6 +46,16 @@ int parseInt(std::string_view text, std::string_view what, int lo, int hi);
 /// "iB" or "B" is allowed: "4GiB"). Positive and finite.
 double parseMemorySize(std::string_view text, std::string_view what);
 
+/// One part of a job split `count` ways: `--shard index/count`, 1 ≤ index ≤ count.
+struct ShardSpec {
+  int index = 1;
+  int count = 1;
+};
+
+/// "i/n": two integers (parseInt's form: no spaces, no '+') with 1 ≤ i ≤ n. Error(Usage)
+/// "<what> must be i/n with 1 ≤ i ≤ n, got '<text>'" for anything else.
+ShardSpec parseShard(std::string_view text, std::string_view what);
+
 /// "x,y,z": three finite numbers.
 vec3 parseVec3(std::string_view text, std::string_view what);
 

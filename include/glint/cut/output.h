@@ -1,5 +1,6 @@
 #pragma once
-// glint/cut/output.h — writing the cut mesh, and reading the lights a glTF file carries.
+// glint/cut/output.h — reading a cut's scene and the lights glTF files carry, and writing
+// the cut mesh.
 //
 // Formats, from the file name's extension:
 //   .glb .gltf  one mesh, one primitive per light mask: the mask is the primitive's
@@ -19,8 +20,15 @@
 // Every file is written atomically (core/file.h). Error(Usage) for another extension,
 // Error(Output) when the file cannot be written.
 //
-//   glint::cut::saveCutMesh(result.mesh, options.lights, "room_cut.glb");
-//   glint::cut::saveCutMesh(result.mesh, options.lights, "room_cut.ply");
+/// ```cpp
+/// std::vector<glint::cut::Light> lights;  // room.glb's KHR_lights_punctual lights
+/// const glint::Mesh scene = glint::cut::loadScene({"walls.obj", "room.glb"}, &lights);
+/// glint::cut::CutOptions options;
+/// options.lights = lights;
+/// const glint::cut::CutResult result = glint::cut::cut(scene, options);
+/// glint::cut::saveCutMesh(result.mesh, result.lights, "room_cut.glb");
+/// glint::cut::saveCutMesh(result.mesh, result.lights, "room_cut.ply");
+/// ```
 
 #include "glint/cut/cutter.h"
 
@@ -37,6 +45,12 @@ void checkOutputFormat(const std::filesystem::path& path);
 
 /// The viewing colour of a mask: grey 0.2 + 0.8 × (lights reaching the face / lights).
 vec3 maskColor(LightMask mask, int lightCount);
+
+/// The scene of a cut: the meshes in `paths` joined in order (Error(Input) for one that
+/// cannot be read). When `gltfLights` is given, the lights of the glTF files among them
+/// (loadGltfLights) are appended to it, file by file: `glint cut` uses them when no --light
+/// is given.
+Mesh loadScene(const std::vector<std::filesystem::path>& paths, std::vector<Light>* gltfLights = nullptr);
 
 /// The KHR_lights_punctual point (and spot) lights of a .gltf/.glb file, at their nodes'
 /// world positions (default scene); empty for other formats or files without lights.

@@ -1,0 +1,67 @@
+// What a bake job needs and what it reports: the memory estimate and the JSON fields of
+// `glint bake --json` (core/tool.h adds the fields every tool shares).
+#include "glint/bake/baker.h"
+
+#include <nlohmann/json.hpp>
+
+#include <system_error>
+
+namespace glint::bake {
+
+namespace {
+
+const char* spaceName(NormalSpace space) {
+  switch (space) {
+    case NormalSpace::Object: return "object";
+    case NormalSpace::World: return "world";
+    case NormalSpace::Tangent: break;
+  }
+  return "tangent";
+}
+
+}  // namespace
+
+double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::filesystem::path>& inputs) {
+  std::error_code ec;
+  double inputBytes = 0.0;
+  for (const std::filesystem::path& in : inputs) {
+    if (!in.empty()) inputBytes += double(std::filesystem::file_size(in, ec)) * (ec ? 0.0 : 1.0);
+  }
+  const double texels = double(options.width) * double(options.height);
+  const int extraMaps = int(options.ambientOcclusion) + int(options.heightMap) + int(options.missMask);
+  return 64.0 + (2.0 * inputBytes + texels * (19.5 + 5.0 * extraMaps)) / (1 << 20);
+}
+
+nlohmann::ordered_json toJson(const BakeOptions& options) {
+  nlohmann::ordered_json report = nlohmann::ordered_json::object();
+  report["width"] = options.width;
+  report["height"] = options.height;
+  report["samples_per_texel"] = options.samples;
+  report["space"] = spaceName(options.space);
+  report["directx"] = options.directX;
+  return report;
+}
+
+nlohmann::ordered_json toJson(const BakeStats& s) {
+  nlohmann::ordered_json report = nlohmann::ordered_json::object();
+  report["low_triangles"] = s.lowTriangles;
+  report["high_triangles"] = s.highTriangles;
+  report["texels"] = s.texels;
+  report["covered_texels"] = s.coveredTexels;
+  report["conservative_texels"] = s.conservativeTexels;
+  report["padded_texels"] = s.paddedTexels;
+  report["samples"] = s.samples;
+  report["rays"] = s.rays;
+  report["ao_rays"] = s.aoRays;
+  report["hits"] = s.hits;
+  report["misses"] = s.misses;
+  report["hit_ratio"] = s.hitRatio();
+  report["max_front"] = s.frontDistance;
+  report["max_rear"] = s.rearDistance;
+  report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays) / s.traceSeconds : 0.0;
+  report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
+  report["bvh_quality"] = s.lowQualityBvh ? "low" : "medium";
+  return report;
+}
+
+}  // namespace glint::bake
