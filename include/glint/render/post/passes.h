@@ -18,8 +18,13 @@
 // 2D textures of equal size; outputs must be colour-renderable (RGBA8 in glint post: the
 // result is rounded to 8 bits, one step of the reference at most).
 //
-//   render::post::SepiaPass sepia;
-//   sepia.run(frame, result, {.i = 0.2f, .q = 0.0f});
+/// ```cpp
+/// glint::gl::Texture frame(GL_TEXTURE_2D, "frame"), result(GL_TEXTURE_2D, "result");
+/// frame.storage(GL_RGBA8, 640, 480);
+/// result.storage(GL_RGBA8, 640, 480);
+/// glint::render::post::SepiaPass sepia;
+/// sepia.run(frame, result, {.i = 0.2f, .q = 0.0f});
+/// ```
 //
 // Each run() sets the state it draws with (depth, blend and culling off; the viewport to the
 // output) and leaves framebuffer 0 bound. Cost: one full-screen pass (Kuwahara two), per
