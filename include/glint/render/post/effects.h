@@ -35,10 +35,12 @@
 // bad value is Error(Usage), one line, naming it. The image/ headers (image/post.h,
 // image/fourier.h) define what each parameter means.
 //
-// Adding an effect: its GPU pass (render/post/passes.h or fft.h, a shader under
-// shaders/post/) and one entry in effectTable() (src/render/post/effects.cpp): name,
-// summary, parameters, and how to run the pass with them. Parsing, --effects, the chain and
-// the viewer's panel follow from the entry.
+// Adding an effect: one entry in the table in src/render/post/effects.cpp (name, summary,
+// typed parameters, and its stage) and the work itself. An effect that is one fragment
+// shader is a new file under shaders/post/ whose uniforms are named after the parameters
+// (passes.h's ShaderPass: "threshold" → uThreshold), as edges is; one with several passes
+// or its own state gets a pass class (passes.h, fft.h) the entry runs. Parsing, --effects,
+// the chain and the viewer's panel follow from the entry.
 
 #include "glint/core/math.h"
 #include "glint/gl/objects.h"
