@@ -15,18 +15,8 @@
 /// glint::render::post::validateEffect(effects[1], {1920, 1080});
 /// ```
 //
-// Names (effectHelp() prints the table with every parameter, its default and range):
-//   sepia       the seed's YIQ sepia                    i, q
-//   sobel       Sobel edges, gray                       output=magnitude|horizontal|vertical|dx|dy, scale
-//   edges       Sobel lines darkening the image         scale, threshold
-//   kuwahara    the two-pass Kuwahara filter            size
-//   posterize   kuwahara then edges (the seed's NPR look): expands to those two effects
-//   spectrum    log magnitude of the luma's DFT, centred
-//   lowpass     Butterworth / ideal low-pass in the frequency domain    cutoff, order, offset
-//   highpass    1 − low-pass                            cutoff, order, offset (default 0.5)
-//   bandpass    band between low and high               low, high, order, offset (default 0.5)
-//   blur        convolution with a Gaussian, via FFT    sigma
-//   bokeh       convolution with a disk (a lens's out-of-focus blur), via FFT   radius
+// The effects, their parameters, defaults and ranges are the table's: effectHelp() (`glint
+// post --effects`) prints it, docs/post.md shows each effect.
 //
 // Parameters go after the name ("sobel:output=horizontal,scale=2") or in settings
 // ("scale=2" applies to every effect in the chain that has a `scale`; "sobel.scale=2" to
