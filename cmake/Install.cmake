@@ -22,6 +22,7 @@ include(CMakePackageConfigHelpers)
 set(glint_libraries
   glint_core glint_image glint_video glint_mesh glint_raytrace glint_bake glint_cut glint_raster glint_sim
   glint_gl glint_render glint_scenes glint_bench)
+list(APPEND glint_libraries glint_post)  # `glint post`'s job (render/post/job.h)
 if(GLINT_BUILD_VIEWER)
   list(APPEND glint_libraries glint_window)
 endif()

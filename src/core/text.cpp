@@ -68,7 +68,11 @@ float parseFloat(std::string_view text, std::string_view what) {
   float value = 0.0f;
   // from_chars: the "C" locale always, no leading blanks, and "nan"/"inf" come out non-finite.
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value)) {
+  const bool whole = !digits.empty() && end == digits.data() + digits.size();
+  if (whole && ec == std::errc::result_out_of_range) {  // "1e40": a number, too large (or small) for a float
+    fail(ErrorKind::Usage, "{}: '{}' is out of range (beyond a float's ±3.4e38 or 1e-38)", what, printable(text));
+  }
+  if (!whole || ec != std::errc() || !std::isfinite(value)) {
     fail(ErrorKind::Usage, "{}: '{}' is not a finite number", what, printable(text));
   }
   return value;

@@ -1,6 +1,7 @@
 #include "glint/image/envmap.h"
 
 #include "glint/core/error.h"
+#include "glint/image/srgb.h"
 
 #include <algorithm>
 #include <cmath>
@@ -92,12 +93,7 @@ vec3 displayEncode(vec3 radiance, float exposure) {
   // Keep in step with displayEncode() in shaders/env/envmap.glsl.
   const vec3 x = glm::max(radiance * exposure, vec3(0.0f));
   const vec3 mapped = glm::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-  vec3 out;
-  for (int c = 0; c < 3; ++c) {
-    const float v = mapped[c];
-    out[c] = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-  }
-  return out;
+  return {srgbEncode(mapped.r), srgbEncode(mapped.g), srgbEncode(mapped.b)};
 }
 
 Image perspectiveView(const Image& equirect, ivec2 size, float yaw, float pitch, float fovY, float exposure) {

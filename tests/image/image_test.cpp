@@ -1,5 +1,6 @@
 #include "glint/core/error.h"
 #include "glint/image/image.h"
+#include "glint/image/srgb.h"
 
 #include <gtest/gtest.h>
 
@@ -208,4 +209,27 @@ TEST(CompareImages, ReportsMaxMeanAndCount) {
   EXPECT_DOUBLE_EQ(d.meanAbs, 0.25);
   EXPECT_EQ(d.differingPixels, 1u);
   EXPECT_THROW(compareImages(a, Image(3, 1, 1)), Error);
+}
+
+TEST(Srgb, EncodeAndDecodeAreTheStandardsCurveAndInverses) {
+  // IEC 61966-2-1: the linear segment meets the power curve at 0.0031308 ↔ 0.04045.
+  EXPECT_FLOAT_EQ(srgbEncode(0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(srgbEncode(1.0f), 1.0f);
+  EXPECT_NEAR(srgbEncode(0.0031308f), 0.04045f, 1e-5f);
+  EXPECT_NEAR(srgbEncode(0.18f), 0.4613561f, 1e-6f);  // middle gray
+  for (int i = 0; i <= 255; ++i) {
+    const float v = float(i) / 255.0f;
+    EXPECT_NEAR(srgbEncode(srgbDecode(v)), v, 2e-6f) << i;
+  }
+  // An image: colour clamped and encoded, alpha untouched.
+  Image light(2, 1, 4, PixelType::F32);
+  light.set(0, 0, 0, 2.0f);
+  light.set(0, 0, 1, -1.0f);
+  light.set(0, 0, 2, 0.18f);
+  light.set(0, 0, 3, 0.25f);
+  const Image encoded = srgbEncoded(light);
+  EXPECT_FLOAT_EQ(encoded.at(0, 0, 0), 1.0f);
+  EXPECT_FLOAT_EQ(encoded.at(0, 0, 1), 0.0f);
+  EXPECT_FLOAT_EQ(encoded.at(0, 0, 2), srgbEncode(0.18f));
+  EXPECT_FLOAT_EQ(encoded.at(0, 0, 3), 0.25f);
 }

@@ -166,19 +166,25 @@ TEST_F(PostGpu, EffectParsingAndValidation) {
   const auto chain = parseEffects(std::vector<std::string>{"sepia:i=0.3", "sobel", "posterize"},
                                   std::vector<std::string>{"scale=3", "sobel.output=dx", "size=4"});
   ASSERT_EQ(chain.size(), 4u);
-  EXPECT_FLOAT_EQ(chain[0].sepia.i, 0.3f);
-  EXPECT_FLOAT_EQ(chain[1].sobel.scale, 3.0f);
-  EXPECT_EQ(chain[1].sobel.output, SobelOutput::SignedX);
-  EXPECT_EQ(chain[2].kuwahara.size, 4);
-  EXPECT_FLOAT_EQ(chain[3].edges.scale, 3.0f);
+  EXPECT_FLOAT_EQ(chain[0].value("i"), 0.3f);
+  EXPECT_FLOAT_EQ(chain[1].value("scale"), 3.0f);
+  EXPECT_EQ(chain[1].value("output"), 3.0f);  // dx: SobelOutput::SignedX
+  EXPECT_EQ(chain[2].value("size"), 4.0f);
+  EXPECT_FLOAT_EQ(chain[3].value("scale"), 3.0f);
   EXPECT_EQ(chain[0].describe(), "sepia(i=0.3,q=0)");
-  const auto usage = [](std::vector<std::string> specs, std::vector<std::string> sets) {
+  EXPECT_EQ(chain[1].describe(), "sobel(output=dx,scale=3)");
+  const auto message = [](std::vector<std::string> specs, std::vector<std::string> sets) -> std::string {
     try {
       parseEffects(specs, sets);
     } catch (const Error& e) {
-      return e.kind() == ErrorKind::Usage && std::string(e.what()).find('\n') == std::string::npos;
+      if (e.kind() == ErrorKind::Usage && std::string(e.what()).find('\n') == std::string::npos) return e.what();
+      return "not a one-line usage error";
     }
-    return false;
+    return "accepted";
+  };
+  const auto usage = [&](std::vector<std::string> specs, std::vector<std::string> sets) {
+    const std::string m = message(specs, sets);
+    return m != "accepted" && m != "not a one-line usage error";
   };
   EXPECT_TRUE(usage({"sharpen"}, {}));
   EXPECT_TRUE(usage({"sepia:x=1"}, {}));
@@ -186,6 +192,21 @@ TEST_F(PostGpu, EffectParsingAndValidation) {
   EXPECT_TRUE(usage({"sepia"}, {"cutoff=0.1"}));
   EXPECT_TRUE(usage({"sepia"}, {"sobel.scale=2"}));
   EXPECT_TRUE(usage({"sobel:output=diagonal"}, {}));
+  // Out of range at parse time, a float too large for a float included (it was "must be a number").
+  EXPECT_NE(message({"blur"}, {"sigma=1e40"}).find("out of range"), std::string::npos) << message({"blur"}, {"sigma=1e40"});
+  EXPECT_NE(message({"blur"}, {"sigma=9000"}).find("blur.sigma: 9000 is out of range (0, 8192]"), std::string::npos)
+      << message({"blur"}, {"sigma=9000"});
+  EXPECT_NE(message({"kuwahara:size=9"}, {}).find("out of range (2..8)"), std::string::npos);
+  EXPECT_NE(message({"sobel:scale=0"}, {}).find("sobel.scale: 0 is out of range (0, ∞)"), std::string::npos) << message({"sobel:scale=0"}, {});
+  // The strict parsers: no spaces, no trailing text, integers for integer parameters.
+  EXPECT_TRUE(usage({"lowpass:order=2.0"}, {}));
+  EXPECT_TRUE(usage({"sepia:i= 0.1"}, {}));
+  EXPECT_TRUE(usage({"sepia:i=0.1x"}, {}));
+  EXPECT_FALSE(usage({"sepia:i=+0.1", "lowpass:order=3"}, {}));
+  // A value a program or a slider set outside the range is refused by the chain.
+  auto sepia = parseEffects(std::vector<std::string>{"sepia"});
+  sepia[0].values[0] = 2.0f;
+  EXPECT_THROW(validateEffect(sepia[0], ivec2(64, 64)), Error);
   EXPECT_THROW(Chain(ivec2(64, 64), parseEffects(std::vector<std::string>{"kuwahara:size=9"})), Error);
   EXPECT_THROW(Chain(ivec2(16, 16), parseEffects(std::vector<std::string>{"blur:sigma=12"})), Error);
 }

@@ -1,15 +1,18 @@
 // The post/* scenes through the registry, as `glint render` and the viewer run them: the
 // camera scene shows the source's frame at the requested time, through the effect; the
-// before/after split puts the original left of the divider; keys step the options; a
-// missing camera is a one-line error.
+// before/after split puts the original left of the divider; keys step the options; the
+// panel's options come from the effect table; a missing camera is a one-line error.
 #include "glint/core/error.h"
 #include "glint/image/post.h"
+#include "glint/render/post/effects.h"
 #include "glint/scenes/runner.h"
 #include "glint/video/source.h"
 
 #include "post_test_util.h"
 
 #include <gtest/gtest.h>
+
+#include <variant>
 
 using namespace glint;
 using glint::testing::compareSteps;
@@ -73,4 +76,28 @@ TEST(PostScenes, OptionsHaveKeysAndMissingCamerasAreOneLineErrors) {
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("/dev/video-none"), std::string::npos) << e.what();
   }
+}
+
+TEST(PostScenes, ThePanelComesFromTheEffectTable) {
+  contexts();
+  // post/photo/posterize: kuwahara then edges; every parameter of both, with the table's
+  // slider ranges, pointing at the chain's values (an int for an Int parameter).
+  const auto ref = scenes::Registry::builtin().resolve("post/photo/posterize");
+  auto scene = ref.scene->create(ref.variant);
+  const auto options = scene->options();
+  std::size_t found = 0;
+  for (const char* effect : {"kuwahara", "edges"}) {
+    for (const auto& p : render::post::findEffect(effect)->params) {
+      for (const auto& o : options) {
+        if (o.name != p.name) continue;
+        ++found;
+        EXPECT_EQ(o.min, p.sliderMin) << p.name;
+        EXPECT_EQ(o.max, p.sliderMax) << p.name;
+        EXPECT_EQ(std::holds_alternative<int*>(o.value), p.type != render::post::ParamType::Float) << p.name;
+      }
+    }
+  }
+  EXPECT_EQ(found, 3u) << "size, scale, threshold";
+  scenes::setOption(*scene, "threshold=0.5");
+  EXPECT_NE(scene->notes().find("edges(scale=2,threshold=0.5)"), std::string::npos) << scene->notes();
 }

@@ -36,7 +36,8 @@ constexpr int kMaxImageSide = 16384;
 ivec2 parseSize(std::string_view text);
 
 /// A finite decimal number ("1", "-0.5", "2e-3"; a leading '+' allowed). `what` names the
-/// option in the error ("--light", "option 'i'").
+/// option in the error ("--light", "option 'i'"); a number a float cannot hold ("1e40") is
+/// refused as out of range.
 float parseFloat(std::string_view text, std::string_view what);
 
 /// An integer in [lo, hi].

@@ -2,10 +2,21 @@
 // glint/video/sink.h — RGBA frames into a video file: H.264 (libx264) or FFV1 (lossless),
 // audio copied from a source, written atomically.
 //
-//   video::Sink sink("out.mp4", {.codec = video::Codec::H264, .size = {1280, 720},
-//                               .frameRate = {30, 1}, .timeBase = {1, 30}});
-//   sink.write(frame);          // Frame::image RGBA8, Frame::pts in timeBase units
-//   sink.finish();              // flushes the encoder, writes the trailer, renames into place
+/// ```cpp
+/// glint::video::SinkOptions options;
+/// options.codec = glint::video::Codec::H264;
+/// options.size = {1280, 720};
+/// options.frameRate = {30, 1};
+/// options.timeBase = {1, 30};
+/// glint::video::Sink sink("out.mp4", options);
+/// for (std::int64_t i = 0; i < 30; ++i) {
+///   glint::video::Frame frame;
+///   frame.image = glint::Image(1280, 720, 4, glint::PixelType::U8);  // RGBA8
+///   frame.index = frame.pts = i;                                      // pts in timeBase units
+///   sink.write(frame);
+/// }
+/// sink.finish();  // flushes the encoder, writes the trailer, renames into place
+/// ```
 //
 // The file is written to a temporary name beside the destination (core/file.h) and
 // renamed only by finish(): a crash or an exception leaves no half-written video under the

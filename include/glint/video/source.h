@@ -1,11 +1,17 @@
 #pragma once
 // glint/video/source.h — frames from a video file, a camera or an FFmpeg lavfi graph.
 //
-//   auto source = video::Source::open("clip.mp4");                 // a file
-//   auto camera = video::Source::open("/dev/video0", {.camera = true, .size = {640, 480}});
-//   auto bars = video::Source::open("lavfi:testsrc2=size=1280x720:rate=30:duration=2");
-//   video::Frame frame;
-//   while (source.read(frame)) process(frame.image);               // RGBA8, top row first
+/// ```cpp
+/// glint::video::Source source = glint::video::Source::open("clip.mp4");  // a file
+/// glint::video::SourceOptions camera;
+/// camera.camera = true;
+/// camera.size = {640, 480};
+/// glint::video::Source live = glint::video::Source::open("/dev/video0", camera);
+/// glint::video::Source bars = glint::video::Source::open("lavfi:testsrc2=size=1280x720:rate=30:duration=2");
+/// glint::video::Frame frame;
+/// std::vector<glint::Image> pictures;
+/// while (source.read(frame)) pictures.push_back(frame.image);  // RGBA8, top row first
+/// ```
 //
 // What it does
 //   - Demuxes and decodes with libavformat/libavcodec (frame-threaded decoders), converts

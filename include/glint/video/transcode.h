@@ -1,10 +1,26 @@
 #pragma once
 // glint/video/transcode.h — decode → process → encode, overlapped on three threads.
 //
-//   video::Source source = video::Source::open("in.mp4");
-//   video::Sink sink("out.mp4", {...});
-//   MyGpuChain chain;                                // a video::FrameProcessor
-//   const auto stats = video::transcode(source, sink, chain, {.cancel = &run.cancelFlag()});
+/// ```cpp
+/// #include <glint/video/sink.h>
+/// #include <glint/video/source.h>
+/// // A FrameProcessor of one's own: here one that hands every frame on unchanged.
+/// struct Copy final : glint::video::FrameProcessor {
+///   void process(glint::video::Frame&& frame, const Emit& emit) override { emit(std::move(frame)); }
+///   void flush(const Emit&) override {}
+/// };
+/// glint::video::Source source = glint::video::Source::open("in.mp4");
+/// glint::video::SinkOptions options;
+/// options.size = source.info().size;
+/// options.frameRate = source.info().frameRate;
+/// options.timeBase = source.info().timeBase;
+/// glint::video::Sink sink("out.mp4", options);
+/// Copy copy;
+/// std::atomic<bool> cancel{false};  // set by Ctrl-C: ToolRun::cancelFlag()
+/// glint::video::TranscodeOptions run;
+/// run.cancel = &cancel;
+/// const glint::video::TranscodeStats stats = glint::video::transcode(source, sink, copy, run);
+/// ```
 //
 // Threads: a reader decodes (and converts to RGBA) into a queue; the calling thread runs
 // the processor (it owns the GL context: render/post's FrameStream uploads through pixel
@@ -52,11 +68,23 @@ public:
 /// A FrameProcessor around a pipelined stream with render/post's FrameStream interface —
 /// push(const Image&), pop(Image&), full(), empty() — keeping each frame's index and
 /// timestamps and reusing the input frames' images for the results. A template, so the
-/// video layer needs nothing of the GPU side:
+/// video layer needs nothing of the GPU side (render/post/job.cpp runs glint post's
+/// FrameStream through it):
 ///
-///   render::post::FrameStream stream(size, effects);
-///   video::StreamProcessor processor(stream);
-///   video::transcode(source, sink, processor);
+/// ```cpp
+/// #include <glint/render/post/chain.h>
+/// #include <glint/video/sink.h>
+/// #include <glint/video/source.h>
+/// glint::video::Source source = glint::video::Source::open("in.mp4");
+/// glint::video::SinkOptions options;
+/// options.size = source.info().size;
+/// options.timeBase = source.info().timeBase;
+/// glint::video::Sink sink("out.mp4", options);
+/// const std::vector<std::string> specs = {"sepia"};
+/// glint::render::post::FrameStream stream(source.info().size, glint::render::post::parseEffects(specs));
+/// glint::video::StreamProcessor processor(stream);
+/// glint::video::transcode(source, sink, processor);
+/// ```
 template <typename Stream>
 class StreamProcessor final : public FrameProcessor {
 public:

@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 #include "glint/core/locations.h"
 #include "glint/image/envmap.h"
+#include "glint/image/srgb.h"
 #include "glint/render/gpu_mesh.h"
 #include "glint/render/state.h"
 
@@ -27,7 +28,7 @@ namespace {
 Image linearFloat(const Image& image) {
   if (image.type() == PixelType::F32) return image;
   Image out = image.converted(PixelType::F32);
-  for (float& v : out.pixels<float>()) v = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+  for (float& v : out.pixels<float>()) v = srgbDecode(v);
   return out;
 }
 

@@ -1,8 +1,7 @@
 #include "glint/render/post/chain.h"
 
 #include "glint/core/error.h"
-#include "glint/render/post/fft.h"
-#include "glint/render/post/passes.h"
+#include "glint/image/post.h"
 #include "glint/render/state.h"
 
 #include <fmt/format.h>
@@ -28,37 +27,13 @@ Image readFrame(const gl::Texture& texture) {
 }
 
 // ---------------------------------------------------------------------------
-// One effect's GPU pass.
+// One effect's GPU pass: the table entry's stage, run with the effect's current values.
 struct Stage {
   Effect effect;
-  std::unique_ptr<SepiaPass> sepia;
-  std::unique_ptr<SobelPass> sobel;
-  std::unique_ptr<EdgesPass> edges;
-  std::unique_ptr<KuwaharaPass> kuwahara;
-  std::unique_ptr<SpectrumPass> spectrum;
-  std::unique_ptr<FrequencyFilterPass> filter;
+  std::unique_ptr<EffectStage> pass;
 
-  explicit Stage(Effect e) : effect(std::move(e)) {
-    switch (effect.kind) {
-      case EffectKind::Sepia: sepia = std::make_unique<SepiaPass>(); break;
-      case EffectKind::Sobel: sobel = std::make_unique<SobelPass>(); break;
-      case EffectKind::Edges: edges = std::make_unique<EdgesPass>(); break;
-      case EffectKind::Kuwahara: kuwahara = std::make_unique<KuwaharaPass>(); break;
-      case EffectKind::Spectrum: spectrum = std::make_unique<SpectrumPass>(); break;
-      case EffectKind::Filter: filter = std::make_unique<FrequencyFilterPass>(); break;
-    }
-  }
-
-  void run(const gl::Texture& in, const gl::Texture& out) {
-    switch (effect.kind) {
-      case EffectKind::Sepia: sepia->run(in, out, effect.sepia); break;
-      case EffectKind::Sobel: sobel->run(in, out, effect.sobel); break;
-      case EffectKind::Edges: edges->run(in, out, effect.edges); break;
-      case EffectKind::Kuwahara: kuwahara->run(in, out, effect.kuwahara); break;
-      case EffectKind::Spectrum: spectrum->run(in, out); break;
-      case EffectKind::Filter: filter->run(in, out, effect.filter); break;
-    }
-  }
+  explicit Stage(Effect e) : effect(std::move(e)), pass(effect.def->stage()) {}
+  void run(const gl::Texture& in, const gl::Texture& out) { pass->run(in, out, effect); }
 };
 
 struct Chain::Impl {
@@ -110,7 +85,7 @@ void Chain::setEffects(std::vector<Effect> effects) {
   for (const auto& e : effects) validateEffect(e, c.size);
   if (c.stages.size() > effects.size()) c.stages.erase(c.stages.begin() + std::ptrdiff_t(effects.size()), c.stages.end());
   for (std::size_t i = 0; i < effects.size(); ++i) {
-    if (i < c.stages.size() && c.stages[i].effect.kind == effects[i].kind) {
+    if (i < c.stages.size() && c.stages[i].effect.def == effects[i].def) {
       c.stages[i].effect = effects[i];
     } else if (i < c.stages.size()) {
       c.stages[i] = Stage(effects[i]);

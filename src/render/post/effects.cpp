@@ -2,193 +2,202 @@
 
 #include "glint/core/error.h"
 #include "glint/core/text.h"
+#include "glint/image/fourier.h"
+#include "glint/image/post.h"
+#include "glint/render/post/fft.h"
+#include "glint/render/post/passes.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
-#include <functional>
-#include <sstream>
-#include <string_view>
 
 namespace glint::render::post {
 
 namespace {
-// One parameter of one effect: how to read it into an Effect and how to show its value.
-struct Param {
-  const char* name;
-  const char* help;
-  std::function<void(Effect&, const std::string&)> set;
-  std::function<std::string(const Effect&)> get;
-};
+constexpr float kInf = std::numeric_limits<float>::infinity();
 
-struct EffectDef {
-  const char* name;
-  const char* help;
-  std::function<Effect()> make;
-  std::vector<Param> params;
-};
-
-float parseFloat(const std::string& text, const char* what) {
-  std::size_t used = 0;
-  float v = 0;
-  try {
-    v = std::stof(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v)) {
-    fail(ErrorKind::Usage, "{} must be a number, got '{}'", printable(what), printable(text));
-  }
-  return v;
+// A stage around one pass: `Pass` built once, run with the options `options(effect)` gives.
+template <typename Pass, typename Options>
+std::function<std::unique_ptr<EffectStage>()> passStage(Options (*options)(const Effect&)) {
+  struct Stage final : EffectStage {
+    Options (*options)(const Effect&);
+    Pass pass;
+    explicit Stage(Options (*o)(const Effect&)) : options(o) {}
+    void run(const gl::Texture& in, const gl::Texture& out, const Effect& e) override { pass.run(in, out, options(e)); }
+  };
+  return [options] { return std::make_unique<Stage>(options); };
 }
 
-int parseInt(const std::string& text, const char* what) {
-  const float v = parseFloat(text, what);
-  if (v != std::floor(v)) fail(ErrorKind::Usage, "{} must be a whole number, got '{}'", printable(what), printable(text));
-  // Converting a float past int's range is undefined (found by fuzz_options under UBSan).
-  if (std::abs(v) > 1e9f) fail(ErrorKind::Usage, "{} is out of range, got '{}'", printable(what), printable(text));
-  return int(v);
+// A one-shader effect: the parameters go to the shader as uniforms (passes.h's ShaderPass).
+std::function<std::unique_ptr<EffectStage>()> shaderStage(const char* shader) {
+  struct Stage final : EffectStage {
+    ShaderPass pass;
+    explicit Stage(const char* s) : pass(s) {}
+    void run(const gl::Texture& in, const gl::Texture& out, const Effect& e) override { pass.run(in, out, e); }
+  };
+  return [shader] { return std::make_unique<Stage>(shader); };
 }
 
-std::string number(float v) { return fmt::format("{}", v); }
+// ---------------------------------------------------------------------------
+// The frequency-domain effects: one pass, parameters into a FrequencyFilter.
+using FilterOf = FrequencyFilter (*)(const Effect&);
 
-// A float parameter, given as the field it sets (a lambda: the fields sit in different
-// option structs).
-using FloatField = float& (*)(Effect&);
-Param floatParam(const char* name, const char* help, FloatField field) {
-  return {name, help, [name, field](Effect& e, const std::string& v) { field(e) = parseFloat(v, name); },
-          [field](const Effect& e) {
-            Effect copy = e;
-            return number(field(copy));
-          }};
+// An entry whose pass is the FFT filter: the stage, and image/fourier.h's checks for the frame size.
+EffectDef filterEffect(const char* name, const char* summary, std::vector<EffectParam> params, FilterOf filter) {
+  return {.name = name,
+          .summary = summary,
+          .params = std::move(params),
+          .stage = passStage<FrequencyFilterPass>(filter),
+          .validate = [filter](const Effect& e, ivec2 size) { validateFilter(filter(e), size.x, size.y); }};
 }
-#define GLINT_FIELD(expr) +[](Effect& e) -> float& { return expr; }
 
-std::vector<Param> filterParams(bool band, bool kernel, const char* sizeName) {
-  std::vector<Param> p;
-  if (kernel) {
-    p.push_back(floatParam(sizeName, std::string_view(sizeName) == "radius" ? "disk radius in pixels" : "Gaussian σ in pixels",
-                           GLINT_FIELD(e.filter.size)));
-    return p;
-  }
-  if (band) {
-    p.push_back(floatParam("low", "lower edge, cycles per pixel (0.5 = Nyquist)", GLINT_FIELD(e.filter.low)));
-    p.push_back(floatParam("high", "upper edge, cycles per pixel", GLINT_FIELD(e.filter.cutoff)));
-  } else {
-    p.push_back(floatParam("cutoff", "cutoff frequency, cycles per pixel (0.5 = Nyquist)",
-                           GLINT_FIELD(e.filter.cutoff)));
-  }
-  p.push_back({"order", "Butterworth order (0: ideal brick wall, rings)",
-               [](Effect& e, const std::string& v) { e.filter.order = parseInt(v, "order"); },
-               [](const Effect& e) { return std::to_string(e.filter.order); }});
-  p.push_back(floatParam("offset", "added to the result (0.5 shows a high- or band-pass around mid-gray)",
-                         GLINT_FIELD(e.filter.offset)));
+FrequencyFilter radialFilter(const Effect& e, FilterKind kind, const char* cutoff) {
+  FrequencyFilter f;
+  f.kind = kind;
+  f.cutoff = e.value(cutoff);
+  f.order = int(e.value("order"));
+  f.offset = e.value("offset");
+  return f;
+}
+
+FrequencyFilter kernelFilter(KernelShape shape, float size) {
+  FrequencyFilter f;
+  f.kind = FilterKind::Kernel;
+  f.kernel = shape;
+  f.size = size;
+  return f;
+}
+
+std::vector<EffectParam> passParams(float cutoff, float offset) {
+  return {{.name = "cutoff", .help = "cutoff frequency, cycles per pixel (0.5 = Nyquist)", .value = cutoff, .min = 0.0f,
+           .max = 0.75f, .minExcluded = true, .sliderMin = 0.005f, .sliderMax = 0.5f},
+          {.name = "order", .help = "Butterworth order (0: ideal brick wall, rings)", .type = ParamType::Int, .value = 2,
+           .min = 0, .max = 16, .sliderMin = 0, .sliderMax = 8},
+          {.name = "offset", .help = "added to the result (0.5 shows a high- or band-pass around mid-gray)",
+           .value = offset, .sliderMin = 0.0f, .sliderMax = 1.0f}};
+}
+
+std::vector<EffectParam> bandParams() {
+  std::vector<EffectParam> p = passParams(0.12f, 0.5f);
+  p[0].name = "high";
+  p[0].help = "upper edge, cycles per pixel";
+  p.insert(p.begin(), {.name = "low", .help = "lower edge, cycles per pixel (0.5 = Nyquist)", .value = 0.03f, .min = 0.0f,
+                       .max = 0.75f, .sliderMin = 0.0f, .sliderMax = 0.3f});
   return p;
 }
 
-Effect filterEffect(const char* name, FilterKind kind, float offset, KernelShape shape = KernelShape::Gaussian,
-                    float size = 4.0f) {
-  Effect e;
-  e.name = name;
-  e.kind = EffectKind::Filter;
-  e.filter.kind = kind;
-  e.filter.offset = offset;
-  e.filter.kernel = shape;
-  e.filter.size = size;
-  if (kind == FilterKind::LowPass) e.filter.cutoff = 0.05f;
-  if (kind == FilterKind::HighPass) e.filter.cutoff = 0.03f;
-  if (kind == FilterKind::BandPass) {
-    e.filter.low = 0.03f;
-    e.filter.cutoff = 0.12f;
-  }
-  return e;
+EffectParam kernelParam(const char* name, const char* help, float value) {
+  return {.name = name, .help = help, .value = value, .min = 0.0f, .max = float(kMaxImageSide / 2), .minExcluded = true,
+          .sliderMin = 0.5f, .sliderMax = 24.0f};
 }
 
-const std::vector<EffectDef>& definitions() {
-  static const std::vector<EffectDef> defs = [] {
-    std::vector<EffectDef> d;
-    d.push_back({"sepia", "the seed's YIQ sepia: keep Y, hard-code I and Q (a dot product and an add)",
-                 [] { Effect e; e.name = "sepia"; e.kind = EffectKind::Sepia; return e; },
-                 {floatParam("i", "hard-coded I (orange ↔ blue), the seed: 0.2", GLINT_FIELD(e.sepia.i)),
-                  floatParam("q", "hard-coded Q (purple ↔ green), the seed: 0", GLINT_FIELD(e.sepia.q))}});
-    d.push_back({"sobel", "Sobel edges of the luma, gray",
-                 [] { Effect e; e.name = "sobel"; e.kind = EffectKind::Sobel; return e; },
-                 {{"output", "magnitude (both), horizontal (|Gy|), vertical (|Gx|), dx or dy (signed, mid-gray = 0)",
-                   [](Effect& e, const std::string& v) {
-                     if (v == "magnitude" || v == "both") e.sobel.output = SobelOutput::Magnitude;
-                     else if (v == "horizontal") e.sobel.output = SobelOutput::Horizontal;
-                     else if (v == "vertical") e.sobel.output = SobelOutput::Vertical;
-                     else if (v == "dx") e.sobel.output = SobelOutput::SignedX;
-                     else if (v == "dy") e.sobel.output = SobelOutput::SignedY;
-                     else fail(ErrorKind::Usage, "sobel output must be magnitude, horizontal, vertical, dx or dy, got '{}'", printable(v));
-                   },
-                   [](const Effect& e) {
-                     switch (e.sobel.output) {
-                       case SobelOutput::Horizontal: return std::string("horizontal");
-                       case SobelOutput::Vertical: return std::string("vertical");
-                       case SobelOutput::SignedX: return std::string("dx");
-                       case SobelOutput::SignedY: return std::string("dy");
-                       case SobelOutput::Magnitude: break;
-                     }
-                     return std::string("magnitude");
-                   }},
-                  floatParam("scale", "gain before clamping (1: a black-to-white step is white)",
-                             GLINT_FIELD(e.sobel.scale))}});
-    d.push_back({"edges", "Sobel lines composited over the image (darkening): the NPR outline",
-                 [] { Effect e; e.name = "edges"; e.kind = EffectKind::Edges; return e; },
-                 {floatParam("scale", "how fast lines darken above the threshold", GLINT_FIELD(e.edges.scale)),
-                  floatParam("threshold", "Sobel magnitudes below this draw nothing",
-                             GLINT_FIELD(e.edges.threshold))}});
-    d.push_back({"kuwahara", "edge-preserving smoothing: mean of the calmest of four overlapping quadrants (2 passes)",
-                 [] { Effect e; e.name = "kuwahara"; e.kind = EffectKind::Kuwahara; return e; },
-                 {{"size", "quadrant edge length 2..8 (the seed: 3)",
-                   [](Effect& e, const std::string& v) { e.kuwahara.size = parseInt(v, "size"); },
-                   [](const Effect& e) { return std::to_string(e.kuwahara.size); }}}});
-    d.push_back({"spectrum", "log magnitude of the luma's 2D DFT, centred (GPU FFT)",
-                 [] { Effect e; e.name = "spectrum"; e.kind = EffectKind::Spectrum; return e; }, {}});
-    d.push_back({"lowpass", "frequency-domain low-pass (GPU FFT, multiply, inverse FFT)",
-                 [] { return filterEffect("lowpass", FilterKind::LowPass, 0.0f); }, filterParams(false, false, "")});
-    d.push_back({"highpass", "frequency-domain high-pass, around mid-gray",
-                 [] { return filterEffect("highpass", FilterKind::HighPass, 0.5f); }, filterParams(false, false, "")});
-    d.push_back({"bandpass", "frequency-domain band-pass, around mid-gray",
-                 [] { return filterEffect("bandpass", FilterKind::BandPass, 0.5f); }, filterParams(true, false, "")});
-    d.push_back({"blur", "Gaussian blur as a convolution via FFT (circular)",
-                 [] { return filterEffect("blur", FilterKind::Kernel, 0.0f, KernelShape::Gaussian, 4.0f); },
-                 filterParams(false, true, "sigma")});
-    d.push_back({"bokeh", "disk blur (a lens's out-of-focus look) as a convolution via FFT (circular)",
-                 [] { return filterEffect("bokeh", FilterKind::Kernel, 0.0f, KernelShape::Disk, 6.0f); },
-                 filterParams(false, true, "radius")});
-    return d;
-  }();
+// ---------------------------------------------------------------------------
+// The table. Adding an effect: an entry here.
+const std::vector<EffectDef>& table() {
+  static const std::vector<EffectDef> defs = {
+      {.name = "sepia",
+       .summary = "the seed's YIQ sepia: keep Y, hard-code I and Q (a dot product and an add)",
+       .params = {{.name = "i", .help = "hard-coded I (orange ↔ blue), the seed: 0.2", .value = 0.2f, .min = -1.0f,
+                   .max = 1.0f, .sliderMin = -0.5f, .sliderMax = 0.5f},
+                  {.name = "q", .help = "hard-coded Q (purple ↔ green), the seed: 0", .value = 0.0f, .min = -1.0f,
+                   .max = 1.0f, .sliderMin = -0.5f, .sliderMax = 0.5f}},
+       .stage = passStage<SepiaPass>(+[](const Effect& e) { return SepiaOptions{.i = e.value("i"), .q = e.value("q")}; })},
+      {.name = "sobel",
+       .summary = "Sobel edges of the luma, gray",
+       .params = {{.name = "output",
+                   .help = "both directions; horizontal = |Gy|, vertical = |Gx|; dx, dy signed (mid-gray = 0)",
+                   .type = ParamType::Choice, .sliderMin = 0, .sliderMax = 4,
+                   .choices = {"magnitude", "horizontal", "vertical", "dx", "dy"}},
+                  {.name = "scale", .help = "gain before clamping (1: a black-to-white step is white)", .value = 1.0f,
+                   .min = 0.0f, .minExcluded = true, .sliderMin = 0.25f, .sliderMax = 8.0f}},
+       .stage = passStage<SobelPass>(+[](const Effect& e) {
+         constexpr SobelOutput outputs[] = {SobelOutput::Magnitude, SobelOutput::Horizontal, SobelOutput::Vertical,
+                                            SobelOutput::SignedX, SobelOutput::SignedY};
+         return SobelOptions{.output = outputs[int(e.value("output"))], .scale = e.value("scale")};
+       })},
+      {.name = "edges",
+       .summary = "Sobel lines composited over the image (darkening): the NPR outline",
+       .params = {{.name = "scale", .help = "how fast lines darken above the threshold", .value = 2.0f, .min = 0.0f,
+                   .minExcluded = true, .sliderMin = 0.25f, .sliderMax = 10.0f},
+                  {.name = "threshold", .help = "Sobel magnitudes below this draw nothing", .value = 0.25f,
+                   .sliderMin = 0.0f, .sliderMax = 2.0f}},
+       .stage = shaderStage("post/edges.frag")},  // uScale, uThreshold: image/post.h's EdgesOptions
+      {.name = "kuwahara",
+       .summary = "edge-preserving smoothing: mean of the calmest of four overlapping quadrants (2 passes)",
+       .params = {{.name = "size", .help = "quadrant edge length (the seed: 3, a 5×5 window)", .type = ParamType::Int,
+                   .value = 3, .min = 2, .max = 8, .sliderMin = 2, .sliderMax = 8}},
+       .stage = passStage<KuwaharaPass>(+[](const Effect& e) { return KuwaharaOptions{.size = int(e.value("size"))}; })},
+      {.name = "posterize",
+       .summary = "kuwahara then edges: the seed's NPR look (size, scale, threshold)",
+       .expandsTo = {"kuwahara", "edges"}},
+      {.name = "spectrum",
+       .summary = "log magnitude of the luma's DFT, centred (GPU FFT)",
+       .stage = [] {
+         struct Stage final : EffectStage {
+           SpectrumPass pass;
+           void run(const gl::Texture& in, const gl::Texture& out, const Effect&) override { pass.run(in, out); }
+         };
+         return std::unique_ptr<EffectStage>(std::make_unique<Stage>());
+       }},
+      filterEffect("lowpass", "frequency-domain low-pass (GPU FFT, multiply, inverse FFT)", passParams(0.05f, 0.0f),
+                   +[](const Effect& e) { return radialFilter(e, FilterKind::LowPass, "cutoff"); }),
+      filterEffect("highpass", "frequency-domain high-pass, around mid-gray", passParams(0.03f, 0.5f),
+                   +[](const Effect& e) { return radialFilter(e, FilterKind::HighPass, "cutoff"); }),
+      filterEffect("bandpass", "frequency-domain band-pass, around mid-gray", bandParams(), +[](const Effect& e) {
+        FrequencyFilter f = radialFilter(e, FilterKind::BandPass, "high");
+        f.low = e.value("low");
+        return f;
+      }),
+      filterEffect("blur", "Gaussian blur as a convolution via FFT (circular)",
+                   {kernelParam("sigma", "Gaussian σ in pixels", 4.0f)},
+                   +[](const Effect& e) { return kernelFilter(KernelShape::Gaussian, e.value("sigma")); }),
+      filterEffect("bokeh", "disk blur (a lens's out-of-focus look) as a convolution via FFT (circular)",
+                   {kernelParam("radius", "disk radius in pixels", 6.0f)},
+                   +[](const Effect& e) { return kernelFilter(KernelShape::Disk, e.value("radius")); }),
+  };
   return defs;
 }
 
-const EffectDef* find(const std::string& name) {
-  for (const auto& d : definitions())
-    if (name == d.name) return &d;
+// ---------------------------------------------------------------------------
+std::string number(float v) { return fmt::format("{}", v); }
+
+const EffectParam* findParam(const EffectDef& def, std::string_view name, std::size_t* index = nullptr) {
+  for (std::size_t i = 0; i < def.params.size(); ++i) {
+    if (name == def.params[i].name) {
+      if (index) *index = i;
+      return &def.params[i];
+    }
+  }
   return nullptr;
 }
 
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) items.push_back(item);
-  return items;
+std::string valueText(const EffectParam& p, const std::variant<float, int>& v) {
+  if (p.type == ParamType::Choice) return p.choices.at(std::size_t(std::get<int>(v)));
+  return p.type == ParamType::Int ? std::to_string(std::get<int>(v)) : number(std::get<float>(v));
 }
 
-// Applies "param=value" to `effect`; false when it has no such parameter.
-bool apply(Effect& effect, const std::string& param, const std::string& value) {
-  const EffectDef* def = find(effect.name);
-  for (const auto& p : def->params) {
-    if (param == p.name) {
-      p.set(effect, value);
-      return true;
+// Error(Usage) "edges.scale: -1 is out of range (0, ∞)" for a number outside the parameter's range.
+void checkRange(const EffectDef& def, const EffectParam& p, float v) {
+  if (p.type == ParamType::Choice) {
+    if (v < 0 || v >= float(p.choices.size())) {
+      fail(ErrorKind::Usage, "{}.{}: choice {} is out of range ({})", def.name, p.name, v, p.rangeText());
     }
+    return;
   }
-  return false;
+  if (v < p.min || v > p.max || (p.minExcluded && v == p.min)) {
+    fail(ErrorKind::Usage, "{}.{}: {} is out of range {}", def.name, p.name, v,
+         p.type == ParamType::Int ? "(" + p.rangeText() + ")" : p.rangeText());
+  }
+}
+
+std::vector<std::string> splitList(std::string_view text) {
+  std::vector<std::string> items;
+  for (const auto field : splitFields(text, ','))
+    if (!field.empty()) items.emplace_back(field);
+  return items;
 }
 
 std::pair<std::string, std::string> splitAssignment(const std::string& text) {
@@ -200,28 +209,95 @@ std::pair<std::string, std::string> splitAssignment(const std::string& text) {
 }
 
 std::string paramList(const EffectDef& def) {
-  if (def.params.empty()) return "none";
-  std::string s;
-  for (const auto& p : def.params) s += (s.empty() ? "" : ", ") + std::string(p.name);
-  return s;
+  std::vector<std::string> names;
+  const auto add = [&](const EffectDef& d) {
+    for (const auto& p : d.params) names.push_back(p.name);
+  };
+  add(def);
+  for (const char* part : def.expandsTo) add(*findEffect(part));
+  return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+}
+
+// The entry named `name`, or Error(Usage) listing them all.
+const EffectDef& requireEffect(std::string_view name) {
+  const EffectDef* def = findEffect(name);
+  if (!def) fail(ErrorKind::Usage, "unknown effect '{}'; effects: {}", printable(name), fmt::join(effectNames(), ", "));
+  return *def;
 }
 }  // namespace
 
+std::string EffectParam::rangeText() const {
+  if (type == ParamType::Choice) return fmt::format("{}", fmt::join(choices, "|"));
+  if (type == ParamType::Int) return fmt::format("{}..{}", int(min), int(max));
+  const auto bound = [](float v) { return std::isinf(v) ? std::string(v < 0 ? "−∞" : "∞") : fmt::format("{}", v); };
+  return fmt::format("{}{}, {}{}", minExcluded || std::isinf(min) ? "(" : "[", bound(min), bound(max),
+                     std::isinf(max) ? ")" : "]");
+}
+
+std::span<const EffectDef> effectTable() { return table(); }
+
+const EffectDef* findEffect(std::string_view name) {
+  for (const auto& d : table())
+    if (name == d.name) return &d;
+  return nullptr;
+}
+
+float Effect::value(std::string_view param) const {
+  std::size_t i = 0;
+  if (!findParam(*def, param, &i)) fail(ErrorKind::Internal, "effect '{}' has no parameter '{}'", def->name, param);
+  return std::visit([](auto v) { return float(v); }, values[i]);
+}
+
+bool Effect::set(std::string_view param, std::string_view text) {
+  std::size_t i = 0;
+  const EffectParam* p = findParam(*def, param, &i);
+  if (!p) return false;
+  const std::string what = fmt::format("{}.{}", def->name, p->name);
+  switch (p->type) {
+    case ParamType::Float: {
+      const float v = parseFloat(text, what);
+      checkRange(*def, *p, v);
+      values[i] = v;
+      break;
+    }
+    case ParamType::Int: values[i] = parseInt(text, what, int(p->min), int(p->max)); break;
+    case ParamType::Choice: {
+      const auto it = std::find(p->choices.begin(), p->choices.end(), text);
+      if (it == p->choices.end()) {
+        fail(ErrorKind::Usage, "{} must be {}, got '{}'", what, fmt::join(p->choices, ", "), printable(text));
+      }
+      values[i] = int(it - p->choices.begin());
+      break;
+    }
+  }
+  return true;
+}
+
+std::string Effect::describe() const {
+  std::string s = def->name;
+  if (def->params.empty()) return s;
+  s += "(";
+  for (std::size_t i = 0; i < def->params.size(); ++i) {
+    s += (i ? "," : "") + std::string(def->params[i].name) + "=" + valueText(def->params[i], values[i]);
+  }
+  return s + ")";
+}
+
 std::vector<std::string> effectNames() {
   std::vector<std::string> names;
-  for (const auto& d : definitions()) names.push_back(d.name);
-  names.insert(names.begin() + 4, "posterize");
+  for (const auto& d : table()) names.push_back(d.name);
   return names;
 }
 
-Effect makeEffect(const std::string& name) {
-  const EffectDef* def = find(name);
-  if (!def) {
-    std::string all;
-    for (const auto& n : effectNames()) all += (all.empty() ? "" : ", ") + n;
-    fail(ErrorKind::Usage, "unknown effect '{}'; effects: {}", printable(name), all);
+Effect makeEffect(std::string_view name) {
+  const EffectDef& def = requireEffect(name);
+  if (!def.expandsTo.empty()) fail(ErrorKind::Usage, "'{}' is several effects: use parseEffects", def.name);
+  Effect e{.def = &def, .values = {}};
+  for (const auto& p : def.params) {
+    if (p.type == ParamType::Float) e.values.emplace_back(p.value);
+    else e.values.emplace_back(int(p.value));
   }
-  return def->make();
+  return e;
 }
 
 std::vector<Effect> parseEffects(std::span<const std::string> specs, std::span<const std::string> settings) {
@@ -230,19 +306,17 @@ std::vector<Effect> parseEffects(std::span<const std::string> specs, std::span<c
     const auto colon = spec.find(':');
     const std::string name = spec.substr(0, colon);
     const std::string params = colon == std::string::npos ? "" : spec.substr(colon + 1);
+    const EffectDef& def = requireEffect(name);
     std::vector<Effect> added;
-    if (name == "posterize") {
-      added = {makeEffect("kuwahara"), makeEffect("edges")};
-    } else {
-      added = {makeEffect(name)};
-    }
+    if (def.expandsTo.empty()) added.push_back(makeEffect(name));
+    for (const char* part : def.expandsTo) added.push_back(makeEffect(part));
     for (const auto& assignment : splitList(params)) {
       const auto [param, value] = splitAssignment(assignment);
       bool taken = false;
-      for (auto& e : added) taken = apply(e, param, value) || taken;
+      for (auto& e : added) taken = e.set(param, value) || taken;
       if (!taken) {
         fail(ErrorKind::Usage, "effect '{}' has no parameter '{}' (it takes: {})", printable(name), printable(param),
-             name == "posterize" ? "size, scale, threshold" : paramList(*find(name)));
+             paramList(def));
       }
     }
     chain.insert(chain.end(), added.begin(), added.end());
@@ -254,13 +328,16 @@ std::vector<Effect> parseEffects(std::span<const std::string> specs, std::span<c
       if (const auto dot = param.find('.'); dot != std::string::npos) {
         only = param.substr(0, dot);
         param = param.substr(dot + 1);
-        if (!find(only)) fail(ErrorKind::Usage, "--set {}: unknown effect '{}'", printable(assignment), printable(only));
+        if (!findEffect(only)) fail(ErrorKind::Usage, "--set {}: unknown effect '{}'", printable(assignment), printable(only));
       }
       bool taken = false;
       for (auto& e : chain)
-        if (only.empty() || e.name == only) taken = apply(e, param, value) || taken;
+        if (only.empty() || e.name() == only) taken = e.set(param, value) || taken;
       if (!taken) {
-        if (!only.empty()) fail(ErrorKind::Usage, "--set {}: no '{}' effect with a parameter '{}' in the chain", printable(assignment), printable(only), printable(param));
+        if (!only.empty()) {
+          fail(ErrorKind::Usage, "--set {}: no '{}' effect with a parameter '{}' in the chain", printable(assignment),
+               printable(only), printable(param));
+        }
         fail(ErrorKind::Usage, "--set {}: no effect in the chain has a parameter '{}'", printable(assignment), printable(param));
       }
     }
@@ -268,50 +345,29 @@ std::vector<Effect> parseEffects(std::span<const std::string> specs, std::span<c
   return chain;
 }
 
-std::string Effect::describe() const {
-  const EffectDef* def = find(name);
-  std::string s = name;
-  if (!def || def->params.empty()) return s;
-  s += "(";
-  for (std::size_t i = 0; i < def->params.size(); ++i)
-    s += (i ? "," : "") + std::string(def->params[i].name) + "=" + def->params[i].get(*this);
-  return s + ")";
-}
-
 std::string effectHelp() {
   std::string s = "Effects (-e NAME[:param=value,...], in chain order; --set [effect.]param=value):\n";
-  for (const auto& d : definitions()) {
-    const Effect e = d.make();
-    s += fmt::format("  {:<10} {}\n", d.name, d.help);
-    for (const auto& p : d.params) s += fmt::format("  {:<10}   {}={}  {}\n", "", p.name, p.get(e), p.help);
-    if (std::string(d.name) == "kuwahara") {
-      s += fmt::format("  {:<10} {}\n", "posterize", "kuwahara then edges: the seed's NPR look (size, scale, threshold)");
+  for (const auto& d : table()) {
+    s += fmt::format("  {:<10} {}\n", d.name, d.summary);
+    if (d.params.empty()) continue;
+    const Effect e = makeEffect(d.name);
+    for (std::size_t i = 0; i < d.params.size(); ++i) {
+      const EffectParam& p = d.params[i];
+      const std::string range = p.type == ParamType::Choice               ? ", one of " + p.rangeText()
+                                : std::isinf(p.min) && std::isinf(p.max) ? ""
+                                                                         : " in " + p.rangeText();
+      s += fmt::format("  {:<10}   {}={}{}  {}\n", "", p.name, valueText(p, e.values[i]), range, p.help);
     }
   }
   return s;
 }
 
 void validateEffect(const Effect& e, ivec2 size) {
-  switch (e.kind) {
-    case EffectKind::Kuwahara:
-      if (e.kuwahara.size < 2 || e.kuwahara.size > 8) {
-        fail(ErrorKind::Usage, "kuwahara: size must be 2..8, got {}", e.kuwahara.size);
-      }
-      break;
-    case EffectKind::Filter: validateFilter(e.filter, size.x, size.y); break;
-    case EffectKind::Sobel:
-      if (!(e.sobel.scale > 0.0f)) fail(ErrorKind::Usage, "sobel: scale must be positive, got {}", e.sobel.scale);
-      break;
-    case EffectKind::Edges:
-      if (!(e.edges.scale > 0.0f)) fail(ErrorKind::Usage, "edges: scale must be positive, got {}", e.edges.scale);
-      break;
-    case EffectKind::Sepia:
-      if (std::abs(e.sepia.i) > 1.0f || std::abs(e.sepia.q) > 1.0f) {
-        fail(ErrorKind::Usage, "sepia: i and q must be in [-1, 1], got i={} q={}", e.sepia.i, e.sepia.q);
-      }
-      break;
-    case EffectKind::Spectrum: break;
+  if (!e.def || e.values.size() != e.def->params.size()) fail(ErrorKind::Internal, "an effect without its table entry");
+  for (std::size_t i = 0; i < e.values.size(); ++i) {
+    checkRange(*e.def, e.def->params[i], std::visit([](auto v) { return float(v); }, e.values[i]));
   }
+  if (e.def->validate) e.def->validate(e, size);
 }
 
 }  // namespace glint::render::post

@@ -15,9 +15,10 @@ namespace glint::scenes::post {
 /// `size` pixels. Cached per size (the EXR is read once per process).
 const Image& photograph(ivec2 size);
 
-/// Options for the parameters of the effects in `effects` (pointers into it): i, q (sepia),
-/// scale (sobel), size (kuwahara), edge-scale, edge-threshold (edges), cutoff, low, order,
-/// offset (frequency filters), sigma / radius (blur / bokeh).
+/// Options for the parameters of the effects in `effects` (pointers into it), from the
+/// effect table (render/post/effects.h): named as the parameter ("scale"), or
+/// "effect.param" where two effects of the chain share a name; the sliders' ranges are the
+/// table's.
 std::vector<Option> effectOptions(std::vector<render::post::Effect>& effects);
 
 /// The seed demo's before/after: the original left of a divider, the result right of it.

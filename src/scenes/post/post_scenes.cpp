@@ -48,36 +48,35 @@ std::vector<Option> BeforeAfter::options() {
 
 std::vector<Effect> chainOf(const std::vector<std::string>& specs) { return render::post::parseEffects(specs); }
 
+namespace {
+// "0 magnitude, 1 horizontal, ...": a choice's slider positions.
+std::string choiceList(const render::post::EffectParam& p) {
+  std::string s;
+  for (std::size_t i = 0; i < p.choices.size(); ++i) s += fmt::format("{}{} {}", i ? ", " : "", i, p.choices[i]);
+  return s;
+}
+}  // namespace
+
 std::vector<Option> effectOptions(std::vector<Effect>& effects) {
-  using render::post::EffectKind;
+  // A parameter's option is named after it ("scale"), or "effect.param" when two effects of
+  // the chain share the name (glint post's --set spelling).
+  std::map<std::string, int> uses;
+  for (const auto& e : effects)
+    for (const auto& p : e.def->params) ++uses[p.name];
   std::vector<Option> out;
   for (auto& e : effects) {
-    switch (e.kind) {
-      case EffectKind::Sepia:
-        out.push_back({"i", "sepia: the hard-coded I of YIQ (the seed: 0.2)", &e.sepia.i, -0.5f, 0.5f});
-        out.push_back({"q", "sepia: the hard-coded Q of YIQ (the seed: 0)", &e.sepia.q, -0.5f, 0.5f});
-        break;
-      case EffectKind::Sobel: out.push_back({"scale", "Sobel gain before clamping", &e.sobel.scale, 0.25f, 8.0f}); break;
-      case EffectKind::Edges:
-        out.push_back({"edge-scale", "how fast the lines darken", &e.edges.scale, 0.25f, 10.0f});
-        out.push_back({"edge-threshold", "Sobel magnitude below which nothing is drawn", &e.edges.threshold, 0.0f, 2.0f});
-        break;
-      case EffectKind::Kuwahara:
-        out.push_back({"size", "Kuwahara quadrant size (the seed: 3)", &e.kuwahara.size, 2, 8});
-        break;
-      case EffectKind::Spectrum: break;
-      case EffectKind::Filter:
-        if (e.filter.kind == FilterKind::Kernel) {
-          out.push_back({e.filter.kernel == KernelShape::Disk ? "radius" : "sigma", "kernel size in pixels",
-                         &e.filter.size, 0.5f, 24.0f});
-          break;
-        }
-        out.push_back({e.filter.kind == FilterKind::BandPass ? "high" : "cutoff", "cutoff, cycles per pixel",
-                       &e.filter.cutoff, 0.005f, 0.5f});
-        if (e.filter.kind == FilterKind::BandPass) out.push_back({"low", "lower edge, cycles per pixel", &e.filter.low, 0.0f, 0.3f});
-        out.push_back({"order", "Butterworth order (0: ideal, rings)", &e.filter.order, 0, 8});
-        out.push_back({"offset", "added to the result", &e.filter.offset, 0.0f, 1.0f});
-        break;
+    for (std::size_t i = 0; i < e.def->params.size(); ++i) {
+      const render::post::EffectParam& p = e.def->params[i];
+      Option o{.name = uses[p.name] > 1 ? fmt::format("{}.{}", e.name(), p.name) : std::string(p.name),
+               .description = p.type == render::post::ParamType::Choice
+                                  ? fmt::format("{}: {} ({})", e.name(), p.help, choiceList(p))
+                                  : fmt::format("{}: {}", e.name(), p.help),
+               .value = {},
+               .min = p.sliderMin,
+               .max = p.sliderMax};
+      if (auto* f = std::get_if<float>(&e.values[i])) o.value = f;
+      else o.value = &std::get<int>(e.values[i]);
+      out.push_back(std::move(o));
     }
   }
   return out;

@@ -11,9 +11,16 @@
 //   FrameView                 draws a processed frame upright into a target, with an
 //                             optional before/after split
 //
-//   render::post::Chain chain(size, render::post::parseEffects({"kuwahara", "edges"}));
-//   const gl::Texture& out = chain.run(uploadFrame(photo));
-//   const Image result = readFrame(out);
+/// ```cpp
+/// #include <glint/gl/context.h>
+/// const auto context = glint::gl::HeadlessContext::create();
+/// const glint::Image photo = glint::loadImage("photo.png");
+/// const std::vector<std::string> specs = {"kuwahara", "edges"};
+/// glint::render::post::Chain chain({photo.width(), photo.height()}, glint::render::post::parseEffects(specs));
+/// const glint::gl::Texture input = glint::render::post::uploadFrame(photo);
+/// const glint::gl::Texture& out = chain.run(input);  // the chain's own texture, until the next run
+/// glint::saveImage(glint::render::post::readFrame(out), "npr.png");
+/// ```
 //
 // Every intermediate is RGBA8, as a frame between two effects of a video pipeline is: a
 // chain's result equals the CPU references applied one after another with 8-bit rounding
@@ -22,6 +29,7 @@
 
 #include "glint/gl/objects.h"
 #include "glint/gl/render_target.h"
+#include "glint/image/image.h"
 #include "glint/render/gpu_mesh.h"
 #include "glint/render/post/effects.h"
 
@@ -54,7 +62,7 @@ public:
   Image run(const Image& input);
 
   /// Replaces the effects (a viewer changing parameters or switching effects). Stages
-  /// whose kind is unchanged keep their GL objects and take the new parameters on the next
+  /// whose effect (table entry) is unchanged keep their GL objects and take the new parameters on the next
   /// run; the others are rebuilt. Error(Usage) as the constructor.
   void setEffects(std::vector<Effect> effects);
 
@@ -74,12 +82,18 @@ private:
 /// oldest frame's fence and copies it out. With `depth` frames in flight the CPU copies of
 /// frame n overlap the GPU work of frames n − 1 … n − depth + 1.
 ///
-///   FrameStream stream(size, effects);
-///   for (each frame) {
-///     if (stream.full()) stream.pop(out);          // oldest result, in order
-///     stream.push(frame);
-///   }
-///   while (!stream.empty()) stream.pop(out);
+/// ```cpp
+/// const std::vector<std::string> specs = {"sepia"};
+/// glint::render::post::FrameStream stream({640, 480}, glint::render::post::parseEffects(specs));
+/// const std::vector<glint::Image> frames(10, glint::Image(640, 480, 4, glint::PixelType::U8));
+/// std::vector<glint::Image> results;
+/// glint::Image out;
+/// for (const glint::Image& frame : frames) {
+///   if (stream.full() && stream.pop(out)) results.push_back(out);  // the oldest result, in order
+///   stream.push(frame);
+/// }
+/// while (stream.pop(out)) results.push_back(out);
+/// ```
 class FrameStream {
 public:
   FrameStream(ivec2 size, std::vector<Effect> effects, int depth = 3);

@@ -1,58 +1,115 @@
 #pragma once
 // glint/render/post/effects.h — the effects of `glint post -e NAME`, by name, with their
-// parameters: what the command line, the post/* scenes and the chain share.
+// typed parameters: one table (effectTable()) from which the command line's parsing,
+// `glint post --effects`, the GPU chain (render/post/chain.h) and the viewer's panel (the
+// post/* scenes) all come.
 //
-//   // glint post in.mp4 -o out.mp4 -e kuwahara -e edges:scale=3 --set size=4
-//   const auto effects = render::post::parseEffects({"kuwahara", "edges:scale=3"}, {"size=4"});
-//   render::post::Chain chain(size, effects);
+/// ```cpp
+/// #include <glint/render/post/effects.h>
+/// // glint post in.mp4 -o out.mp4 -e kuwahara -e edges:scale=3 --set size=4
+/// const std::vector<std::string> specs = {"kuwahara", "edges:scale=3"};
+/// const std::vector<std::string> settings = {"size=4"};
+/// std::vector<glint::render::post::Effect> effects = glint::render::post::parseEffects(specs, settings);
+/// // effects[0].describe() == "kuwahara(size=4)", effects[1].value("scale") == 3
+/// effects[1].set("threshold", "0.5");              // as a slider or a program would
+/// glint::render::post::validateEffect(effects[1], {1920, 1080});
+/// ```
 //
-// Names (effectHelp() prints this table with every parameter):
-//   sepia       the seed's YIQ sepia                    i, q
-//   sobel       Sobel edges, gray                       output=magnitude|horizontal|vertical|dx|dy, scale
-//   edges       Sobel lines darkening the image         scale, threshold
-//   kuwahara    the two-pass Kuwahara filter            size
-//   posterize   kuwahara then edges (the seed's NPR look): expands to those two effects
-//   spectrum    log magnitude of the luma's DFT, centred
-//   lowpass     Butterworth / ideal low-pass in the frequency domain    cutoff, order, offset
-//   highpass    1 − low-pass                            cutoff, order, offset (default 0.5)
-//   bandpass    band between low and high               low, high, order, offset (default 0.5)
-//   blur        convolution with a Gaussian, via FFT    sigma
-//   bokeh       convolution with a disk (a lens's out-of-focus blur), via FFT   radius
+// The effects, their parameters, defaults and ranges are the table's: effectHelp() (`glint
+// post --effects`) prints it, docs/post.md shows each effect.
 //
 // Parameters go after the name ("sobel:output=horizontal,scale=2") or in settings
 // ("scale=2" applies to every effect in the chain that has a `scale`; "sobel.scale=2" to
-// sobel only). A setting no effect takes, an unknown name or a bad value is Error(Usage),
-// one line, naming it. The image/ headers (image/post.h, image/fourier.h) define what each
-// parameter means.
+// sobel only). Numbers are read by core/text.h's strict parsers; a value outside the
+// parameter's range (EffectParam::min/max), a setting no effect takes, an unknown name or a
+// bad value is Error(Usage), one line, naming it. The image/ headers (image/post.h,
+// image/fourier.h) define what each parameter means.
+//
+// Adding an effect: one entry in the table in src/render/post/effects.cpp (name, summary,
+// typed parameters, and its stage) and the work itself. An effect that is one fragment
+// shader is a new file under shaders/post/ whose uniforms are named after the parameters
+// (passes.h's ShaderPass: "threshold" → uThreshold), as edges is; one with several passes
+// or its own state gets a pass class (passes.h, fft.h) the entry runs. Parsing, --effects,
+// the chain and the viewer's panel follow from the entry.
 
-#include "glint/image/fourier.h"
-#include "glint/image/post.h"
+#include "glint/core/math.h"
+#include "glint/gl/objects.h"
 
+#include <functional>
+#include <limits>
+#include <memory>
 #include <span>
 #include <string>
+#include <string_view>
+#include <variant>
 #include <vector>
 
 namespace glint::render::post {
 
-enum class EffectKind {
-  Sepia,     ///< image/post.h sepiaReference
-  Sobel,     ///< sobelReference
-  Edges,     ///< edgesReference
-  Kuwahara,  ///< kuwaharaReference (two passes on the GPU)
-  Spectrum,  ///< image/fourier.h spectrumReference (GPU FFT)
-  Filter     ///< frequencyFilterReference (GPU FFT, multiply, inverse FFT)
+enum class ParamType {
+  Float,  ///< a finite number in [min, max] (min excluded when minExcluded)
+  Int,    ///< a whole number in [min, max]
+  Choice  ///< one of `choices`, held as its index
 };
 
-/// One effect of a chain, with its parameters.
-struct Effect {
-  std::string name;  ///< the name it was asked for ("lowpass", "blur", ...)
-  EffectKind kind = EffectKind::Sepia;
-  SepiaOptions sepia;
-  SobelOptions sobel;
-  EdgesOptions edges;
-  KuwaharaOptions kuwahara;
-  FrequencyFilter filter;  ///< Filter: which filter (kind, cutoff, kernel, ...)
+/// One parameter of an effect.
+struct EffectParam {
+  const char* name;  ///< as typed: "scale" in "sobel:scale=2"
+  const char* help;  ///< one line
+  ParamType type = ParamType::Float;
+  float value = 0.0f;  ///< the default (Choice: its index)
+  float min = -std::numeric_limits<float>::infinity();  ///< accepted values (Float, Int)
+  float max = std::numeric_limits<float>::infinity();
+  bool minExcluded = false;  ///< (min, max]: a parameter that must be above `min`
+  float sliderMin = 0.0f, sliderMax = 1.0f;  ///< the viewer's slider (inside the accepted range)
+  std::vector<const char*> choices = {};     ///< Choice: the names, in index order
 
+  /// "[-1, 1]", "(0, 0.75]", "(0, ∞)", "2..8", "magnitude|horizontal|...".
+  std::string rangeText() const;
+};
+
+struct Effect;
+
+/// An effect's GPU work, built once per chain stage and run per frame with the effect's
+/// current parameters (a stage keeps its GL objects while only parameters change).
+class EffectStage {
+public:
+  virtual ~EffectStage() = default;
+  virtual void run(const gl::Texture& input, const gl::Texture& output, const Effect& effect) = 0;
+};
+
+/// One entry of the effect table.
+struct EffectDef {
+  const char* name;     ///< "-e NAME"
+  const char* summary;  ///< one line for --effects
+  std::vector<EffectParam> params = {};
+  /// The effect's pass (absent for an alias).
+  std::function<std::unique_ptr<EffectStage>()> stage = {};
+  /// Checks that need the frame size or several parameters at once (a kernel larger than
+  /// half the image, a band whose low edge is above its high one): Error(Usage). Optional.
+  std::function<void(const Effect&, ivec2 size)> validate = {};
+  /// An alias: expands to these effects ("posterize": kuwahara, edges). Empty otherwise.
+  std::vector<const char*> expandsTo = {};
+};
+
+/// Every effect, in the order `--effects` lists them.
+std::span<const EffectDef> effectTable();
+/// The entry named `name`; nullptr when there is none.
+const EffectDef* findEffect(std::string_view name);
+
+/// One effect of a chain: its entry and a value per parameter (Float as float, Int and
+/// Choice as int), in the entry's order. The viewer's sliders point into `values`.
+struct Effect {
+  const EffectDef* def = nullptr;
+  std::vector<std::variant<float, int>> values;
+
+  const char* name() const { return def->name; }
+  /// A parameter's value as a number (Choice: its index). Error(Internal) for a name the
+  /// effect does not have.
+  float value(std::string_view param) const;
+  /// Parses `text` for parameter `param` (a number or a choice's name) and checks its range:
+  /// false when the effect has no such parameter, Error(Usage) for a bad value.
+  bool set(std::string_view param, std::string_view text);
   /// "kuwahara(size=3)": the name and every parameter's value, for reports.
   std::string describe() const;
 };
@@ -61,15 +118,15 @@ struct Effect {
 /// `settings` ("param=value" or "effect.param=value", comma-separated lists allowed).
 /// "posterize" expands to kuwahara and edges. Error(Usage) as described above.
 std::vector<Effect> parseEffects(std::span<const std::string> specs, std::span<const std::string> settings = {});
-/// One effect by name with default parameters (no "posterize": it is two effects).
-Effect makeEffect(const std::string& name);
+/// One effect by name with default parameters (no alias such as "posterize": it is two effects).
+Effect makeEffect(std::string_view name);
 /// Every effect name, in the order of the table above.
 std::vector<std::string> effectNames();
-/// The table of names, parameters, ranges and defaults (for --help).
+/// The table of names, parameters, ranges and defaults (for --help and --effects).
 std::string effectHelp();
 
-/// Error(Usage) when `effect` cannot run at this frame size (a kernel larger than half the
-/// image, a Kuwahara quadrant size outside 2..8, ...).
+/// Error(Usage) when `effect` cannot run at this frame size: a parameter outside its range
+/// (values set by a program or a slider), then the entry's own checks.
 void validateEffect(const Effect& effect, ivec2 size);
 
 }  // namespace glint::render::post

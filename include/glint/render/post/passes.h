@@ -9,6 +9,9 @@
 //   KuwaharaPass   the seed's two passes: statistics of every s×s block into a float
 //                  texture (kuwahara_stats.frag), then four fetches and the calmest mean
 //                  (kuwahara_select.frag)
+//   ShaderPass     any one-shader effect of the table (render/post/effects.h): its
+//                  parameters become uniforms by name, so such an effect is a shader and a
+//                  table entry (the table runs edges through it)
 //
 // Conventions: image/post.h's, exactly — same luma weights, same border rule (texelFetch
 // at clamped coordinates), same arithmetic. Textures hold frames in image orientation:
@@ -18,8 +21,13 @@
 // 2D textures of equal size; outputs must be colour-renderable (RGBA8 in glint post: the
 // result is rounded to 8 bits, one step of the reference at most).
 //
-//   render::post::SepiaPass sepia;
-//   sepia.run(frame, result, {.i = 0.2f, .q = 0.0f});
+/// ```cpp
+/// glint::gl::Texture frame(GL_TEXTURE_2D, "frame"), result(GL_TEXTURE_2D, "result");
+/// frame.storage(GL_RGBA8, 640, 480);
+/// result.storage(GL_RGBA8, 640, 480);
+/// glint::render::post::SepiaPass sepia;
+/// sepia.run(frame, result, {.i = 0.2f, .q = 0.0f});
+/// ```
 //
 // Each run() sets the state it draws with (depth, blend and culling off; the viewport to the
 // output) and leaves framebuffer 0 bound. Cost: one full-screen pass (Kuwahara two), per
@@ -28,6 +36,9 @@
 #include "glint/gl/objects.h"
 #include "glint/image/post.h"
 #include "glint/render/gpu_mesh.h"
+#include "glint/render/post/effects.h"
+
+#include <string>
 
 namespace glint::render::post {
 
@@ -79,6 +90,22 @@ private:
   gl::Texture m_statistics;
   gl::Framebuffer m_statsFramebuffer;
   gl::Framebuffer m_framebuffer;
+};
+
+/// A one-shader effect: `shader` (a path under shaders/, e.g. "post/edges.frag") reads the
+/// frame as `uniform sampler2D uInput` (texelFetch) and takes each parameter of the effect
+/// as a uniform named "u" + the parameter's name with a capital ("threshold" → uThreshold;
+/// Float as float, Int and Choice as int). A parameter the shader does not use is ignored.
+class ShaderPass {
+public:
+  explicit ShaderPass(const std::string& shader);
+  void run(const gl::Texture& input, const gl::Texture& output, const Effect& effect);
+
+private:
+  std::string m_shader;
+  FullscreenPass m_pass;
+  gl::Framebuffer m_framebuffer;
+  std::vector<std::string> m_uniforms;  // per parameter of the last effect run
 };
 
 }  // namespace glint::render::post

@@ -1,0 +1,125 @@
+#pragma once
+// glint/render/post/job.h — `glint post` as a library call: one job (an image, every frame
+// of a video, a camera or a lavfi source through an effect chain, or --frames parts joined),
+// with the command's checks, memory estimate, warnings and report. The command parses its
+// options into a PostJob and calls runJob and finishJob; so can any program (library
+// glint::post: glint::render and glint::video).
+//
+/// ```cpp
+/// glint::render::post::PostJob job;
+/// job.input = "photo.png";
+/// job.output = "npr.png";
+/// const std::vector<std::string> specs = {"posterize"};
+/// job.effects = glint::render::post::parseEffects(specs);
+/// glint::ToolSettings settings;
+/// settings.json = "report.json";
+/// glint::ToolRun run("post", settings);
+/// const glint::render::post::PostStats stats = glint::render::post::runJob(job, run);
+/// glint::render::post::finishJob(stats, run);  // writes report.json; returns the exit status
+/// ```
+//
+// Checks, before anything is opened: one input (input, camera, lavfi or parts), an output,
+// camera options only for a camera, a --frames range that selects frames, an image output
+// for an image input, outputs (and the --json report) writable; then, once the size is known,
+// the memory estimate against --max-memory, the GPU's largest texture, and each effect at the
+// frame size (render/post/effects.h). Errors are glint::Error, one line (core/error.h).
+
+#include "glint/core/math.h"
+#include "glint/core/tool.h"
+#include "glint/render/post/effects.h"
+#include "glint/video/sink.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint::render::post {
+
+/// Where a job's frames come from: decided once, by inputKind().
+enum class InputKind {
+  Image,   ///< a still image file (video::isImagePath)
+  Video,   ///< any other file: FFmpeg decodes it
+  Camera,  ///< a V4L2 device: a live source
+  Lavfi,   ///< an FFmpeg filter graph, "lavfi:GRAPH"
+  Parts    ///< finished --frames parts, joined by copying packets (no effects)
+};
+
+/// Frames [first, end) of a video (`--frames first:end`); end −1: to the end.
+struct FrameRange {
+  std::int64_t first = 0;
+  std::int64_t end = -1;
+};
+
+struct PostJob {
+  std::string input;               ///< an image or video file, or "lavfi:GRAPH"
+  std::string camera;              ///< instead of input: a V4L2 device ("/dev/video0")
+  std::string lavfi;               ///< instead of input: "lavfi:GRAPH" (`--input`)
+  std::vector<std::string> parts;  ///< instead of input and effects: parts to join, in order
+  std::string output;              ///< an image or a video; the format from its extension
+  std::vector<Effect> effects;     ///< in chain order (parseEffects)
+  video::Codec codec = video::Codec::H264;
+  int crf = 18;                    ///< H.264 quality, 0..51
+  std::string preset = "medium";   ///< H.264 speed/size trade-off
+  std::optional<FrameRange> frames;  ///< a part of a video (written without B-frames, to join)
+  std::optional<ivec2> cameraSize;   ///< camera: the size to ask for (none: the device's default)
+  std::optional<double> cameraRate;  ///< camera: the frame rate to ask for, positive
+  bool realtime = false;           ///< pace a file or lavfi source and treat it as live
+  bool keepAudio = true;           ///< copy the input's audio when the output can hold it
+  bool glDebug = false;            ///< a GL debug context
+};
+
+/// The one place the kind of input is worked out (after the one-input check).
+InputKind inputKind(const PostJob& job);
+
+/// Peak memory of processing frames of `size`, in MiB: measured with posterize on llvmpipe
+/// (GL textures are process memory there): ~150 MiB, plus ~280 bytes per pixel for a video
+/// (frames in flight, float targets, the encoder), ~45 for a single frame.
+double estimateMemoryMiB(ivec2 size, bool singleFrame);
+
+/// What a job did; toJson() is the command's report (the fields beside ToolRun's own).
+struct PostStats {
+  InputKind kind = InputKind::Image;
+  bool still = false;              ///< a video source, an image output: one frame processed
+  std::string input;               ///< the file, device or graph
+  std::string output;
+  std::vector<std::string> parts;  ///< Parts: the joined files
+  ivec2 size{0};
+  double frameRate = 0.0;
+  std::string codec;               ///< "h264" or "ffv1"
+  std::string effects;             ///< Chain::describe()
+  bool live = false;
+  std::int64_t frame = 0;          ///< still: the frame's index
+  std::int64_t firstFrame = 0;
+  std::int64_t framesRead = 0;
+  std::int64_t framesWritten = 0;
+  std::int64_t framesExpected = -1;  ///< what the container announces for the range; −1: unknown
+  std::int64_t droppedFrames = 0;
+  std::int64_t corruptPackets = 0;
+  std::int64_t decoderErrors = 0;
+  std::string audio;               ///< "none", "copied", "dropped", "dropped (--no-audio)"
+  std::int64_t audioPackets = 0;
+  double fps = 0.0;
+  double seconds = 0.0;            ///< wall time of the video pipeline
+  bool interrupted = false;        ///< stopped by Ctrl-C: the video is complete up to there
+  std::optional<std::string> inputError;  ///< the source broke off: the video is complete up to there
+
+  bool partial() const { return interrupted || inputError.has_value(); }
+  /// The report's fields for this kind of job, in the command's order: an image gives
+  /// effects, input, output, width, height, frames; a still input, output, frame, effects;
+  /// parts parts, output, frames; a video input … interrupted (and input_error).
+  nlohmann::ordered_json toJson() const;
+};
+
+/// Runs the job: the checks above, then the work, with phases, progress and warnings on
+/// `run` (its cancel flag stops a video cleanly: a playable partial video; an image is then
+/// not written, Error(Interrupted)). Needs no GL context: it makes its own headless one.
+PostStats runJob(const PostJob& job, ToolRun& run);
+
+/// Adds stats.toJson() to the report and finishes it (ToolRun::finish writes --json); then
+/// Error(Input) when the source broke off, and the exit status: 0, or 130 when interrupted.
+int finishJob(const PostStats& stats, ToolRun& run);
+
+}  // namespace glint::render::post

@@ -1,0 +1,321 @@
+#include "glint/render/post/job.h"
+
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+#include "glint/core/log.h"
+#include "glint/core/progress.h"
+#include "glint/gl/context.h"
+#include "glint/image/image.h"
+#include "glint/image/srgb.h"
+#include "glint/render/post/chain.h"
+#include "glint/video/source.h"
+#include "glint/video/transcode.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+
+namespace glint::render::post {
+
+namespace {
+
+/// The frame as glint post processes it: U8 RGBA. 16-bit images are rounded; float images
+/// (EXR, HDR) hold linear light and are sRGB-encoded, clamped, with a warning.
+Image toFrame(const Image& image, const std::string& name, ToolRun& run) {
+  Image rgba = image.channels() == 4 ? image : image.withChannels(4);
+  if (rgba.type() == PixelType::F32) {
+    run.warn(fmt::format("{} holds linear float values: encoded to 8-bit sRGB (clamped to 0..1) before the effects", name));
+    rgba = srgbEncoded(std::move(rgba));
+  }
+  return rgba.type() == PixelType::U8 ? rgba : rgba.converted(PixelType::U8);
+}
+
+std::unique_ptr<gl::HeadlessContext> makeContext(const PostJob& job, ivec2 size) {
+  auto context = gl::HeadlessContext::create({.profile = gl::Profile::Core, .debug = job.glDebug});
+  const int largest = gl::queryContextInfo().maxTextureSize;
+  if (size.x > largest || size.y > largest) {
+    fail(ErrorKind::Input, "the frames are {}x{}: larger than this GPU's largest texture ({}x{})", size.x, size.y,
+         largest, largest);
+  }
+  return context;
+}
+
+// The checks that need nothing opened: Error(Usage) or Error(Output).
+void checkJob(const PostJob& job, const ToolRun& run) {
+  if (!job.parts.empty()) {
+    if (job.output.empty()) fail(ErrorKind::Usage, "--concat needs -o OUTPUT");
+    if (!job.effects.empty() || !job.input.empty() || !job.camera.empty() || !job.lavfi.empty()) {
+      fail(ErrorKind::Usage, "--concat joins finished parts: no input or effects");
+    }
+  } else {
+    const int sources = int(!job.input.empty()) + int(!job.camera.empty()) + int(!job.lavfi.empty());
+    if (sources == 0) fail(ErrorKind::Usage, "post needs an input: a file, --camera DEVICE or --input lavfi:GRAPH");
+    if (sources > 1) fail(ErrorKind::Usage, "post takes one input: a file, --camera or --input, not several");
+    if (!job.lavfi.empty() && !job.lavfi.starts_with("lavfi:")) {
+      fail(ErrorKind::Usage, "--input takes lavfi:GRAPH (files are given as the first argument), got '{}'", job.lavfi);
+    }
+    if (job.output.empty()) fail(ErrorKind::Usage, "post needs -o OUTPUT");
+    const InputKind kind = inputKind(job);
+    if (kind != InputKind::Camera && job.cameraSize) {
+      fail(ErrorKind::Usage, "--size is for cameras (a file or lavfi graph has its own size)");
+    }
+    if (kind != InputKind::Camera && job.cameraRate) fail(ErrorKind::Usage, "--fps is for cameras");
+    if (job.cameraRate && !(*job.cameraRate > 0.0)) fail(ErrorKind::Usage, "--fps must be positive, got {}", *job.cameraRate);
+    if (job.frames && (job.frames->first < 0 || (job.frames->end >= 0 && job.frames->end <= job.frames->first))) {
+      fail(ErrorKind::Usage, "--frames {}:{} selects no frames", job.frames->first, job.frames->end);
+    }
+    if (kind == InputKind::Image && !video::isImagePath(job.output)) {
+      fail(ErrorKind::Usage, "'{}' is an image: write an image too (-o result.png), not '{}'", job.input, job.output);
+    }
+  }
+  checkWritable(job.output);
+  if (const std::string& json = run.settings().json; !json.empty() && json != "-") checkWritable(json);
+}
+
+PostStats runParts(const PostJob& job, ToolRun& run) {
+  const std::vector<std::filesystem::path> parts(job.parts.begin(), job.parts.end());
+  PostStats stats{.kind = InputKind::Parts, .output = job.output, .parts = job.parts};
+  {
+    auto timed = run.phase("concat");
+    stats.framesWritten = video::concatenate(parts, job.output);
+  }
+  log::info("post: {} parts → {} ({} frames, packets copied: no re-encoding)", parts.size(), job.output,
+            stats.framesWritten);
+  return stats;
+}
+
+PostStats runImage(const PostJob& job, ToolRun& run) {
+  requireImageIo();
+  Image frame;
+  {
+    auto timed = run.phase("load");
+    frame = toFrame(loadImage(job.input), job.input, run);
+  }
+  const ivec2 size(frame.width(), frame.height());
+  run.checkMemory(estimateMemoryMiB(size, true), fmt::format("processing a {}x{} image", size.x, size.y));
+  const auto context = makeContext(job, size);
+  PostStats stats{.kind = InputKind::Image, .input = job.input, .output = job.output, .size = size, .framesRead = 1,
+                  .framesWritten = 1};
+  Image result;
+  {
+    auto timed = run.phase("process");
+    Chain chain(size, job.effects);
+    result = chain.run(frame);
+    stats.effects = chain.describe();
+  }
+  run.throwIfInterrupted();
+  {
+    auto timed = run.phase("write");
+    saveImage(result, job.output);
+  }
+  log::info("post: {} ({}x{}) → {}: {}", job.input, size.x, size.y, job.output, stats.effects);
+  return stats;
+}
+
+// A video in, an image out: one frame (the first of --frames), processed.
+PostStats runStill(const PostJob& job, video::Source& source, ToolRun& run) {
+  requireImageIo();
+  video::Frame frame;
+  if (!source.read(frame)) fail(ErrorKind::Input, "{} has no frame to take a still from", source.info().name);
+  Chain chain(source.info().size, job.effects);
+  const Image result = chain.run(frame.image);
+  run.throwIfInterrupted();
+  saveImage(result, job.output);
+  log::info("post: frame {} ({:.3f} s) of {} → {}", frame.index, frame.seconds, source.info().name, job.output);
+  return {.kind = inputKind(job), .still = true, .input = source.info().name, .output = job.output,
+          .size = source.info().size, .effects = chain.describe(), .frame = frame.index, .framesRead = 1,
+          .framesWritten = 1};
+}
+
+// Warnings about frames the source lost or damaged: said, not silent.
+void warnAboutSource(const PostStats& stats, const video::Source& source, const std::string& name, ToolRun& run) {
+  if (stats.droppedFrames > 0) {
+    run.warn(fmt::format("{} live frame(s) dropped: the source delivered faster than glint could process", stats.droppedFrames));
+  }
+  // A file that ends before the frames its container announces (truncated, damaged). Frames
+  // lost to corrupt packets are warned about already; one frame of slack for containers that
+  // only know a rounded duration.
+  if (!stats.partial() && stats.framesExpected > 0 &&
+      stats.framesRead + stats.corruptPackets + 1 < stats.framesExpected) {
+    run.warn(fmt::format("'{}' ended after {} of the {} frames its container announces (truncated or damaged?)", name,
+                         stats.framesRead, stats.framesExpected));
+  }
+  if (stats.corruptPackets > 0) {
+    run.recordWarning(fmt::format("{} corrupt packet(s) could not be decoded; those frames are missing", stats.corruptPackets));
+  }
+  // Damage the decoder concealed: the frames are there, some possibly wrong.
+  const video::DecoderErrors errors = source.decoderErrors();
+  if (errors.count > 0) {
+    run.warn(fmt::format("'{}': the decoder reported {} error(s), the first '{}': some frames were damaged and "
+                         "concealed by the decoder", name, errors.count, errors.first));
+  }
+}
+
+PostStats runVideo(const PostJob& job, ToolRun& run) {
+  const InputKind kind = inputKind(job);
+  const std::string& name = kind == InputKind::Camera ? job.camera : !job.lavfi.empty() ? job.lavfi : job.input;
+  video::SourceOptions options{.camera = kind == InputKind::Camera, .realtime = job.realtime,
+                               .size = job.cameraSize.value_or(ivec2(0)), .frameRate = job.cameraRate.value_or(0.0),
+                               .keepAudio = job.keepAudio, .threads = run.settings().threads};
+  if (job.frames) {
+    options.firstFrame = job.frames->first;
+    options.lastFrame = job.frames->end;
+  }
+  const bool still = video::isImagePath(job.output);
+
+  std::optional<ToolRun::Phase> opening(std::in_place, run, "open");
+  video::Source source = video::Source::open(name, options);
+  const video::SourceInfo& info = source.info();
+  run.checkMemory(estimateMemoryMiB(info.size, still), fmt::format("processing {}x{} video", info.size.x, info.size.y));
+  const auto context = makeContext(job, info.size);
+  if (still) return runStill(job, source, run);
+  FrameStream stream(info.size, job.effects);
+  video::Sink sink(job.output, {.codec = job.codec, .size = info.size, .frameRate = info.frameRate,
+                                .timeBase = info.timeBase, .crf = job.crf, .preset = job.preset,
+                                .threads = run.settings().threads, .noReordering = job.frames.has_value(),
+                                .audio = job.keepAudio ? source.audio() : nullptr});
+  opening.reset();
+  if (!sink.audioNote().empty()) run.warn(sink.audioNote());
+  log::info("post: {} ({}x{}, {:.3g} fps, {}{}) → {} ({}): {}", name, info.size.x, info.size.y, info.frameRate.value(),
+            info.codec, info.live ? ", live" : "", job.output, video::codecName(job.codec), stream.chain().describe());
+
+  std::int64_t total = info.frameCount >= 0 ? info.frameCount - options.firstFrame : 0;
+  if (options.lastFrame >= 0) total = options.lastFrame - options.firstFrame;
+  Progress progress("post", std::uint64_t(std::max<std::int64_t>(total, 0)));
+  const auto start = std::chrono::steady_clock::now();
+  auto lastDetail = start;
+  video::StreamProcessor<FrameStream> processor(stream);
+  const video::TranscodeStats t = video::transcode(
+      source, sink, processor,
+      {.cancel = &run.cancelFlag(), .progress = [&](std::int64_t done) {
+         progress.advance();
+         const auto now = std::chrono::steady_clock::now();
+         if (now - lastDetail > std::chrono::milliseconds(250)) {
+           lastDetail = now;
+           progress.setDetail(fmt::format("{:.1f} fps", double(done) / std::chrono::duration<double>(now - start).count()));
+         }
+       }});
+  progress.finish();
+  run.addSeconds("read", t.readSeconds);
+  run.addSeconds("process", t.processSeconds);
+  run.addSeconds("write", t.writeSeconds);
+
+  PostStats stats{.kind = kind,
+                  .input = name,
+                  .output = job.output,
+                  .size = info.size,
+                  .frameRate = info.frameRate.value(),
+                  .codec = video::codecName(job.codec),
+                  .effects = stream.chain().describe(),
+                  .live = info.live,
+                  .firstFrame = options.firstFrame,
+                  .framesRead = t.framesRead,
+                  .framesWritten = t.framesWritten,
+                  .framesExpected = info.frameCount >= 0 && options.lastFrame < 0 ? info.frameCount - options.firstFrame : -1,
+                  .droppedFrames = t.droppedFrames,
+                  .corruptPackets = source.corruptPackets(),
+                  .decoderErrors = source.decoderErrors().count,
+                  .audio = !info.hasAudio       ? "none"
+                           : !job.keepAudio     ? "dropped (--no-audio)"
+                           : sink.audioNote().empty() ? "copied"
+                                                      : "dropped",
+                  .audioPackets = t.audioPackets,
+                  .fps = t.seconds > 0 ? double(t.framesWritten) / t.seconds : 0.0,
+                  .seconds = t.seconds,
+                  .interrupted = t.interrupted,
+                  .inputError = t.inputError};
+  warnAboutSource(stats, source, name, run);
+  return stats;
+}
+
+}  // namespace
+
+InputKind inputKind(const PostJob& job) {
+  if (!job.parts.empty()) return InputKind::Parts;
+  if (!job.camera.empty()) return InputKind::Camera;
+  if (!job.lavfi.empty() || job.input.starts_with("lavfi:")) return InputKind::Lavfi;
+  return video::isImagePath(job.input) ? InputKind::Image : InputKind::Video;
+}
+
+double estimateMemoryMiB(ivec2 size, bool singleFrame) {
+  return 150.0 + double(size.x) * double(size.y) * (singleFrame ? 45.0 : 280.0) / (1 << 20);
+}
+
+nlohmann::ordered_json PostStats::toJson() const {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  if (kind == InputKind::Parts) {
+    j["parts"] = parts;
+    j["output"] = output;
+    j["frames"] = framesWritten;
+    return j;
+  }
+  if (kind == InputKind::Image) {
+    j["effects"] = effects;
+    j["input"] = input;
+    j["output"] = output;
+    j["width"] = size.x;
+    j["height"] = size.y;
+    j["frames"] = framesWritten;
+    return j;
+  }
+  if (still) {
+    j["input"] = input;
+    j["output"] = output;
+    j["frame"] = frame;
+    j["effects"] = effects;
+    return j;
+  }
+  j["input"] = input;
+  j["output"] = output;
+  j["width"] = size.x;
+  j["height"] = size.y;
+  j["frame_rate"] = frameRate;
+  j["codec"] = codec;
+  j["effects"] = effects;
+  j["live"] = live;
+  j["first_frame"] = firstFrame;
+  j["frames_read"] = framesRead;
+  j["frames_written"] = framesWritten;
+  j["frames_expected"] = framesExpected;
+  j["dropped_frames"] = droppedFrames;
+  j["corrupt_packets"] = corruptPackets;
+  j["decoder_errors"] = decoderErrors;
+  j["audio"] = audio;
+  j["audio_packets"] = audioPackets;
+  j["fps"] = fps;
+  j["partial"] = partial();
+  j["interrupted"] = interrupted;
+  if (inputError) j["input_error"] = *inputError;
+  return j;
+}
+
+PostStats runJob(const PostJob& job, ToolRun& run) {
+  // Usage errors first: fail in a millisecond, before opening anything.
+  checkJob(job, run);
+  const InputKind kind = inputKind(job);
+  if (kind == InputKind::Parts) return runParts(job, run);
+  if (kind == InputKind::Image || video::isImagePath(job.output)) preloadImageIo();  // while the GPU starts
+  return kind == InputKind::Image ? runImage(job, run) : runVideo(job, run);
+}
+
+int finishJob(const PostStats& stats, ToolRun& run) {
+  run.report().update(stats.toJson());
+  run.finish();
+  if (stats.inputError) {
+    fail(ErrorKind::Input, "{}; '{}' was finished with the {} frame(s) before it (a complete, playable video)",
+         *stats.inputError, stats.output, stats.framesWritten);
+  }
+  if (stats.interrupted) {
+    log::warn("post: interrupted after {} frame(s): '{}' is a complete, playable partial video", stats.framesWritten,
+              stats.output);
+    return exitCode(ErrorKind::Interrupted);
+  }
+  if (stats.kind != InputKind::Image && stats.kind != InputKind::Parts && !stats.still) {
+    log::info("post: {} frame(s) in {:.2f} s ({:.1f} fps){}", stats.framesWritten, stats.seconds, stats.fps,
+              stats.droppedFrames ? fmt::format(", {} dropped", stats.droppedFrames) : "");
+  }
+  return 0;
+}
+
+}  // namespace glint::render::post
