@@ -89,7 +89,7 @@ figcaption {{ padding: .6em .8em; font-size: 13.5px; }}
 <h1>glint gallery</h1>
 <p class=meta>{} variants · rendered on {} ({}) · frame times are the median of several frames at each picture's size,
 GPU time from GL_TIME_ELAPSED queries, CPU time including glFinish.{}</p>
-<input type=search id=filter placeholder="Filter variants (e.g. shadows/)" aria-label="Filter variants" autocomplete=off>
+<input type=search id=filter placeholder="Filter variants: shadows/, aniso …" aria-label="Filter variants" autocomplete=off>
 {}
 <script>
 // The filter box: a variant shows when its name contains the text; a scene's section
