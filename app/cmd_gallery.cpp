@@ -45,10 +45,11 @@ std::string html(const std::vector<Entry>& entries, const gl::ContextInfo& info)
       body += fmt::format("<section><h2 id=\"{0}\">{0}</h2><p class=summary>{1}</p><div class=grid>\n",
                           escapeHtml(current->name), escapeHtml(current->summary));
     }
-    body += "<figure>";
+    body += fmt::format("<figure data-name=\"{}\">", escapeHtml(e.ref.fullName()));
     if (e.skipped.empty()) {
-      body += fmt::format("<a href=\"{0}\"><img src=\"{0}\" alt=\"{1}\" loading=lazy></a>", escapeHtml(e.image),
-                          escapeHtml(e.ref.fullName()));
+      body += fmt::format("<a href=\"{0}\"><img src=\"{0}\" alt=\"{1}\" width={2} height={3} loading=lazy></a>",
+                          escapeHtml(e.image), escapeHtml(e.ref.fullName()), e.result.image.width(),
+                          e.result.image.height());
     } else {
       body += fmt::format("<div class=skipped>skipped: {}</div>", escapeHtml(e.skipped));
     }
@@ -76,16 +77,37 @@ h1 {{ margin-bottom: .2em; }} h2 {{ margin: 1.6em 0 .2em; border-bottom: 1px sol
 .summary {{ color: #aab; margin-top: .2em; }}
 .grid {{ display: grid; grid-template-columns: repeat(auto-fill, minmax(300px, 1fr)); gap: 1.2em; }}
 figure {{ margin: 0; background: #1d2027; border-radius: 6px; overflow: hidden; }}
-img {{ width: 100%; display: block; background: #000; }}
+img {{ width: 100%; height: auto; display: block; background: #000; }}
 figcaption {{ padding: .6em .8em; font-size: 13.5px; }}
 .t {{ color: #8c8; float: right; }} .notes {{ color: #cb8; }} code {{ color: #99a; font-size: 12px; }}
 .skipped {{ padding: 3em 1em; color: #c88; text-align: center; }}
 .meta {{ color: #889; }} nav a {{ color: #9bd; margin-right: .8em; white-space: nowrap; }}
+#filter {{ font: inherit; margin: .4em 0 .8em; padding: .3em .6em; width: 22em; max-width: 100%; background: #1d2027;
+  color: #dde; border: 1px solid #445; border-radius: 4px; }}
+[hidden] {{ display: none !important; }}
 </style></head><body>
 <h1>glint gallery</h1>
 <p class=meta>{} variants · rendered on {} ({}) · frame times are the median of several frames at each picture's size,
 GPU time from GL_TIME_ELAPSED queries, CPU time including glFinish.{}</p>
+<input type=search id=filter placeholder="Filter variants: shadows/, aniso …" aria-label="Filter variants" autocomplete=off>
 {}
+<script>
+// The filter box: a variant shows when its name contains the text; a scene's section
+// and its link in the table of contents show while one of its variants does.
+document.getElementById('filter').addEventListener('input', (event) => {{
+  const text = event.target.value.trim();
+  for (const section of document.querySelectorAll('section')) {{
+    let shown = 0;
+    for (const figure of section.querySelectorAll('figure')) {{
+      figure.hidden = !figure.dataset.name.includes(text);
+      if (!figure.hidden) ++shown;
+    }}
+    section.hidden = shown === 0;
+    const link = document.querySelector(`nav a[href="#${{CSS.escape(section.querySelector('h2').id)}}"]`);
+    if (link) link.hidden = section.hidden;
+  }}
+}});
+</script>
 </body></html>
 )",
                      entries.size(), escapeHtml(info.renderer), escapeHtml(info.version),
@@ -101,6 +123,8 @@ std::string json(const std::vector<Entry>& entries, const gl::ContextInfo& info)
     variants.push_back({{"name", e.ref.fullName()},
                         {"image", e.image},
                         {"skipped", e.skipped},
+                        {"width", e.skipped.empty() ? e.result.image.width() : 0},
+                        {"height", e.skipped.empty() ? e.result.image.height() : 0},
                         {"gpu_ms", e.result.gpuMs},
                         {"cpu_ms", e.result.cpuMs},
                         {"notes", e.result.notes}});

@@ -7,50 +7,167 @@
 #   lib/libglint_<module>.a           one static library per module
 #   lib/glint/libglint_oiio.so        the dlopen()ed image I/O module (src/image/oiio_locate.h)
 #   lib/glint/libglint_ffmpeg.so      the dlopen()ed video module (src/video/backend.h)
-#   lib/cmake/glint/                  glintConfig.cmake, glintConfigVersion.cmake, glintTargets*.cmake,
-#                                     PeerDependencies.cmake (FFTW, OpenCV targets)
+#   lib/cmake/glint/                  glintConfig.cmake, glintConfigVersion.cmake, one
+#                                     glint-<component>-targets*.cmake per component,
+#                                     PeerDependencies.cmake (FFTW, OpenCV targets; with bench)
 #   share/glint/env, share/glint/bunny  data/ from scripts/setup, when it is there (core/locations.h)
 #
-# Exported targets, namespace glint:: (the same names work in this build as aliases):
-#   glint::core glint::image glint::video glint::mesh glint::raytrace glint::bake glint::cut glint::raster
-#   glint::sim glint::gl glint::render glint::scenes glint::bench [glint::window]
-#   glint::glint (the command, an imported executable)
+# Exported targets, namespace glint:: (the same names work in this build as aliases), one
+# package component each, named as the target (find_package(glint COMPONENTS render)):
+#   glint::core glint::image glint::mesh glint::raytrace glint::bake glint::raster glint::sim
+#   glint::gl glint::render glint::scenes, and as configured glint::video (GLINT_BUILD_VIDEO),
+#   glint::cut (GLINT_BUILD_CUT), glint::bench (GLINT_BUILD_BENCH), glint::window (GLINT_BUILD_VIEWER)
+#   glint::glint (component glint: the command, an imported executable)
 # Each library brings the layers below it: linking glint::scenes is enough to render
-# registered scenes. tests/install checks all of this with a consumer project.
+# registered scenes. Each component is also an install component (cmake --install
+# --component render), with its library, its headers and its targets file; core carries
+# the package files. tests/install checks all of this with consumer projects.
 include(CMakePackageConfigHelpers)
 
-set(glint_libraries
-  glint_core glint_image glint_video glint_mesh glint_raytrace glint_bake glint_cut glint_raster glint_sim
-  glint_gl glint_render glint_scenes glint_bench)
-list(APPEND glint_libraries glint_post)  # `glint post`'s job (render/post/job.h)
-if(GLINT_BUILD_VIEWER)
-  list(APPEND glint_libraries glint_window)
+# Layer order, lowest first: an installed package loads the targets files in this order.
+set(glint_components core image)
+if(GLINT_BUILD_VIDEO)
+  list(APPEND glint_components video)
 endif()
-foreach(library IN LISTS glint_libraries)
-  string(REGEX REPLACE "^glint_" "" name "${library}")
-  set_target_properties(${library} PROPERTIES EXPORT_NAME ${name})
-  add_library(glint::${name} ALIAS ${library})
+list(APPEND glint_components mesh raytrace bake)
+if(GLINT_BUILD_CUT)
+  list(APPEND glint_components cut)
+endif()
+list(APPEND glint_components raster sim gl render)
+if(GLINT_BUILD_VIDEO)
+  list(APPEND glint_components post)  # `glint post`'s job (render/post/job.h): render + video
+endif()
+list(APPEND glint_components scenes)
+if(GLINT_BUILD_BENCH)
+  list(APPEND glint_components bench)
+endif()
+if(GLINT_BUILD_VIEWER)
+  list(APPEND glint_components window)
+endif()
+# The parts a configuration can leave out, and the option that does (glintConfig names it).
+set(glint_optional_components video=GLINT_BUILD_VIDEO cut=GLINT_BUILD_CUT bench=GLINT_BUILD_BENCH window=GLINT_BUILD_VIEWER)
+
+# How an installed glint finds each third-party target its libraries link: a name that
+# glintConfig.cmake's glint_find_dependency knows. A linked target missing here stops the
+# configure, so the package cannot silently lack a dependency.
+set(glint_dependency_names
+  fmt::fmt=fmt glm::glm=glm nlohmann_json::nlohmann_json=nlohmann_json Threads::Threads=Threads TBB::tbb=TBB
+  assimp::assimp=assimp tinyobjloader::tinyobjloader=tinyobjloader draco::draco=draco embree=embree
+  CGAL::CGAL=CGAL TinyGLTF::TinyGLTF=TinyGLTF glfw=glfw3
+  PkgConfig::EPOXY=epoxy PkgConfig::EGL=egl PkgConfig::SPNG=spng
+  PkgConfig::FFTW=peers glint_deps::fftw_threads=peers glint_deps::opencv=peers)
+
+# What linking glint_<component> brings, read from the link graph: its direct glint
+# components and third-party dependency names. A static library's consumers link all it
+# links (its private dependencies are link-only ones of theirs), so both properties count.
+function(glint_direct_dependencies component out_components out_dependencies)
+  get_target_property(links glint_${component} LINK_LIBRARIES)
+  get_target_property(interface glint_${component} INTERFACE_LINK_LIBRARIES)
+  set(components "")
+  set(dependencies "")
+  foreach(item IN LISTS links interface)
+    string(REGEX REPLACE "^\\$<LINK_ONLY:(.*)>$" "\\1" item "${item}")
+    set(name "")
+    foreach(pair IN LISTS glint_dependency_names)
+      if(pair MATCHES "^(.*)=(.*)$" AND CMAKE_MATCH_1 STREQUAL item)
+        set(name ${CMAKE_MATCH_2})
+      endif()
+    endforeach()
+    if(item STREQUAL "" OR item IN_LIST CMAKE_DL_LIBS)
+      continue()  # a system library the linker finds (dl)
+    elseif(name)
+      list(APPEND dependencies ${name})
+    elseif(item MATCHES "^glint_([a-z]+)$" AND TARGET ${item})
+      if(NOT CMAKE_MATCH_1 IN_LIST glint_components)
+        message(FATAL_ERROR "glint::${component} links ${item}, which this configuration does not export")
+      endif()
+      list(APPEND components ${CMAKE_MATCH_1})
+    else()
+      # (An imported target found in a subdirectory is not visible here: hence a table.)
+      message(FATAL_ERROR "glint::${component} links '${item}': add how an installed glint finds it to "
+                          "glint_dependency_names (cmake/Install.cmake) and glintConfig.cmake.in")
+    endif()
+  endforeach()
+  set(${out_components} ${components} PARENT_SCOPE)
+  set(${out_dependencies} ${dependencies} PARENT_SCOPE)
+endfunction()
+
+# Per component, everything it needs (the components below it, itself, in layer order) and
+# the third-party dependencies of all of those: written into glintConfig.cmake.
+set(GLINT_COMPONENT_TABLE "set(_glint_built ${glint_components} glint)\n")
+string(APPEND GLINT_COMPONENT_TABLE "set(_glint_optional ${glint_optional_components})\n")
+foreach(component IN LISTS glint_components)
+  glint_direct_dependencies(${component} direct dependencies)
+  set(needs ${component})
+  foreach(below IN LISTS direct)
+    list(FIND glint_components ${below} below_at)
+    list(FIND glint_components ${component} at)
+    if(below_at GREATER at)
+      message(FATAL_ERROR "glint::${component} links glint::${below}, a higher layer (cmake/Install.cmake's order)")
+    endif()
+    list(APPEND needs ${glint_needs_${below}})
+    list(APPEND dependencies ${glint_dependencies_${below}})
+  endforeach()
+  set(ordered "")
+  foreach(candidate IN LISTS glint_components)  # layer order, each once
+    if(candidate IN_LIST needs)
+      list(APPEND ordered ${candidate})
+    endif()
+  endforeach()
+  list(REMOVE_DUPLICATES dependencies)
+  list(SORT dependencies)
+  set(glint_needs_${component} ${ordered})
+  set(glint_dependencies_${component} ${dependencies})
+  string(APPEND GLINT_COMPONENT_TABLE "set(_glint_needs_${component} ${ordered})\n"
+                                      "set(_glint_dependencies_${component} ${dependencies})\n")
 endforeach()
+string(APPEND GLINT_COMPONENT_TABLE "set(_glint_needs_glint glint)\nset(_glint_dependencies_glint \"\")\n")
+
+foreach(component IN LISTS glint_components)
+  set(library glint_${component})
+  set_target_properties(${library} PROPERTIES EXPORT_NAME ${component})
+  add_library(glint::${component} ALIAS ${library})
+  install(TARGETS ${library} EXPORT glint-${component} ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT ${component})
+  install(EXPORT glint-${component} FILE glint-${component}-targets.cmake NAMESPACE glint::
+          DESTINATION ${GLINT_INSTALL_CMAKE_DIR} COMPONENT ${component})
+  # A module's public headers (window's header is gl/window.h, in gl's directory).
+  if(IS_DIRECTORY "${PROJECT_SOURCE_DIR}/include/glint/${component}")
+    set(exclude "")
+    if(component STREQUAL "scenes" AND NOT GLINT_BUILD_CUT)
+      set(exclude PATTERN pipedream.h EXCLUDE)  # the pipedream stage: a cut
+    endif()
+    if(component STREQUAL "render")
+      set(exclude PATTERN job.h EXCLUDE)  # render/post/job.h is post's (it needs video)
+    endif()
+    install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/glint/${component}" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/glint
+            COMPONENT ${component} ${exclude})
+  endif()
+endforeach()
+if(GLINT_BUILD_VIDEO)
+  install(FILES "${PROJECT_SOURCE_DIR}/include/glint/render/post/job.h"
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/glint/render/post COMPONENT post)
+endif()
 add_executable(glint::glint ALIAS glint)
+install(TARGETS glint EXPORT glint-glint RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT glint)
+install(EXPORT glint-glint FILE glint-glint-targets.cmake NAMESPACE glint:: DESTINATION ${GLINT_INSTALL_CMAKE_DIR}
+        COMPONENT glint)
+install(TARGETS glint_oiio LIBRARY DESTINATION ${GLINT_INSTALL_MODULE_DIR} COMPONENT image)
+if(GLINT_BUILD_VIDEO)
+  install(TARGETS glint_ffmpeg LIBRARY DESTINATION ${GLINT_INSTALL_MODULE_DIR} COMPONENT video)
+endif()
 
-install(TARGETS ${glint_libraries} glint EXPORT glintTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(TARGETS glint_oiio glint_ffmpeg LIBRARY DESTINATION ${GLINT_INSTALL_MODULE_DIR})
-# The directory as a whole: headers added or moved need no change here.
-install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/glint" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-
-install(EXPORT glintTargets NAMESPACE glint:: DESTINATION ${GLINT_INSTALL_CMAKE_DIR})
 configure_package_config_file(cmake/glintConfig.cmake.in "${PROJECT_BINARY_DIR}/glintConfig.cmake"
   INSTALL_DESTINATION ${GLINT_INSTALL_CMAKE_DIR})
 # 0.x: a minor version may break the API, so only the same minor version is compatible.
 write_basic_package_version_file("${PROJECT_BINARY_DIR}/glintConfigVersion.cmake"
   COMPATIBILITY SameMinorVersion)
 install(FILES "${PROJECT_BINARY_DIR}/glintConfig.cmake" "${PROJECT_BINARY_DIR}/glintConfigVersion.cmake"
-  "${PROJECT_SOURCE_DIR}/cmake/PeerDependencies.cmake"
-  DESTINATION ${GLINT_INSTALL_CMAKE_DIR})
+  DESTINATION ${GLINT_INSTALL_CMAKE_DIR} COMPONENT core)
+if(GLINT_BUILD_BENCH)
+  install(FILES "${PROJECT_SOURCE_DIR}/cmake/PeerDependencies.cmake" DESTINATION ${GLINT_INSTALL_CMAKE_DIR} COMPONENT bench)
+endif()
 
 # Data, where scripts/setup put it; absent data is not an install error (the scenes
 # that need it then fail with a one-line Error naming where they looked).
-install(DIRECTORY "${GLINT_DATA_DIR}/env" DESTINATION ${GLINT_INSTALL_DATA_DIR} OPTIONAL)
-install(FILES "${GLINT_DATA_DIR}/bunny/bunny.ply" DESTINATION ${GLINT_INSTALL_DATA_DIR}/bunny OPTIONAL)
+install(DIRECTORY "${GLINT_DATA_DIR}/env" DESTINATION ${GLINT_INSTALL_DATA_DIR} COMPONENT data OPTIONAL)
+install(FILES "${GLINT_DATA_DIR}/bunny/bunny.ply" DESTINATION ${GLINT_INSTALL_DATA_DIR}/bunny COMPONENT data OPTIONAL)

@@ -22,11 +22,15 @@ void registerShadowBunny(Registry& registry);
 void registerBumpDot3(Registry& registry);
 void registerBumpNormalMap(Registry& registry);
 void registerBakeResult(Registry& registry);
+#if GLINT_HAS_CUT
 void registerCutScenes(Registry& registry);
 void registerPipeDream(Registry& registry);
+#endif
 void registerWaterScenes(Registry& registry);
 void registerPostScenes(Registry& registry);
+#if GLINT_HAS_VIDEO
 void registerPostCamera(Registry& registry);
+#endif
 
 const Registry& Registry::builtin() {
   static const Registry registry = [] {
@@ -45,11 +49,15 @@ const Registry& Registry::builtin() {
     registerBumpDot3(r);
     registerBumpNormalMap(r);
     registerBakeResult(r);
+#if GLINT_HAS_CUT  // GLINT_BUILD_CUT
     registerCutScenes(r);
     registerPipeDream(r);
+#endif
     registerWaterScenes(r);
     registerPostScenes(r);
+#if GLINT_HAS_VIDEO  // GLINT_BUILD_VIDEO
     registerPostCamera(r);
+#endif
     return r;
   }();
   return registry;

@@ -14,7 +14,9 @@
 #include <cctype>
 #include <utility>
 
-#if !defined(GLINT_FFMPEG_MODULE) || !defined(GLINT_FFMPEG_MODULE_INSTALLED)
+#if defined(GLINT_NO_VIDEO_MODULE)
+// Built with GLINT_BUILD_VIDEO=OFF: no module to load (api() says so).
+#elif !defined(GLINT_FFMPEG_MODULE) || !defined(GLINT_FFMPEG_MODULE_INSTALLED)
 #error "GLINT_FFMPEG_MODULE and GLINT_FFMPEG_MODULE_INSTALLED (the module's build and install paths) must be defined"
 #endif
 
@@ -22,6 +24,11 @@ namespace glint::video {
 namespace fs = std::filesystem;
 
 namespace {
+#if defined(GLINT_NO_VIDEO_MODULE)
+const backend::Api& api() {
+  fail(ErrorKind::Usage, "this glint was built without video (GLINT_BUILD_VIDEO=OFF): it reads and writes images only");
+}
+#else
 const ModuleLocation kModule{GLINT_FFMPEG_MODULE, GLINT_FFMPEG_MODULE_INSTALLED, "GLINT_FFMPEG_MODULE"};
 
 // Loads the module once (core/locations.h's loadModule); never unloaded (objects it made
@@ -33,6 +40,7 @@ const backend::Api& api() {
   loaded.setLogLevel(int(log::level()));  // the module's logger follows -q / -v
   return loaded;
 }
+#endif
 
 void check(const backend::Status& status) {
   if (!status.ok) throw Error(status.kind, status.message);

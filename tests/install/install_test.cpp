@@ -83,7 +83,7 @@ TEST(Install, AConsumerProjectBuildsAgainstTheInstalledTreeAndRendersTheTriangle
            fs::path(GLINT_INSTALL_MODULE_DIR) / "libglint_ffmpeg.so",
            fs::path(GLINT_INSTALL_CMAKE_DIR) / "glintConfig.cmake",
            fs::path(GLINT_INSTALL_CMAKE_DIR) / "glintConfigVersion.cmake",
-           fs::path(GLINT_INSTALL_CMAKE_DIR) / "glintTargets.cmake",
+           fs::path(GLINT_INSTALL_CMAKE_DIR) / "glint-scenes-targets.cmake",
        }) {
     EXPECT_TRUE(fs::is_regular_file(prefix / relative)) << relative << " is not installed";
   }

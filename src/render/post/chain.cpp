@@ -14,15 +14,13 @@ gl::Texture uploadFrame(const Image& image, std::string_view label) {
   const Image rgba = postInput(image);
   gl::Texture texture(GL_TEXTURE_2D, label);
   texture.storage(GL_RGBA8, rgba.width(), rgba.height());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   texture.upload(0, rgba.width(), rgba.height(), GL_RGBA, GL_UNSIGNED_BYTE, rgba.bytes().data());
   return texture;
 }
 
 Image readFrame(const gl::Texture& texture) {
   Image image(texture.width(), texture.height(), 4, PixelType::U8);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(texture.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(image.bytes().size()), image.bytes().data());
+  texture.read(0, GL_RGBA, GL_UNSIGNED_BYTE, image.bytes().size(), image.bytes().data());
   return image;
 }
 
@@ -120,7 +118,7 @@ struct MappedBuffer {
   MappedBuffer(std::size_t bytes, bool upload, std::string_view name) {
     const GLbitfield access = GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT | (upload ? GL_MAP_WRITE_BIT : GL_MAP_READ_BIT);
     buffer = gl::Buffer(bytes, nullptr, access, name);
-    data = static_cast<std::byte*>(glMapNamedBufferRange(buffer.id(), 0, GLsizeiptr(bytes), access));
+    data = static_cast<std::byte*>(buffer.map(0, bytes, access));
     if (!data) fail(ErrorKind::Internal, "cannot map a {} MiB pixel buffer", bytes >> 20);
   }
 };
@@ -174,15 +172,13 @@ void FrameStream::push(const Image& frame) {
   Slot& slot = s.slots[s.next];
   s.next = (s.next + 1) % s.slots.size();
   std::memcpy(slot.upload.data, frame.bytes().data(), s.bytes);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, slot.upload.buffer.id());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTextureSubImage2D(slot.input.id(), 0, 0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  slot.upload.buffer.bind(GL_PIXEL_UNPACK_BUFFER);
+  slot.input.upload(0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);  // from the bound buffer
+  gl::Buffer::unbind(GL_PIXEL_UNPACK_BUFFER);
   const gl::Texture& result = s.chain.run(slot.input);
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, slot.download.buffer.id());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(result.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(s.bytes), nullptr);
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  slot.download.buffer.bind(GL_PIXEL_PACK_BUFFER);
+  result.read(0, GL_RGBA, GL_UNSIGNED_BYTE, s.bytes, nullptr);  // into the bound buffer, asynchronously
+  gl::Buffer::unbind(GL_PIXEL_PACK_BUFFER);
   slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   glFlush();  // start the work now; pop() waits for it
   s.inFlight.push_back(std::size_t(&slot - s.slots.data()));

@@ -133,7 +133,7 @@ std::vector<std::complex<float>> Fft2d::transform(std::span<const std::complex<f
   const int result = run(0, direction);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   std::vector<std::complex<float>> out(n);
-  glGetNamedBufferSubData(m_data[result].id(), 0, GLsizeiptr(n * sizeof(std::complex<float>)), out.data());
+  m_data[result].read(0, n * sizeof(std::complex<float>), out.data());
   return out;
 }
 
@@ -160,7 +160,7 @@ void SpectrumPass::run(const gl::Texture& input, const gl::Texture& output) {
   const int result = m_fft->run(0, FftDirection::Forward);
   m_show.use();
   m_fft->buffer(result).bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-  glBindImageTexture(0, output.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+  output.bindImage(0, GL_WRITE_ONLY, GL_RGBA8);
   glDispatchCompute(groups(size.x, 8), groups(size.y, 8), 1);
   imageBarrier();
 }
@@ -226,7 +226,7 @@ void FrequencyFilterPass::run(const gl::Texture& input, const gl::Texture& outpu
   m_store.set("uOffset", filter.offset);
   bindInput(input, 0);
   m_fft->buffer(result).bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-  glBindImageTexture(0, output.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+  output.bindImage(0, GL_WRITE_ONLY, GL_RGBA8);
   glDispatchCompute(groups(size.x, 8), groups(size.y, 8), 1);
   imageBarrier();
 }

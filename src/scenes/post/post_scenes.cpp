@@ -196,8 +196,7 @@ public:
     m_scene->render({.target = m_target->target(), .time = m_source.scene->defaultTime + frame.time});
     render::resetState();
     // GL's rows go up, a frame's go down (render/post's convention): flip while copying.
-    glBlitNamedFramebuffer(m_target->framebuffer().id(), m_flip.id(), 0, 0, size.x, size.y, 0, size.y, size.x, 0,
-                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    m_target->framebuffer().blitTo(m_flip, {0, 0, size.x, size.y}, {0, size.y, size.x, 0}, GL_COLOR_BUFFER_BIT);
     m_processed.show(m_frame, frame.target);
   }
 
