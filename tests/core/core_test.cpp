@@ -1,8 +1,10 @@
 #include "glint/core/error.h"
+#include "glint/core/cache.h"
 #include "glint/core/file.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -168,4 +170,21 @@ TEST(Locations, AnInstalledLayoutBesideTheExecutableComesFirstAndErrorsListEvery
     for (const fs::path& dir : dirs) EXPECT_NE(message.find(dir.string()), std::string::npos) << message;
     EXPECT_NE(message.find("scripts/setup"), std::string::npos) << message;
   }
+}
+
+// Every test process runs cold, as on a fresh machine (tests/support/cold_environment.cpp):
+// no Mesa shader cache, and cache directories of the build tree's, not the user's.
+TEST(ColdRun, TestsRunWithoutAShaderCacheAndWithTheBuildTreesCacheDirectories) {
+  const char* mesa = std::getenv("MESA_SHADER_CACHE_DISABLE");
+  ASSERT_NE(mesa, nullptr);
+  EXPECT_STREQ(mesa, "true");
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  const char* glintCache = std::getenv("GLINT_CACHE_DIR");
+  ASSERT_NE(xdg, nullptr);
+  ASSERT_NE(glintCache, nullptr);
+  const std::string outputDir = GLINT_TEST_OUTPUT_DIR;
+  const std::string buildTree = outputDir.substr(0, outputDir.rfind('/'));  // <build>/test-output → <build>
+  EXPECT_EQ(std::string(xdg), buildTree + "/test-home/cache");
+  EXPECT_EQ(std::string(glintCache), buildTree + "/cache");
+  EXPECT_EQ(glint::cacheDirectory(), std::filesystem::path(buildTree + "/cache"));
 }

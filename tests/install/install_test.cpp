@@ -16,6 +16,7 @@
 #include "glint/image/image.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -166,6 +167,37 @@ TEST(Install, AConsumerProjectBuildsAgainstTheInstalledTreeAndRendersTheTriangle
   EXPECT_TRUE(opened(loaderLog(work / "post-loader"), prefix / GLINT_INSTALL_MODULE_DIR / "libglint_ffmpeg.so"))
       << "the installed glint did not load the video module from its prefix";
   EXPECT_TRUE(fs::is_regular_file(video));
+
+  // 7. A tool's job through the library alone: the consumer's cut_scene (glint::cut) and
+  //    the installed `glint cut` on the same scene give the same bytes and the same report
+  //    fields (timings aside), and refuse the same bad output with the same exit code.
+  const fs::path scene = work / "table.obj";
+  writeTextAtomically(scene,
+                "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n"           // the floor, y = 0
+                "v -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"  // a table top above it
+                "f 1 3 2\nf 1 4 3\nf 5 7 6\nf 5 8 7\n");
+  const auto cutWith = [&](const std::string& program, const std::string& name) {
+    return run(fmt::format("{} {} -o {} --light 0,3,0,key --json {}", program, quote(scene),
+                           quote(work / (name + ".ply")), quote(work / (name + ".json"))));
+  };
+  const auto byCommand = cutWith(quote(prefix / GLINT_INSTALL_BINDIR / "glint") + " -q cut", "command");
+  ASSERT_EQ(byCommand.status, 0) << byCommand.output;
+  const auto byLibrary = cutWith(quote(build / "cut_scene"), "library");
+  ASSERT_EQ(byLibrary.status, 0) << byLibrary.output;
+  EXPECT_EQ(readTextFile(work / "command.ply"), readTextFile(work / "library.ply"));
+  const auto commandReport = nlohmann::json::parse(readTextFile(work / "command.json"));
+  const auto libraryReport = nlohmann::json::parse(readTextFile(work / "library.json"));
+  EXPECT_EQ(libraryReport.at("output_polygons").get<int>(), commandReport.at("output_polygons").get<int>());
+  EXPECT_GT(libraryReport.at("output_polygons").get<int>(), 4);  // the table's shadow is cut into the floor
+  for (const char* key : {"input_triangles", "output_triangles", "output_vertices", "per_light", "lights", "cuts"}) {
+    EXPECT_EQ(libraryReport.at(key), commandReport.at(key)) << key;
+  }
+  const auto badCommand = run(fmt::format("{} -q cut {} -o {} --light 0,3,0", quote(prefix / GLINT_INSTALL_BINDIR / "glint"),
+                                          quote(scene), quote(work / "bad.xyz")));
+  const auto badLibrary = run(fmt::format("{} {} -o {} --light 0,3,0", quote(build / "cut_scene"), quote(scene),
+                                          quote(work / "bad.xyz")));
+  EXPECT_EQ(badLibrary.status, badCommand.status);
+  EXPECT_EQ(badLibrary.status, 2) << badLibrary.output;
 }
 
 // GLINT_OIIO_MODULE names the module explicitly: used when set, and the only candidate,

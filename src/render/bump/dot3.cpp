@@ -52,6 +52,26 @@ void resetUnit(GLenum unit) {
   glBindTexture(GL_TEXTURE_2D, 0);
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
 }
+
+/// One fixed-function texture stage of texture unit `unit`: `texture` bound and enabled, the
+/// combiner computing `combine` of operand 0 (`source0`: the vertex colour or the previous
+/// stage) and the texture, RGB from their colours, alpha passed on from `source0`.
+void combinerStage(GLuint unit, const gl::Texture& texture, GLenum combine, GLenum source0) {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindSampler(unit, 0);
+  texture.bindToActiveUnit();
+  glEnable(GL_TEXTURE_2D);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_COMBINE);
+  glTexEnvi(GL_TEXTURE_ENV, GL_COMBINE_RGB, combine);
+  glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE0_RGB, source0);
+  glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND0_RGB, GL_SRC_COLOR);
+  glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE1_RGB, GL_TEXTURE);
+  glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND1_RGB, GL_SRC_COLOR);
+  glTexEnvf(GL_TEXTURE_ENV, GL_RGB_SCALE, 1.0f);  // the "scale the output" the seed mentions
+  glTexEnvi(GL_TEXTURE_ENV, GL_COMBINE_ALPHA, GL_REPLACE);
+  glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE0_ALPHA, source0);
+  glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND0_ALPHA, GL_SRC_ALPHA);
+}
 }  // namespace
 
 Dot3Classic::Dot3Classic() {
@@ -75,38 +95,12 @@ void Dot3Classic::draw(const Dot3Polygon& polygon, std::span<const u8vec3> color
   if (stage != Dot3Stage::LightVectors) {
     // Stage 1 (unit 0): "we bind the normal map to the first texture unit ... set the texture
     // combine operation to DOT3 ... set the output to be an RGB value ... set the two operands".
-    glActiveTexture(GL_TEXTURE0);
-    glBindSampler(0, 0);
-    normalMap.bindToActiveUnit();
-    glEnable(GL_TEXTURE_2D);
-    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_COMBINE);
-    glTexEnvi(GL_TEXTURE_ENV, GL_COMBINE_RGB, GL_DOT3_RGB);
-    glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE0_RGB, GL_PRIMARY_COLOR);
-    glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND0_RGB, GL_SRC_COLOR);
-    glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE1_RGB, GL_TEXTURE);
-    glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND1_RGB, GL_SRC_COLOR);
-    glTexEnvf(GL_TEXTURE_ENV, GL_RGB_SCALE, 1.0f);  // the "scale the output" the seed mentions
-    glTexEnvi(GL_TEXTURE_ENV, GL_COMBINE_ALPHA, GL_REPLACE);
-    glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE0_ALPHA, GL_PRIMARY_COLOR);
-    glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND0_ALPHA, GL_SRC_ALPHA);
+    combinerStage(0, normalMap, GL_DOT3_RGB, GL_PRIMARY_COLOR);
   }
   if (stage == Dot3Stage::Modulated) {
     // Stage 2 (unit 1): "set the combiner operation to modulate ... the first operand to be
     // the previous output ... second operand will be the base texture".
-    glActiveTexture(GL_TEXTURE1);
-    glBindSampler(1, 0);
-    base.bindToActiveUnit();
-    glEnable(GL_TEXTURE_2D);
-    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_COMBINE);
-    glTexEnvi(GL_TEXTURE_ENV, GL_COMBINE_RGB, GL_MODULATE);
-    glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE0_RGB, GL_PREVIOUS);
-    glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND0_RGB, GL_SRC_COLOR);
-    glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE1_RGB, GL_TEXTURE);
-    glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND1_RGB, GL_SRC_COLOR);
-    glTexEnvf(GL_TEXTURE_ENV, GL_RGB_SCALE, 1.0f);
-    glTexEnvi(GL_TEXTURE_ENV, GL_COMBINE_ALPHA, GL_REPLACE);
-    glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE0_ALPHA, GL_PREVIOUS);
-    glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND0_ALPHA, GL_SRC_ALPHA);
+    combinerStage(1, base, GL_MODULATE, GL_PREVIOUS);
   }
 
   // "First I issued the local light vector, which is an unsigned byte vector. Then I simply

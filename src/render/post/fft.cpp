@@ -56,6 +56,16 @@ void checkOutput(const char* pass, const gl::Texture& input, const gl::Texture& 
   }
   if (output.internalFormat() != GL_RGBA8) fail(ErrorKind::Usage, "{}: the output must be an RGBA8 texture", pass);
 }
+/// The forward transform's first step, shared by the spectrum and the filters: `load`
+/// (post/fft_load.comp) reads the input image into `fft`'s buffer 0.
+void loadFftInput(const gl::Program& load, const Fft2d& fft, const gl::Texture& input, ivec2 size) {
+  bindInput(input, 0);
+  load.use();
+  load.set("uInput", 0);
+  fft.buffer(0).bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+  glDispatchCompute(groups(size.x, 8), groups(size.y, 8), 1);
+  storageBarrier();
+}
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -151,12 +161,7 @@ void SpectrumPass::run(const gl::Texture& input, const gl::Texture& output) {
   checkOutput("spectrum", input, output);
   const ivec2 size(input.width(), input.height());
   prepare(size);
-  bindInput(input, 0);
-  m_load.use();
-  m_load.set("uInput", 0);
-  m_fft->buffer(0).bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-  glDispatchCompute(groups(size.x, 8), groups(size.y, 8), 1);
-  storageBarrier();
+  loadFftInput(m_load, *m_fft, input, size);
   const int result = m_fft->run(0, FftDirection::Forward);
   m_show.use();
   m_fft->buffer(result).bindBase(GL_SHADER_STORAGE_BUFFER, 0);
@@ -207,12 +212,7 @@ void FrequencyFilterPass::run(const gl::Texture& input, const gl::Texture& outpu
   checkOutput("frequency filter", input, output);
   const ivec2 size(input.width(), input.height());
   prepare(size, filter);
-  bindInput(input, 0);
-  m_load.use();
-  m_load.set("uInput", 0);
-  m_fft->buffer(0).bindBase(GL_SHADER_STORAGE_BUFFER, 1);
-  glDispatchCompute(groups(size.x, 8), groups(size.y, 8), 1);
-  storageBarrier();
+  loadFftInput(m_load, *m_fft, input, size);
   int result = m_fft->run(0, FftDirection::Forward);
   m_multiply.use();
   m_multiply.set("uCount", size.x * size.y);
