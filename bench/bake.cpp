@@ -372,33 +372,30 @@ void scaling(Recorder& r) {
 
 }  // namespace
 
-void registerBakeSuite(Suites& suites) {
-  suites.add({.name = "bake",
-              .description = "normal mapper: vs Blender Cycles, 2048² 36 spp on 1M triangles, vs plain Embree, scaling, mesh loading",
-              .run = [](Recorder& r) {
-                const auto level = log::level();
-                log::setLevel(log::Level::Error);  // the bakes' own warnings are not the bench's output
-                const fs::path dir = fs::temp_directory_path() / fmt::format("glint-bench-bake-{}", getpid());
-                fs::create_directories(dir);
-                try {
-                  loading(r, dir);
-                  scaling(r);
-                  {
-                    const Mesh low = lowPoly(), high = highPoly(1 << 20);
-                    // (the ray log costs 32 B per ray: ~4 M rays each)
-                    throughput(r, low, high, 2048, 1);
-                    throughput(r, low, high, 1024, 4);
-                  }
-                  bigBake(r);
-                  versusBlender(r, dir);
-                } catch (...) {
-                  fs::remove_all(dir);
-                  log::setLevel(level);
-                  throw;
-                }
-                fs::remove_all(dir);
-                log::setLevel(level);
-              }});
+/// The "bake" suite (bench/bench.cpp lists it).
+void runBakeSuite(Recorder& r) {
+  const auto level = log::level();
+  log::setLevel(log::Level::Error);  // the bakes' own warnings are not the bench's output
+  const fs::path dir = fs::temp_directory_path() / fmt::format("glint-bench-bake-{}", getpid());
+  fs::create_directories(dir);
+  try {
+    loading(r, dir);
+    scaling(r);
+    {
+      const Mesh low = lowPoly(), high = highPoly(1 << 20);
+      // (the ray log costs 32 B per ray: ~4 M rays each)
+      throughput(r, low, high, 2048, 1);
+      throughput(r, low, high, 1024, 4);
+    }
+    bigBake(r);
+    versusBlender(r, dir);
+  } catch (...) {
+    fs::remove_all(dir);
+    log::setLevel(level);
+    throw;
+  }
+  fs::remove_all(dir);
+  log::setLevel(level);
 }
 
 }  // namespace glint::bench

@@ -189,11 +189,7 @@ void runPost(Recorder& recorder) {
 
 }  // namespace
 
-void registerPostSuite(Suites& suites) {
-  suites.add({.name = "post",
-              .description = "post effects per frame at 640×480, 1080p and 4K vs OpenCV / FFTW; glint post end to end on "
-                             "1080p H.264",
-              .run = runPost});
-}
+/// The "post" suite (bench/bench.cpp lists it).
+void runPostSuite(Recorder& r) { runPost(r); }
 
 }  // namespace glint::bench

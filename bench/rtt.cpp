@@ -39,10 +39,7 @@ void runRtt(Recorder& recorder) {
 
 }  // namespace
 
-void registerRttSuite(Suites& suites) {
-  suites.add({.name = "rtt",
-              .description = "render to texture: copy from the window vs framebuffer object, 256² to 2048²",
-              .run = runRtt});
-}
+/// The "rtt" suite (bench/bench.cpp lists it).
+void runRttSuite(Recorder& r) { runRtt(r); }
 
 }  // namespace glint::bench

@@ -117,11 +117,7 @@ void runShadows(Recorder& recorder) {
 
 }  // namespace
 
-void registerShadowsSuite(Suites& suites) {
-  suites.add({.name = "shadows",
-              .description = "shadow techniques vs no shadows at 10k/100k/1M triangles; stencil fill; CPU volume "
-                             "build vs GPU extrusion",
-              .run = runShadows});
-}
+/// The "shadows" suite (bench/bench.cpp lists it).
+void runShadowsSuite(Recorder& r) { runShadows(r); }
 
 }  // namespace glint::bench

@@ -61,10 +61,7 @@ void runWater(Recorder& recorder) {
 
 }  // namespace
 
-void registerWaterSuite(Suites& suites) {
-  suites.add({.name = "water",
-              .description = "wave simulation step and height → normal pass, GPU vs CPU reference, 256² to 4096²",
-              .run = runWater});
-}
+/// The "water" suite (bench/bench.cpp lists it).
+void runWaterSuite(Recorder& r) { runWater(r); }
 
 }  // namespace glint::bench

@@ -6,9 +6,8 @@
 // copy-to-texture path, ...) and reports ratios, so numbers stay comparable
 // across machines. Results go to a table on stdout and to JSON.
 //
-// Adding a suite: write bench/<name>.cpp with a register function that calls
-// suites.add({...}); declare and call it in Suites::builtin() (bench/bench.cpp) and add
-// the file to bench/CMakeLists.txt.
+// Adding a suite: write bench/<name>.cpp defining run<Name>Suite(Recorder&), add a row
+// to the table in Suites::builtin() (bench/bench.cpp) and the file to bench/CMakeLists.txt.
 //
 /// ```cpp
 /// glint::bench::Suites& suites = glint::bench::Suites::builtin();
