@@ -7,8 +7,16 @@
 // average of those neighbours (the seed's "grow out the normals ... a couple of times").
 // After k passes every texel within k texels (Chebyshev distance) of an island is filled.
 //
-//   std::vector<std::uint8_t> filled = ...;   // 1 where the bake wrote a value
-//   glint::bake::dilate(texels, 4, width, height, filled, {.passes = 16, .unitVectorChannels = 3});
+/// ```cpp run
+/// #include <vector>
+/// const int width = 8, height = 8;
+/// std::vector<float> texels(std::size_t(width) * height * 4, 0.0f);  // RGBA, a normal in RGB
+/// std::vector<std::uint8_t> filled(std::size_t(width) * height, 0);  // 1 where the bake wrote a value
+/// texels[0] = 0.0f, texels[1] = 0.0f, texels[2] = 1.0f, texels[3] = 1.0f;  // one baked texel at (0, 0)
+/// filled[0] = 1;
+/// const std::uint64_t grown = glint::bake::dilate(texels, 4, width, height, filled, {.passes = 16, .unitVectorChannels = 3});
+/// // grown == 63: every texel is within 16 texels of (0, 0), and holds its normal now
+/// ```
 
 #include <cstdint>
 #include <span>

@@ -18,8 +18,13 @@
 // lock, the others wait and load. A file that fails to load (truncated, foreign, another
 // key) is rebuilt. Clearing the cache is deleting the directory.
 //
-//   glint::cut::CachedCut cut = glint::cut::cachedCut(scene, lights, {.name = "stage", .progress = true});
-//   cut.triangles.polygonMask[cut.triangles.trianglePolygon[t]] & 1u   // light 0 reaches triangle t
+/// ```cpp
+/// const glint::Mesh scene = glint::loadMesh("stage.ply");
+/// const std::vector<glint::cut::Light> lights = {{.position = {0, 4, 0}, .name = "lamp"}};
+/// const glint::cut::CachedCut cut = glint::cut::cachedCut(scene, lights, {.name = "stage", .progress = true});
+/// const std::size_t t = 0;
+/// const bool lit = cut.triangles.polygonMask[cut.triangles.trianglePolygon[t]] & 1u;  // light 0 reaches triangle t
+/// ```
 
 #include "glint/cut/cutter.h"
 
