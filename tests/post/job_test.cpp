@@ -72,7 +72,7 @@ TEST(PostJob, ALinkedProgramWritesWhatTheCommandWritesAndTheSameReport) {
   EXPECT_EQ(b["effects"], "kuwahara(size=3) → edges(scale=2,threshold=0.25) → sepia(i=0.3,q=0)");
   EXPECT_EQ(b["input"], (d / "in.png").string());
   EXPECT_EQ(b["frames"], 1);
-  EXPECT_EQ(b["memory_estimate_mib"], std::round(estimateMemoryMiB({64, 48}, true)));
+  EXPECT_EQ(b["memory_estimate_mib"], std::round(estimatePeakMemoryMiB({64, 48}, true)));
 }
 
 TEST(PostJob, TheInputKindIsDecidedInOnePlace) {

@@ -93,7 +93,7 @@ PostStats runImage(const PostJob& job, ToolRun& run) {
     frame = toFrame(loadImage(job.input), job.input, run);
   }
   const ivec2 size(frame.width(), frame.height());
-  run.checkMemory(estimateMemoryMiB(size, true), fmt::format("processing a {}x{} image", size.x, size.y));
+  run.checkMemory(estimatePeakMemoryMiB(size, true), fmt::format("processing a {}x{} image", size.x, size.y));
   const auto context = makeContext(job, size);
   PostStats stats{.kind = InputKind::Image, .input = job.input, .output = job.output, .size = size, .framesRead = 1,
                   .framesWritten = 1};
@@ -167,7 +167,7 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
   std::optional<ToolRun::Phase> opening(std::in_place, run, "open");
   video::Source source = video::Source::open(name, options);
   const video::SourceInfo& info = source.info();
-  run.checkMemory(estimateMemoryMiB(info.size, still), fmt::format("processing {}x{} video", info.size.x, info.size.y));
+  run.checkMemory(estimatePeakMemoryMiB(info.size, still), fmt::format("processing {}x{} video", info.size.x, info.size.y));
   const auto context = makeContext(job, info.size);
   if (still) return runStill(job, source, run);
   FrameStream stream(info.size, job.effects);
@@ -238,7 +238,7 @@ InputKind inputKind(const PostJob& job) {
   return video::isImagePath(job.input) ? InputKind::Image : InputKind::Video;
 }
 
-double estimateMemoryMiB(ivec2 size, bool singleFrame) {
+double estimatePeakMemoryMiB(ivec2 size, bool singleFrame) {
   return 150.0 + double(size.x) * double(size.y) * (singleFrame ? 45.0 : 280.0) / (1 << 20);
 }
 

@@ -77,7 +77,7 @@ InputKind inputKind(const PostJob& job);
 /// Peak memory of processing frames of `size`, in MiB: measured with posterize on llvmpipe
 /// (GL textures are process memory there): ~150 MiB, plus ~280 bytes per pixel for a video
 /// (frames in flight, float targets, the encoder), ~45 for a single frame.
-double estimateMemoryMiB(ivec2 size, bool singleFrame);
+double estimatePeakMemoryMiB(ivec2 size, bool singleFrame);
 
 /// What a job did; toJson() is the command's report (the fields beside ToolRun's own).
 struct PostStats {
