@@ -110,7 +110,8 @@ std::vector<fs::path> moduleCandidates(const ModuleLocation& module) {
   return candidates;
 }
 
-const void* loadModuleTable(const ModuleLocation& module, std::string_view what, const char* entry, int abiVersion) {
+const void* loadModuleTable(const ModuleLocation& module, std::string_view what, const char* entry, int abiVersion,
+                            const void* (*call)(void* entryPoint)) {
   const auto candidates = moduleCandidates(module);
   if (candidates.empty()) {
     fail(ErrorKind::Internal, "cannot load the {} module '{}': not found ({})", what,
@@ -121,9 +122,8 @@ const void* loadModuleTable(const ModuleLocation& module, std::string_view what,
     std::string reason;
     if (void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
       dlerror();
-      using EntryFn = const void* (*)();
-      const auto fn = reinterpret_cast<EntryFn>(dlsym(handle, entry));
-      const void* table = fn ? fn() : nullptr;
+      void* fn = dlsym(handle, entry);
+      const void* table = fn ? call(fn) : nullptr;
       int version = 0;
       if (table) std::memcpy(&version, table, sizeof version);  // the table's first member
       if (table && version == abiVersion) return table;

@@ -65,11 +65,18 @@ std::string moduleSearchDescription(const ModuleLocation& module);
 /// version is refused (a stale build). The module stays mapped for the life of the
 /// process. Error(Internal), one line, when no candidate loads: `what` ("image I/O",
 /// "video"), the module and the first candidate's reason, or where it was searched.
-const void* loadModuleTable(const ModuleLocation& module, std::string_view what, const char* entry, int abiVersion);
-/// The same, typed: `Table` is the module's function table (its first member the version).
+/// `call` calls the entry point at the address it is given through its real type (a call
+/// through another function type is undefined; UBSan's -fsanitize=function stops it).
+const void* loadModuleTable(const ModuleLocation& module, std::string_view what, const char* entry, int abiVersion,
+                            const void* (*call)(void* entryPoint));
+/// The same, typed: `Table` is the module's function table (its first member the version),
+/// and the entry point is a `const Table* entry()`.
 template <class Table>
 const Table& loadModule(const ModuleLocation& module, std::string_view what, const char* entry, int abiVersion) {
-  return *static_cast<const Table*>(loadModuleTable(module, what, entry, abiVersion));
+  const auto call = [](void* entryPoint) -> const void* {
+    return reinterpret_cast<const Table* (*)()>(entryPoint)();
+  };
+  return *static_cast<const Table*>(loadModuleTable(module, what, entry, abiVersion, call));
 }
 
 /// The first dataDirectories()/`relative` that is a regular file. Error(Input), one line,
