@@ -8,11 +8,13 @@
 #endif
 
 namespace glint::oiio {
-namespace fs = std::filesystem;
+namespace {
+// At namespace scope, not a function's static: it is built before main() and so destroyed
+// after image_io.cpp's loader, whose destructor joins a background load that still reads it
+// (a function's static, built by that thread, was destroyed first: a use after free at exit).
+const ModuleLocation kModule{GLINT_OIIO_MODULE, GLINT_OIIO_MODULE_INSTALLED, "GLINT_OIIO_MODULE"};
+}  // namespace
 
-const ModuleLocation& module() {
-  static const ModuleLocation location{GLINT_OIIO_MODULE, GLINT_OIIO_MODULE_INSTALLED, "GLINT_OIIO_MODULE"};
-  return location;
-}
+const ModuleLocation& module() { return kModule; }
 
 }  // namespace glint::oiio
