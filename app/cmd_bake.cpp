@@ -176,6 +176,10 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
       bake::outputType(*extra, a->bits);  // --bits applies to every map: check them all now
       outputs.push_back(*extra);
     }
+    checkDistinctFiles({{a->low, "the low poly"}, {a->high, "the high poly"}, {a->cage, "--cage"},
+                        {a->detail, "--height-detail"}},
+                       {{a->output, "-o"}, {a->ao, "--ao"}, {a->height, "--height"}, {a->missMask, "--miss-mask"},
+                        {a->tool.json, "--json"}});
     if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
     for (const auto& path : outputs) checkWritable(path);
     run.checkMemory(bake::estimatePeakMemoryMiB(options, {a->low, a->high, a->cage}),

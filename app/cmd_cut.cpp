@@ -90,6 +90,14 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
     for (const auto& l : a->lights) options.lights.push_back(cut::parseLight(l));
     std::vector<std::string> outputs = a->outputs;
     if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
+    {
+      std::vector<FileUse> in, out;
+      for (const auto& path : a->inputs) in.push_back({path, "the input"});
+      for (const auto& path : a->merge) in.push_back({path, "the shard"});
+      for (const auto& path : a->outputs) out.push_back({path, a->shard.empty() ? "-o" : "the shard file (-o)"});
+      out.push_back({a->tool.json, "--json"});
+      checkDistinctFiles(in, out);
+    }
     for (const auto& path : outputs) checkWritable(path);
     options.progress = run.showProgress();
     options.cancel = &run.cancelFlag();

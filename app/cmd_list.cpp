@@ -1,6 +1,7 @@
 // glint list — every scene and variant, with a line on what each shows.
 #include "common.h"
 
+#include "glint/core/error.h"
 #include "glint/scenes/scene.h"
 
 #include <fmt/format.h>
@@ -15,6 +16,9 @@ Command listCommand(CLI::App& app, const GlobalOptions&) {
   cmd->add_option("filter", *filter, "Show only variants whose name contains this text");
   return Command{.run = [names, filter] {
     const auto& registry = scenes::Registry::builtin();
+    if (registry.match(*filter).empty()) {
+      fail(ErrorKind::Usage, "no scene or variant name contains '{}' (`glint list` shows them all)", *filter);
+    }
     if (*names) {
       for (const auto& ref : registry.match(*filter)) fmt::print("{}\n", ref.fullName());
       return 0;

@@ -82,7 +82,8 @@ Command normalmapCommand(CLI::App& app, const GlobalOptions& global) {
     }
     if (args->output.empty()) fail(ErrorKind::Usage, "normalmap needs -o OUTPUT (or --check)");
     if (!std::isfinite(args->scale)) fail(ErrorKind::Usage, "--scale must be a finite number");
-    checkWritable(args->output);  // fail before working, not after
+    checkDistinctFiles({{args->input, "the height map"}}, {{args->output, "-o"}});
+    checkImageOutput(args->output);  // fail before working, not after
     const Image input = loadImage(args->input);
     if (input.channels() >= 3) {
       log::warn("{} has {} channels; using its luminance (0.2126 R + 0.7152 G + 0.0722 B) as the height", args->input,

@@ -3,6 +3,7 @@
 
 #include "glint/core/file.h"
 #include "glint/core/log.h"
+#include "glint/image/image.h"
 #include "glint/scenes/runner.h"
 
 #include <algorithm>
@@ -39,7 +40,7 @@ Command renderCommand(CLI::App& app, const GlobalOptions& global) {
       output = ref.fullName() + ".png";
       std::replace(output.begin(), output.end(), '/', '-');
     }
-    checkWritable(output);  // fail before rendering, not after
+    checkImageOutput(output);  // fail before rendering, not after
     scenes::RenderRequest request;
     if (!args->size.empty()) request.size = parseSize(args->size);
     if (args->timeSet) request.time = args->time;

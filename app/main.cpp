@@ -6,6 +6,7 @@
 #include "glint/core/log.h"
 #include "glint/image/image.h"
 
+#include <charconv>
 #include <cstdio>
 #include <map>
 #include <new>
@@ -21,7 +22,14 @@ namespace glint::app {
 
 void addToolOptions(CLI::App& command, ToolSettings& settings, const std::string& reportContents) {
   command.add_option("--threads", settings.threads, "Worker threads (default: all cores); the output does not depend on it")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            int value = -1;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+            if (ec != std::errc() || end != text.data() + text.size() || value < 0) return fmt::format("'{}' is not 0 (every core) or a number of threads", text);
+            return std::string();
+          },
+          "N"));
   command.add_flag("-q,--quiet", settings.quiet, "No progress bar or info messages, only warnings and errors");
   command.add_option("--max-memory", settings.maxMemory,
                      "Refuse a job estimated to need more memory than this (MiB, or 512M, 4G) with a clear error, before it starts");
@@ -36,7 +44,8 @@ int main(int argc, char** argv) {
   using namespace glint;
   CLI::App cli{"glint — advanced real-time rendering on OpenGL 4.5.\n"
                "Every technique is a scene with variants (`glint list`); render them headless, "
-               "build a gallery, or explore them in a window."};
+               "build a gallery, or explore them in a window.",
+               "glint"};  // the usage line says `glint`, not the binary's full path
   cli.require_subcommand(1);
   cli.fallthrough();  // global flags work after the subcommand too (glint render X -q)
   cli.set_help_all_flag("--help-all", "Show help for every subcommand");

@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -61,6 +62,65 @@ void removeStaleTemporaries(const fs::path& dir) {
   }
 }
 }  // namespace
+
+namespace {
+/// What makes two paths one file: device and inode when it exists, else the absolute,
+/// normalized path (symbolic links in the existing part resolved).
+struct FileIdentity {
+  bool exists = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+  fs::path path;
+
+  static FileIdentity of(const fs::path& p) {
+    FileIdentity id;
+    struct stat st {};
+    if (::stat(p.c_str(), &st) == 0) {
+      id.exists = true;
+      id.device = st.st_dev;
+      id.inode = st.st_ino;
+    }
+    std::error_code ec;
+    id.path = fs::weakly_canonical(fs::absolute(p, ec), ec);
+    if (ec) id.path = fs::absolute(p, ec).lexically_normal();
+    return id;
+  }
+  bool operator==(const FileIdentity& o) const {
+    if (exists || o.exists) return exists && o.exists && device == o.device && inode == o.inode;
+    return path == o.path;
+  }
+};
+
+bool skipped(const fs::path& p) { return p.empty() || p == "-"; }
+}  // namespace
+
+void checkDistinctFiles(const std::vector<FileUse>& inputs, const std::vector<FileUse>& outputs) {
+  std::vector<FileIdentity> in, out;
+  for (const FileUse& f : inputs) in.push_back(skipped(f.path) ? FileIdentity{} : FileIdentity::of(f.path));
+  for (std::size_t o = 0; o < outputs.size(); ++o) {
+    const FileUse& output = outputs[o];
+    if (output.path == "-") {
+      for (std::size_t p = 0; p < o; ++p)
+        if (outputs[p].path == "-") fail(ErrorKind::Usage, "{} and {} both write to stdout ('-'): give one of them a file", outputs[p].role, output.role);
+    }
+    if (skipped(output.path)) {
+      out.emplace_back();
+      continue;
+    }
+    const FileIdentity id = FileIdentity::of(output.path);
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      if (skipped(inputs[i].path) || !(in[i] == id)) continue;
+      fail(ErrorKind::Usage, "{} '{}' is {} '{}': writing it would destroy the input; choose another name", output.role,
+           output.path.string(), inputs[i].role, inputs[i].path.string());
+    }
+    for (std::size_t p = 0; p < o; ++p) {
+      if (skipped(outputs[p].path) || !(out[p] == id)) continue;
+      fail(ErrorKind::Usage, "{} '{}' and {} '{}' are the same file: one output would replace the other; choose "
+           "another name", outputs[p].role, outputs[p].path.string(), output.role, output.path.string());
+    }
+    out.push_back(id);
+  }
+}
 
 void checkWritable(const fs::path& destination) {
   const fs::path dir = destination.parent_path().empty() ? fs::path(".") : destination.parent_path();

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 
 namespace glint {
@@ -39,6 +40,15 @@ void Progress::finish() {
   if (m_enabled) std::fputc('\n', stderr);
 }
 
+std::string etaText(std::uint64_t done, std::uint64_t total, double elapsedSeconds) {
+  if (total == 0 || done == 0 || done >= total || !(elapsedSeconds >= 0.0)) return {};
+  const double left = elapsedSeconds / double(done) * double(total - done);
+  const auto seconds = static_cast<std::int64_t>(std::ceil(left));
+  if (seconds < 60) return fmt::format("ETA {} s", seconds);
+  if (seconds < 3600) return fmt::format("ETA {}:{:02}", seconds / 60, seconds % 60);
+  return fmt::format("ETA {}:{:02}:{:02}", seconds / 3600, seconds / 60 % 60, seconds % 60);
+}
+
 void Progress::draw(bool force) {
   if (!m_enabled || m_finished) return;
   using namespace std::chrono;
@@ -59,7 +69,9 @@ void Progress::draw(bool force) {
   std::string bar(filled, '#');
   bar.append(kWidth - filled, '.');
   // An unknown total (a camera, an endless generator): the count alone.
-  auto line = m_total ? fmt::format("\r{} [{}] {}/{} {:5.1f} s", m_label, bar, done, m_total, elapsed)
+  const std::string eta = etaText(done, m_total, elapsed);
+  auto line = m_total ? fmt::format("\r{} [{}] {}/{} {:5.1f} s{}", m_label, bar, done, m_total, elapsed,
+                                    eta.empty() ? "" : "  " + eta)
                       : fmt::format("\r{} {} {:5.1f} s", m_label, m_done.load(), elapsed);
   if (!m_detail.empty()) line += "  " + m_detail;
   // Pad so a shorter line fully overwrites a longer previous one.

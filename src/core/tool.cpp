@@ -99,8 +99,13 @@ void ToolRun::warn(const std::string& message) {
 void ToolRun::checkMemory(double estimateMiB, const std::string& what) {
   m_report["memory_estimate_mib"] = std::round(estimateMiB);
   if (m_maxMemoryMiB > 0.0 && estimateMiB > m_maxMemoryMiB) {
-    fail(ErrorKind::Usage, "{}: {} needs about {:.0f} MiB, more than --max-memory {:.0f} MiB allows", m_tool, what,
-         estimateMiB, m_maxMemoryMiB);
+    const auto size = [](double mib) {
+      return mib >= 10240.0 ? fmt::format("{:.1f} GiB", mib / 1024.0)
+             : mib >= 1.0   ? fmt::format("{:.0f} MiB", mib)
+                            : fmt::format("{:.0f} KiB", mib * 1024.0);
+    };
+    fail(ErrorKind::Usage, "{}: {} needs about {}, more than --max-memory {} ({}) allows", m_tool, what,
+         size(estimateMiB), m_settings.maxMemory, size(m_maxMemoryMiB));
   }
 }
 

@@ -228,6 +228,17 @@ Image loadImage(const fs::path& path) {
   }
 }
 
+void checkImageOutput(const fs::path& path) {
+  static constexpr std::array<std::string_view, 12> kWritten = {".png", ".jpg", ".jpeg", ".tga", ".tif", ".tiff",
+                                                                ".exr", ".hdr", ".bmp", ".webp", ".ppm", ".pgm"};
+  const std::string ext = lowerExtension(path);
+  if (std::find(kWritten.begin(), kWritten.end(), ext) == kWritten.end()) {
+    fail(ErrorKind::Usage, "cannot write '{}': {} is not an image format (use .png, .jpg, .tga, .tif, .exr, .hdr, "
+         ".bmp or .webp)", path.string(), ext.empty() ? "no extension" : "'" + ext + "'");
+  }
+  checkWritable(path);
+}
+
 void saveImage(const Image& image, const fs::path& path) {
   if (image.empty()) fail(ErrorKind::Internal, "cannot save an empty image to '{}'", path.string());
   const std::string ext = lowerExtension(path);

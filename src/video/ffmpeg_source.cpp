@@ -186,7 +186,9 @@ void FfmpegSource::keepAudio(AVPacket& p) {
   // Keep the audio of the selected frames: [first, last) in time.
   if (p.pts != AV_NOPTS_VALUE && info.frameRate.valid() && startPts != kNoTimestamp) {
     const double t = double(p.pts) * av_q2d(audio->timeBase()) - double(startPts) * av_q2d(format->streams[videoStream]->time_base);
-    const double from = double(options.firstFrame) / info.frameRate.value();
+    // From the first frame on, everything before it too: an encoder's priming packets have
+    // negative timestamps (AAC's first 1024 samples, Opus's pre-skip), and a copy keeps them.
+    const double from = options.firstFrame > 0 ? double(options.firstFrame) / info.frameRate.value() : -INFINITY;
     const double to = options.lastFrame >= 0 ? double(options.lastFrame) / info.frameRate.value() : INFINITY;
     if (t < from - 1e-6 || t >= to - 1e-6) return;
   }

@@ -215,9 +215,12 @@ TranscodeStats transcode(Source& source, Sink& sink, FrameProcessor& processor, 
     sink.writeAudio(std::move(p));
     ++stats.audioPackets;
   }
-  const auto t = Clock::now();
-  sink.finish();
-  stats.writeSeconds += since(t);
+  if (stats.framesWritten > 0) {  // an empty video is no result: the sink's temporary file goes
+    const auto t = Clock::now();
+    sink.finish();
+    stats.writeSeconds += since(t);
+    stats.finished = true;
+  }
   stats.interrupted = cancelled();
   stats.droppedFrames = droppedHere + source.droppedFrames();
   stats.seconds = since(start);

@@ -61,6 +61,14 @@ Codec parseCodec(const std::string& name) {
   fail(ErrorKind::Usage, "unknown codec '{}': h264 or ffv1 (lossless)", name);
 }
 
+void checkPreset(const std::string& preset) {
+  static constexpr std::array<std::string_view, 10> presets{"ultrafast", "superfast", "veryfast", "faster", "fast",
+                                                            "medium", "slow", "slower", "veryslow", "placebo"};
+  if (std::find(presets.begin(), presets.end(), preset) != presets.end()) return;
+  fail(ErrorKind::Usage, "unknown --preset '{}': ultrafast, superfast, veryfast, faster, fast, medium, slow, slower, "
+       "veryslow or placebo (faster = bigger files)", preset);
+}
+
 // ---------------------------------------------------------------------------
 Packet::Packet(AVPacket* packet) : m_packet(packet) {}
 Packet::~Packet() {
@@ -138,6 +146,7 @@ struct Sink::Impl {
 };
 
 Sink::Sink(const fs::path& destination, const SinkOptions& options) : m_impl(std::make_unique<Impl>()) {
+  if (options.codec == Codec::H264) checkPreset(options.preset);  // x264 would print its own error line
   backend::Status status;
   m_impl->destination = destination;
   m_impl->handle = api().openSink(destination, options, status);

@@ -19,6 +19,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace glint {
 
@@ -65,6 +66,28 @@ void writeTextAtomically(const std::filesystem::path& destination, std::string_v
 
 /// Reads a whole file; Error(Input) naming the file when it cannot be read.
 std::string readTextFile(const std::filesystem::path& path);
+
+/// A file a command reads or writes, with the name a message gives it: "the input",
+/// "-o", "--json", "--ao".
+struct FileUse {
+  std::filesystem::path path;
+  std::string role;
+};
+
+/// The promise that a command never destroys its own files, checked before any work:
+/// Error(Usage) when an output is one of the inputs, or two outputs are one file. Files are
+/// compared by identity (device and inode), so hard links, symbolic links and spellings such
+/// as "./a.png" or "dir/../a.png" count; outputs that do not exist yet are compared by their
+/// absolute, normalized path. Empty paths and "-" (stdin, stdout) are skipped.
+///
+/// ```cpp
+/// try {
+///   glint::checkDistinctFiles({{"clip.mp4", "the input"}}, {{"./clip.mp4", "-o"}});
+/// } catch (const glint::Error& e) {
+///   // "-o './clip.mp4' is the input 'clip.mp4': writing it would destroy the input; choose another name"
+/// }
+/// ```
+void checkDistinctFiles(const std::vector<FileUse>& inputs, const std::vector<FileUse>& outputs);
 
 /// Throws Error(Output) when `destination` could not be created: its directory is
 /// missing or not writable. Lets a long command fail before it starts working.

@@ -1,7 +1,7 @@
 #pragma once
 // glint/core/progress.h — a terminal progress bar for long work.
 //
-// Draws `label [#####.....] 42/100  3.1 s` on stderr, redrawn in place, only
+// Draws `label [#####.....] 42/100  3.1 s  ETA 4 s` on stderr, redrawn in place, only
 // when stderr is a terminal and logging is at Info or below; otherwise silent,
 // so logs and CI output stay clean. advance() is thread-safe and cheap (an
 // atomic add; redraws are rate-limited), so it may be called from TBB workers.
@@ -26,6 +26,12 @@
 #include <string>
 
 namespace glint {
+
+/// The estimated time left, as the bar shows it after the elapsed time: "ETA 42 s",
+/// "ETA 3:05" (minutes), "ETA 1:02:05" (hours); empty while nothing is done yet, when the
+/// total is unknown (0) or when the work is complete. A linear estimate: elapsed / done
+/// steps × the steps left.
+std::string etaText(std::uint64_t done, std::uint64_t total, double elapsedSeconds);
 
 class Progress {
 public:

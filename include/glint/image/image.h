@@ -94,6 +94,12 @@ Image loadImage(const std::filesystem::path& path);
 /// file cannot be written.
 void saveImage(const Image& image, const std::filesystem::path& path);
 
+/// The checks a command makes before working on an image it will write: Error(Usage) when
+/// the extension names no image format glint writes (.png .jpg .jpeg .tga .tif .tiff .exr
+/// .hdr .bmp .webp .ppm .pgm), Error(Output) when the file cannot be created
+/// (checkWritable).
+void checkImageOutput(const std::filesystem::path& path);
+
 /// Starts loading OpenImageIO (a dlopen()ed module: ~260 libraries, ~0.3 s) on a
 /// background thread and returns at once; loadImage/saveImage wait for it, and load it
 /// themselves when this was not called. Call it early in commands that touch images.

@@ -59,6 +59,8 @@ enum class Codec {
 
 /// "h264" / "ffv1" → Codec; Error(Usage) otherwise.
 Codec parseCodec(const std::string& name);
+/// Error(Usage) naming the choices unless `preset` is one of x264's (ultrafast .. placebo).
+void checkPreset(const std::string& preset);
 inline const char* codecName(Codec codec) { return codec == Codec::H264 ? "h264" : "ffv1"; }
 
 struct SinkOptions {

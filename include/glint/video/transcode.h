@@ -124,12 +124,16 @@ struct TranscodeStats {
   std::int64_t audioPackets = 0;    ///< audio packets copied
   bool interrupted = false;         ///< stopped by `cancel`: the output is a partial video
   std::optional<std::string> inputError;  ///< the source broke mid-stream (output finished up to there)
+  /// Whether the sink was finished (its file renamed into place): only when at least one
+  /// frame was written. With none, nothing is written and an existing file is left alone.
+  bool finished = false;
   double readSeconds = 0, processSeconds = 0, writeSeconds = 0;  ///< busy time of each stage
   double seconds = 0;               ///< wall time
 };
 
 /// Runs the pipeline until the source ends (or lastFrame), `cancel` is set or the source
-/// breaks; finishes the sink in those three cases. See above.
+/// breaks; finishes the sink in those three cases when it holds at least one frame (a video
+/// without frames is not a result: the sink is abandoned, its temporary file removed).
 TranscodeStats transcode(Source& source, Sink& sink, FrameProcessor& processor, const TranscodeOptions& options = {});
 
 }  // namespace glint::video

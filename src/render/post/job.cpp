@@ -65,12 +65,21 @@ void checkJob(const PostJob& job, const ToolRun& run) {
     if (job.frames && (job.frames->first < 0 || (job.frames->end >= 0 && job.frames->end <= job.frames->first))) {
       fail(ErrorKind::Usage, "--frames {}:{} selects no frames", job.frames->first, job.frames->end);
     }
+    if (job.codec == video::Codec::H264) video::checkPreset(job.preset);
+    if (job.crf < 0 || job.crf > 51) fail(ErrorKind::Usage, "--crf must be 0..51, got {}", job.crf);
     if (kind == InputKind::Image && !video::isImagePath(job.output)) {
       fail(ErrorKind::Usage, "'{}' is an image: write an image too (-o result.png), not '{}'", job.input, job.output);
     }
   }
+  // No output may be an input or another output (by file identity), and all must be writable.
+  std::vector<FileUse> inputs;
+  if (inputKind(job) == InputKind::Image || inputKind(job) == InputKind::Video) inputs.push_back({job.input, "the input"});
+  if (!job.camera.empty()) inputs.push_back({job.camera, "the camera"});
+  for (const std::string& part : job.parts) inputs.push_back({part, "the part"});
+  const std::string& json = run.settings().json;
+  checkDistinctFiles(inputs, {{job.output, "-o"}, {json, "--json"}});
   checkWritable(job.output);
-  if (const std::string& json = run.settings().json; !json.empty() && json != "-") checkWritable(json);
+  if (!json.empty() && json != "-") checkWritable(json);
 }
 
 PostStats runParts(const PostJob& job, ToolRun& run) {
@@ -152,6 +161,24 @@ void warnAboutSource(const PostStats& stats, const video::Source& source, const 
   }
 }
 
+/// The frames of [first, last) the container announces; −1 when it does not say.
+std::int64_t expectedFrames(const video::SourceInfo& info, const video::SourceOptions& options) {
+  if (info.frameCount < 0) return -1;
+  const std::int64_t end = options.lastFrame >= 0 ? std::min(options.lastFrame, info.frameCount) : info.frameCount;
+  return std::max<std::int64_t>(0, end - options.firstFrame);
+}
+
+/// "100:200" or "100:".
+std::string rangeText(const FrameRange& range) {
+  return range.end >= 0 ? fmt::format("{}:{}", range.first, range.end) : fmt::format("{}:", range.first);
+}
+
+/// "50 frames, 0..49", or "an unknown number of frames" when the container does not say.
+std::string countOf(const video::SourceInfo& info) {
+  if (info.frameCount <= 0) return "its container does not give its length";
+  return fmt::format("it has {} frames, 0..{}", info.frameCount, info.frameCount - 1);
+}
+
 PostStats runVideo(const PostJob& job, ToolRun& run) {
   const InputKind kind = inputKind(job);
   const std::string& name = kind == InputKind::Camera ? job.camera : !job.lavfi.empty() ? job.lavfi : job.input;
@@ -167,6 +194,9 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
   std::optional<ToolRun::Phase> opening(std::in_place, run, "open");
   video::Source source = video::Source::open(name, options);
   const video::SourceInfo& info = source.info();
+  if (job.frames && info.frameCount > 0 && job.frames->first > info.frameCount) {  // plainly past the end
+    fail(ErrorKind::Input, "--frames {} selects no frame of '{}' ({})", rangeText(*job.frames), name, countOf(info));
+  }
   run.checkMemory(estimatePeakMemoryMiB(info.size, still), fmt::format("processing {}x{} video", info.size.x, info.size.y));
   const auto context = makeContext(job, info.size);
   if (still) return runStill(job, source, run);
@@ -180,8 +210,10 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
   log::info("post: {} ({}x{}, {:.3g} fps, {}{}) → {} ({}): {}", name, info.size.x, info.size.y, info.frameRate.value(),
             info.codec, info.live ? ", live" : "", job.output, video::codecName(job.codec), stream.chain().describe());
 
-  std::int64_t total = info.frameCount >= 0 ? info.frameCount - options.firstFrame : 0;
-  if (options.lastFrame >= 0) total = options.lastFrame - options.firstFrame;
+  // The frames the container announces for the range (−1: it does not say).
+  const std::int64_t expected = expectedFrames(info, options);
+  std::int64_t total = expected >= 0 ? expected : 0;
+  if (expected < 0 && options.lastFrame >= 0) total = options.lastFrame - options.firstFrame;
   Progress progress("post", std::uint64_t(std::max<std::int64_t>(total, 0)));
   const auto start = std::chrono::steady_clock::now();
   auto lastDetail = start;
@@ -212,7 +244,7 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
                   .firstFrame = options.firstFrame,
                   .framesRead = t.framesRead,
                   .framesWritten = t.framesWritten,
-                  .framesExpected = info.frameCount >= 0 && options.lastFrame < 0 ? info.frameCount - options.firstFrame : -1,
+                  .framesExpected = expected,
                   .droppedFrames = t.droppedFrames,
                   .corruptPackets = source.corruptPackets(),
                   .decoderErrors = source.decoderErrors().count,
@@ -225,6 +257,23 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
                   .seconds = t.seconds,
                   .interrupted = t.interrupted,
                   .inputError = t.inputError};
+  if (!t.finished) {  // no frame: nothing written, an existing file left as it was
+    const std::string kept = std::filesystem::exists(job.output) ? fmt::format("'{}' was left as it was", job.output)
+                                                                 : fmt::format("'{}' was not written", job.output);
+    if (t.interrupted) fail(ErrorKind::Interrupted, "post: interrupted before the first frame; {}", kept);
+    if (t.inputError) fail(ErrorKind::Input, "{} (before the first frame); {}", *t.inputError, kept);
+    if (job.frames) {
+      fail(ErrorKind::Input, "--frames {} selects no frame of '{}' ({}); {}", rangeText(*job.frames), name,
+           countOf(info), kept);
+    }
+    fail(ErrorKind::Input, "'{}' has no video frame to process; {}", name, kept);
+  }
+  if (job.frames && job.frames->end >= 0 && !stats.partial() &&
+      t.framesWritten < job.frames->end - job.frames->first) {
+    run.warn(fmt::format("--frames {} runs past the end of '{}' ({}): {} frame(s) written ({}..{})",
+                         rangeText(*job.frames), name, countOf(info), t.framesWritten, job.frames->first,
+                         job.frames->first + t.framesWritten - 1));
+  }
   warnAboutSource(stats, source, name, run);
   return stats;
 }
