@@ -19,6 +19,7 @@ namespace {
 struct NormalMapArgs {
   std::string input;
   std::string output;
+  std::string format;
   float scale = NormalMapOptions{}.scale;
   bool wrap = false;
   std::string formula = "gradient";
@@ -50,13 +51,17 @@ Command normalmapCommand(CLI::App& app, const GlobalOptions& global) {
   auto* cmd = app.add_subcommand("normalmap", "Make a tangent-space normal map from a height map (seed 002)");
   cmd->footer(
       "Each texel's normal comes from its four neighbours n, s, e, w: n = normalize(S·(w−e)/2, S·(s−n)/2, 1), with "
-      "north up in the picture (OpenGL-style maps: green = up). The output is RGB(A) 8-bit, (n + 1)/2.\n"
+      "north up in the picture (OpenGL-style maps: green = up). The output is 8-bit RGB, (n + 1)/2; RGBA with the "
+      "input's alpha when the height map has one.\n"
       "Examples:\n  glint normalmap height.png -o normal.png\n"
       "  glint normalmap bricks.png -o bricks_n.png --scale 12 --wrap\n"
       "  glint normalmap --check baked.png      (is this a usable normal map?)\n"
+      "  convert photo.jpg -colorspace gray png:- | glint normalmap - -o - > normal.png\n"
       "Any size works (powers of two or not). A colour image is converted to its luminance (a warning says so).");
-  cmd->add_option("height", args->input, "Height map (any image format; 8-bit, 16-bit or float)")->required();
-  cmd->add_option("-o,--output", args->output, "Output normal map; the format follows the extension (required)");
+  cmd->add_option("height", args->input, "Height map (any image format; 8-bit, 16-bit or float; '-': stdin)")->required();
+  cmd->add_option("-o,--output", args->output, "Output normal map; the format follows the extension (required; '-': "
+                                               "stdout, see --format)");
+  cmd->add_option("--format", args->format, "The image format of -o - (stdout): png (default), tga, tif, exr, ...");
   cmd->add_option("--scale", args->scale,
                   "Height of the full 0..1 range in texel widths: larger = bumpier (default 8; negative inverts)");
   cmd->add_flag("--wrap", args->wrap, "Neighbours wrap around the edges (tileable textures); default clamps");
@@ -82,8 +87,11 @@ Command normalmapCommand(CLI::App& app, const GlobalOptions& global) {
     }
     if (args->output.empty()) fail(ErrorKind::Usage, "normalmap needs -o OUTPUT (or --check)");
     if (!std::isfinite(args->scale)) fail(ErrorKind::Usage, "--scale must be a finite number");
+    if (!args->format.empty() && args->output != "-") {
+      fail(ErrorKind::Usage, "--format is for -o - (stdout); a file's format follows its extension");
+    }
     checkDistinctFiles({{args->input, "the height map"}}, {{args->output, "-o"}});
-    checkImageOutput(args->output);  // fail before working, not after
+    checkImageOutput(args->output, args->format);  // fail before working, not after
     const Image input = loadImage(args->input);
     if (input.channels() >= 3) {
       log::warn("{} has {} channels; using its luminance (0.2126 R + 0.7152 G + 0.0722 B) as the height", args->input,
@@ -105,7 +113,14 @@ Command normalmapCommand(CLI::App& app, const GlobalOptions& global) {
     } else {
       normals = heightToNormalMap(input, options);
     }
-    saveImage(normals, args->output);
+    // RGB, the three components of the normal; RGBA carrying the input's alpha when it has one.
+    const bool alpha = input.channels() == 2 || input.channels() == 4;
+    Image written = normals.withChannels(alpha ? 4 : 3);
+    if (alpha) {
+      for (int y = 0; y < input.height(); ++y)
+        for (int x = 0; x < input.width(); ++x) written.set(x, y, 3, input.at(x, y, input.channels() - 1));
+    }
+    saveImage(written, args->output, args->format);
     log::info("{} ({}x{}, {}) → {} ({} normals, scale {}{})", args->input, input.width(), input.height(),
               pixelTypeName(input.type()), args->output, args->gpu ? "GPU" : "CPU", args->scale,
               args->wrap ? ", wrapped" : "");

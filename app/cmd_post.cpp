@@ -15,9 +15,9 @@ namespace glint::app {
 namespace {
 
 struct PostArgs {
-  std::string input, output, camera, lavfi, codec = "h264", preset = "medium", frames, size, rate;
+  std::string input, output, format, camera, lavfi, codec = "h264", preset = "medium", frames, size, rate;
   std::vector<std::string> effects, settings, concat;
-  int crf = 18;
+  int crf = 18, channels = 0;
   bool realtime = false, noAudio = false, listEffects = false;
   ToolSettings tool;
 };
@@ -36,7 +36,8 @@ render::post::FrameRange parseFrames(const std::string& text) {
 render::post::PostJob makeJob(const PostArgs& a, const GlobalOptions& global) {
   render::post::PostJob job{.input = a.input, .camera = a.camera, .lavfi = a.lavfi, .parts = a.concat,
                             .output = a.output, .crf = a.crf, .preset = a.preset, .realtime = a.realtime,
-                            .keepAudio = !a.noAudio, .glDebug = global.glDebug};
+                            .keepAudio = !a.noAudio, .channels = a.channels, .glDebug = global.glDebug};
+  job.format = a.format;
   job.effects = render::post::parseEffects(a.effects, a.settings);
   job.codec = video::parseCodec(a.codec);
   if (!a.frames.empty()) job.frames = parseFrames(a.frames);
@@ -53,6 +54,8 @@ constexpr const char* kFooter = R"(Examples:
   glint post --concat part1.mkv part2.mkv -o whole.mkv
   glint post --camera /dev/video0 --size 640x480 -o live.mp4 -e sobel
   glint post --input lavfi:testsrc2=size=1280x720:duration=5 -o test.mp4 -e spectrum
+  glint post - -o - -e sobel < photo.png > edges.png
+  ffmpeg -i clip.mp4 -f nut - | glint post - -o - --format nut -e sepia | ffplay -
 
 Inputs: an image (.png .jpg .tga .tif .exr .hdr .bmp .webp, through OpenImageIO), any video
 file FFmpeg reads, a V4L2 camera (--camera), or a lavfi filter graph (--input lavfi:GRAPH, or
@@ -79,8 +82,11 @@ Command postCommand(CLI::App& app, const GlobalOptions& global) {
   auto* cmd = app.add_subcommand("post", "Post-process an image, a video, a camera or a lavfi source on the GPU "
                                          "(sepia, Sobel, Kuwahara, FFT filters)");
   cmd->footer(std::string(kFooter) + "\n\n" + render::post::effectHelp());
-  cmd->add_option("file", a->input, "Image or video file to read (or lavfi:GRAPH)");
-  cmd->add_option("-o,--output", a->output, "Image or video to write; format from the extension");
+  cmd->add_option("file", a->input, "Image or video file to read (or lavfi:GRAPH; '-': stdin, an image when the "
+                                    "output is one, else a video stream)");
+  cmd->add_option("-o,--output", a->output, "Image or video to write; format from the extension ('-': stdout, see --format)");
+  cmd->add_option("--format", a->format, "The format of -o - (stdout): an image (png, the default; jpg, tga, tif, exr) "
+                                         "or a video container that streams (mkv, nut, ts)");
   cmd->add_option("-e,--effect", a->effects, "An effect, in chain order: NAME or NAME:param=value,... (list below)");
   cmd->add_option("--set", a->settings, "param=value (every effect that has it) or effect.param=value");
   cmd->add_option("--camera", a->camera, "Read a V4L2 camera, e.g. /dev/video0 (a live source)");
@@ -96,6 +102,8 @@ Command postCommand(CLI::App& app, const GlobalOptions& global) {
                                          "over machines, join the parts with --concat");
   cmd->add_option("--concat", a->concat, "Join parts made with --frames (in order) into -o, copying packets");
   cmd->add_flag("--no-audio", a->noAudio, "Do not copy the input's audio");
+  cmd->add_option("--channels", a->channels, "Image output: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA (default: the "
+                                             "input's; colour when an effect colours a grey input)");
   cmd->add_flag("--effects", a->listEffects, "List the effects and their parameters, and exit");
   addToolOptions(*cmd, a->tool, "input, output, effects, frames read/written/dropped, fps, audio, partial");
 

@@ -209,7 +209,77 @@ void requireImageIo() {
        oiio::module().built.filename().string(), moduleSearchDescription(oiio::module()));
 }
 
+
+// ---------------------------------------------------------------------------
+namespace {
+// "-": standard input and output. Image codecs read and write files, so stdin is read
+// into a temporary file (named with the extension its first bytes say) and an image for
+// stdout is written to one, then copied out.
+
+/// A temporary file in $TMPDIR (or /tmp) ending in `extension`, removed with the object.
+class TemporaryFile {
+public:
+  explicit TemporaryFile(std::string_view extension) {
+    const char* dir = std::getenv("TMPDIR");
+    std::string name = fmt::format("{}/glint-XXXXXX{}", dir && *dir ? dir : "/tmp", extension);
+    const int fd = ::mkstemps(name.data(), int(extension.size()));
+    if (fd < 0) fail(ErrorKind::Output, "cannot make a temporary file in '{}': {}", dir && *dir ? dir : "/tmp", std::strerror(errno));
+    ::close(fd);
+    m_path = name;
+  }
+  ~TemporaryFile() {
+    std::error_code ignored;
+    fs::remove(m_path, ignored);
+  }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  const fs::path& path() const { return m_path; }
+
+private:
+  fs::path m_path;
+};
+
+/// The extension an image file's first bytes say ("" when none matches; TGA has no magic).
+std::string sniffExtension(std::string_view head) {
+  using namespace std::string_view_literals;
+  const auto starts = [&](std::string_view magic) { return head.substr(0, magic.size()) == magic; };
+  if (starts("\x89PNG"sv)) return ".png";
+  if (starts("\xFF\xD8\xFF"sv)) return ".jpg";
+  if (starts("II*\0"sv) || starts("MM\0*"sv)) return ".tif";
+  if (starts("\x76\x2F\x31\x01"sv)) return ".exr";
+  if (starts("#?RADIANCE") || starts("#?RGBE")) return ".hdr";
+  if (starts("BM")) return ".bmp";
+  if (starts("RIFF") && head.size() >= 12 && head.substr(8, 4) == "WEBP") return ".webp";
+  if (starts("P5") || starts("P6")) return ".ppm";
+  return "";
+}
+
+Image loadStdin() {
+  std::string bytes;
+  char buffer[1 << 16];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, stdin)) > 0;) bytes.append(buffer, n);
+  if (std::ferror(stdin)) fail(ErrorKind::Input, "cannot read stdin: {}", std::strerror(errno));
+  if (bytes.empty()) fail(ErrorKind::Input, "stdin is empty: pipe an image into it (glint ... - < photo.png)");
+  std::string ext = sniffExtension(bytes);
+  if (ext.empty()) ext = ".tga";  // the one common format without a magic number
+  TemporaryFile file(ext);
+  {
+    std::FILE* f = std::fopen(file.path().c_str(), "wb");
+    if (!f || std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size() || std::fclose(f) != 0) {
+      fail(ErrorKind::Output, "cannot copy stdin to '{}': {}", file.path().string(), std::strerror(errno));
+    }
+  }
+  try {
+    return loadImage(file.path());
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::Input) throw;
+    fail(ErrorKind::Input, "cannot read an image from stdin: not PNG, JPEG, TIFF, EXR, HDR, BMP, WebP, PNM or TGA");
+  }
+}
+}  // namespace
+
 Image loadImage(const fs::path& path) {
+  if (path == "-") return loadStdin();
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", path.string());
   if (fs::is_directory(path, ec)) fail(ErrorKind::Input, "cannot read '{}': it is a directory", path.string());
@@ -228,18 +298,37 @@ Image loadImage(const fs::path& path) {
   }
 }
 
-void checkImageOutput(const fs::path& path) {
+namespace {
+/// The extension an image written to `path` gets: its own, or for "-" (stdout) `format`'s
+/// ("png" or ".png"; PNG when empty). Lower case.
+std::string outputExtension(const fs::path& path, std::string_view format) {
+  if (path != "-") return lowerExtension(path);
+  if (format.empty()) return ".png";
+  return lowerExtension(fs::path("stdout" + std::string(format.starts_with('.') ? "" : ".") + std::string(format)));
+}
+}  // namespace
+
+void checkImageOutput(const fs::path& path, std::string_view format) {
   static constexpr std::array<std::string_view, 12> kWritten = {".png", ".jpg", ".jpeg", ".tga", ".tif", ".tiff",
                                                                 ".exr", ".hdr", ".bmp", ".webp", ".ppm", ".pgm"};
-  const std::string ext = lowerExtension(path);
+  const std::string ext = outputExtension(path, format);
   if (std::find(kWritten.begin(), kWritten.end(), ext) == kWritten.end()) {
     fail(ErrorKind::Usage, "cannot write '{}': {} is not an image format (use .png, .jpg, .tga, .tif, .exr, .hdr, "
          ".bmp or .webp)", path.string(), ext.empty() ? "no extension" : "'" + ext + "'");
   }
-  checkWritable(path);
+  if (path != "-") checkWritable(path);
 }
 
-void saveImage(const Image& image, const fs::path& path) {
+void saveImage(const Image& image, const fs::path& path, std::string_view format) {
+  if (path == "-") {  // encoded to a temporary file, then copied to stdout
+    TemporaryFile file(outputExtension(path, format));
+    saveImage(image, file.path());
+    const std::string bytes = readTextFile(file.path());
+    if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0) {
+      fail(ErrorKind::Output, "cannot write the image to stdout: {}", std::strerror(errno));
+    }
+    return;
+  }
   if (image.empty()) fail(ErrorKind::Internal, "cannot save an empty image to '{}'", path.string());
   const std::string ext = lowerExtension(path);
   const PixelType widest = widestTypeFor(ext);

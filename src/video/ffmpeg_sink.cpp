@@ -22,8 +22,20 @@ struct OutputDeleter {
 using OutputPtr = std::unique_ptr<AVFormatContext, OutputDeleter>;
 
 // The muxer for a destination's extension; Error(Usage) when FFmpeg knows none.
-OutputPtr createOutput(const fs::path& destination, const fs::path& tmp) {
-  const AVOutputFormat* format = av_guess_format(nullptr, destination.filename().c_str(), nullptr);
+OutputPtr createOutput(const fs::path& destination, const fs::path& tmp, const std::string& streamFormat = {}) {
+  const bool toStdout = destination == "-";
+  const AVOutputFormat* format =
+      av_guess_format(nullptr, toStdout ? ("stdout." + streamFormat).c_str() : destination.filename().c_str(), nullptr);
+  if (toStdout) {
+    if (streamFormat.empty()) fail(ErrorKind::Usage, "-o - (stdout) needs --format: mkv, nut or ts for a video");
+    if (!format) fail(ErrorKind::Usage, "--format {}: not a video container FFmpeg knows (mkv, nut or ts stream)", streamFormat);
+    const std::string_view name = format->name;
+    if (name.find("mp4") != std::string_view::npos || name.find("mov") != std::string_view::npos ||
+        name == "ipod" || name == "3gp" || name == "ismv" || name == "f4v") {
+      fail(ErrorKind::Usage, "an {} cannot be written to stdout: its index goes at the end of the file, which needs "
+           "seeking; use --format mkv, nut or ts", streamFormat);
+    }
+  }
   if (!format) {
     fail(ErrorKind::Usage, "cannot tell the video format of '{}' from its extension (use .mp4, .mkv, .mov, .avi or .nut)",
          destination.string());
@@ -115,8 +127,9 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_
                                                       : avcodec_find_encoder(AV_CODEC_ID_FFV1);
   if (!codec) fail(ErrorKind::Internal, "this FFmpeg has no {} encoder", options.codec == Codec::H264 ? "libx264" : "FFV1");
 
-  s.file.emplace(destination);
-  s.output = createOutput(destination, s.file->temporary());
+  // A file is written atomically; stdout ("-") as it is made.
+  const fs::path target = destination == "-" ? fs::path("pipe:1") : (s.file.emplace(destination), s.file->temporary());
+  s.output = createOutput(destination, target, options.format);
 
   s.encoder.reset(avcodec_alloc_context3(codec));
   AVCodecContext& e = *s.encoder;
@@ -165,7 +178,7 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_
     }
   }
 
-  openFile(*s.output, s.file->temporary(), destination);
+  openFile(*s.output, target, destination);
   if (const int h = avformat_write_header(s.output.get(), nullptr); h < 0) {
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(h));
   }
@@ -232,7 +245,7 @@ void FfmpegSink::finish() {
     fail(ErrorKind::Output, "cannot write '{}': {}", s.destination.string(), ffmpegError(t));
   }
   if (!(s.output->oformat->flags & AVFMT_NOFILE)) avio_closep(&s.output->pb);
-  s.file->commit();
+  if (s.file) s.file->commit();
   s.finished = true;
 }
 

@@ -90,6 +90,8 @@ void FfmpegSource::open(const std::string& name) {
     inputFormat = av_find_input_format("lavfi");
     if (!inputFormat) fail(ErrorKind::Input, "this FFmpeg has no lavfi input (libavdevice)");
     if (url.empty()) fail(ErrorKind::Usage, "lavfi: needs a filter graph, e.g. lavfi:testsrc2=size=640x480:duration=2");
+  } else if (name == "-") {
+    url = "pipe:0";  // a stream: no seeking (MP4 only with its index first)
   } else {
     std::error_code ec;
     if (!std::filesystem::exists(name, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", name);
@@ -127,7 +129,13 @@ void FfmpegSource::open(const std::string& name) {
     fail(ErrorKind::Input, "{}: cannot decode its {} video: {}", what, codec->name, ffmpegError(o));
   }
   if (decoder->width <= 0 || decoder->height <= 0) fail(ErrorKind::Input, "{}: the video has no size", what);
-  if (decoder->pix_fmt == AV_PIX_FMT_NONE) fail(ErrorKind::Input, "{}: unknown pixel format", what);
+  if (decoder->pix_fmt == AV_PIX_FMT_NONE) {
+    if (name == "-" && std::string_view(format->iformat->name).find("mp4") != std::string_view::npos) {
+      fail(ErrorKind::Input, "an MP4 cannot be read from stdin unless its index comes first (ffmpeg -movflags "
+           "+faststart): give the file's name, or pipe a container that streams (mkv, nut, ts)");
+    }
+    fail(ErrorKind::Input, "{}: unknown pixel format", what);
+  }
 
   info.size = {decoder->width, decoder->height};
   AVRational rate = stream->avg_frame_rate.num > 0 ? stream->avg_frame_rate : stream->r_frame_rate;

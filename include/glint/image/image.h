@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string_view>
 #include <span>
 #include <string>
 #include <vector>
@@ -83,22 +84,24 @@ private:
   std::vector<std::byte> m_data;
 };
 
-/// Reads an image file. Error(Input) with the reason when it is missing, unreadable or corrupt,
+/// Reads an image file ("-": standard input, any format with a magic number, or TGA).
+/// Error(Input) with the reason when it is missing, unreadable or corrupt,
 /// or when its header claims more than 16384² pixels or more than 65536 on a side (refused
 /// before any pixel memory is allocated). 8-bit files load as U8, 16-bit as U16, everything
 /// else (half, float) as F32.
 Image loadImage(const std::filesystem::path& path);
 
-/// Writes an image atomically; the format follows the extension. Error(Output) when the
-/// format cannot hold the image (e.g. float into PNG is converted to 16-bit first) or the
-/// file cannot be written.
-void saveImage(const Image& image, const std::filesystem::path& path);
+/// Writes an image atomically; the format follows the extension. Wider pixels than the
+/// format holds are converted (float into PNG becomes 16-bit). "-" writes to standard output
+/// in `format` ("png", "jpg", ...; PNG when empty). Error(Output) when the file cannot be
+/// written.
+void saveImage(const Image& image, const std::filesystem::path& path, std::string_view format = {});
 
 /// The checks a command makes before working on an image it will write: Error(Usage) when
 /// the extension names no image format glint writes (.png .jpg .jpeg .tga .tif .tiff .exr
 /// .hdr .bmp .webp .ppm .pgm), Error(Output) when the file cannot be created
-/// (checkWritable).
-void checkImageOutput(const std::filesystem::path& path);
+/// (checkWritable). For "-" (stdout) the format is `format`'s, as saveImage.
+void checkImageOutput(const std::filesystem::path& path, std::string_view format = {});
 
 /// Starts loading OpenImageIO (a dlopen()ed module: ~260 libraries, ~0.3 s) on a
 /// background thread and returns at once; loadImage/saveImage wait for it, and load it

@@ -75,6 +75,10 @@ struct SinkOptions {
   /// video (--frames a:b) are written so: their timestamps then join without overlap.
   bool noReordering = false;
   const AudioTrack* audio = nullptr;  ///< copy this audio stream (packets through writeAudio)
+  /// For the destination "-" (standard output): the container, as an extension ("mkv",
+  /// "nut", "ts"). Written as it is made, not atomically; MP4 and MOV cannot stream (their
+  /// index is written at the end, which needs seeking): Error(Usage).
+  std::string format;
 };
 
 class Sink {

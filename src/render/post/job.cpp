@@ -31,6 +31,24 @@ Image toFrame(const Image& image, const std::string& name, ToolRun& run) {
   return rgba.type() == PixelType::U8 ? rgba : rgba.converted(PixelType::U8);
 }
 
+/// The processed RGBA frame with the channels the output keeps: `asked` (--channels), else
+/// the input's (RGB stays RGB, grey stays grey), except that a grey input whose effects
+/// made colour (sepia) is written in colour, with a line that says so.
+Image withOutputChannels(const Image& rgba, int inputChannels, int asked, const std::string& effects) {
+  if (asked > 0) return rgba.withChannels(asked);
+  int channels = inputChannels;
+  if (channels <= 2) {
+    const auto px = rgba.pixels<std::uint8_t>();
+    bool grey = true;
+    for (std::size_t i = 0; grey && i + 3 < px.size(); i += 4) grey = px[i] == px[i + 1] && px[i] == px[i + 2];
+    if (!grey) {
+      channels += 2;
+      log::info("post: the input is grey but {} gives colour: written as {}", effects, channels == 3 ? "RGB" : "RGBA");
+    }
+  }
+  return rgba.withChannels(channels);
+}
+
 std::unique_ptr<gl::HeadlessContext> makeContext(const PostJob& job, ivec2 size) {
   auto context = gl::HeadlessContext::create({.profile = gl::Profile::Core, .debug = job.glDebug});
   const int largest = gl::queryContextInfo().maxTextureSize;
@@ -65,9 +83,11 @@ void checkJob(const PostJob& job, const ToolRun& run) {
     if (job.frames && (job.frames->first < 0 || (job.frames->end >= 0 && job.frames->end <= job.frames->first))) {
       fail(ErrorKind::Usage, "--frames {}:{} selects no frames", job.frames->first, job.frames->end);
     }
+    if (job.channels < 0 || job.channels > 4) fail(ErrorKind::Usage, "--channels must be 1 (grey), 2 (grey + alpha), 3 (RGB) or 4 (RGBA), got {}", job.channels);
+    if (job.channels > 0 && !imageOutput(job)) fail(ErrorKind::Usage, "--channels is for image outputs (a video is RGB)");
     if (job.codec == video::Codec::H264) video::checkPreset(job.preset);
     if (job.crf < 0 || job.crf > 51) fail(ErrorKind::Usage, "--crf must be 0..51, got {}", job.crf);
-    if (kind == InputKind::Image && !video::isImagePath(job.output)) {
+    if (kind == InputKind::Image && !imageOutput(job)) {
       fail(ErrorKind::Usage, "'{}' is an image: write an image too (-o result.png), not '{}'", job.input, job.output);
     }
   }
@@ -78,7 +98,9 @@ void checkJob(const PostJob& job, const ToolRun& run) {
   for (const std::string& part : job.parts) inputs.push_back({part, "the part"});
   const std::string& json = run.settings().json;
   checkDistinctFiles(inputs, {{job.output, "-o"}, {json, "--json"}});
-  checkWritable(job.output);
+  if (!job.format.empty() && job.output != "-") fail(ErrorKind::Usage, "--format is for -o - (stdout); a file's format follows its extension");
+  if (imageOutput(job)) checkImageOutput(job.output, job.format);
+  else if (job.output != "-") checkWritable(job.output);
   if (!json.empty() && json != "-") checkWritable(json);
 }
 
@@ -97,9 +119,12 @@ PostStats runParts(const PostJob& job, ToolRun& run) {
 PostStats runImage(const PostJob& job, ToolRun& run) {
   requireImageIo();
   Image frame;
+  int inputChannels = 4;
   {
     auto timed = run.phase("load");
-    frame = toFrame(loadImage(job.input), job.input, run);
+    const Image input = loadImage(job.input);
+    inputChannels = input.channels();
+    frame = toFrame(input, job.input, run);
   }
   const ivec2 size(frame.width(), frame.height());
   run.checkMemory(estimatePeakMemoryMiB(size, true), fmt::format("processing a {}x{} image", size.x, size.y));
@@ -116,7 +141,7 @@ PostStats runImage(const PostJob& job, ToolRun& run) {
   run.throwIfInterrupted();
   {
     auto timed = run.phase("write");
-    saveImage(result, job.output);
+    saveImage(withOutputChannels(result, inputChannels, job.channels, stats.effects), job.output, job.format);
   }
   log::info("post: {} ({}x{}) → {}: {}", job.input, size.x, size.y, job.output, stats.effects);
   return stats;
@@ -130,7 +155,7 @@ PostStats runStill(const PostJob& job, video::Source& source, ToolRun& run) {
   Chain chain(source.info().size, job.effects);
   const Image result = chain.run(frame.image);
   run.throwIfInterrupted();
-  saveImage(result, job.output);
+  saveImage(withOutputChannels(result, 3, job.channels, chain.describe()), job.output, job.format);  // video: RGB
   log::info("post: frame {} ({:.3f} s) of {} → {}", frame.index, frame.seconds, source.info().name, job.output);
   return {.kind = inputKind(job), .still = true, .input = source.info().name, .output = job.output,
           .size = source.info().size, .effects = chain.describe(), .frame = frame.index, .framesRead = 1,
@@ -189,7 +214,7 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
     options.firstFrame = job.frames->first;
     options.lastFrame = job.frames->end;
   }
-  const bool still = video::isImagePath(job.output);
+  const bool still = imageOutput(job);
 
   std::optional<ToolRun::Phase> opening(std::in_place, run, "open");
   video::Source source = video::Source::open(name, options);
@@ -204,7 +229,7 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
   video::Sink sink(job.output, {.codec = job.codec, .size = info.size, .frameRate = info.frameRate,
                                 .timeBase = info.timeBase, .crf = job.crf, .preset = job.preset,
                                 .threads = run.settings().threads, .noReordering = job.frames.has_value(),
-                                .audio = job.keepAudio ? source.audio() : nullptr});
+                                .audio = job.keepAudio ? source.audio() : nullptr, .format = job.format});
   opening.reset();
   if (!sink.audioNote().empty()) run.warn(sink.audioNote());
   log::info("post: {} ({}x{}, {:.3g} fps, {}{}) → {} ({}): {}", name, info.size.x, info.size.y, info.frameRate.value(),
@@ -280,10 +305,16 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
 
 }  // namespace
 
+bool imageOutput(const PostJob& job) {
+  if (job.output == "-") return job.format.empty() || video::isImagePath("stdout." + job.format);
+  return video::isImagePath(job.output);
+}
+
 InputKind inputKind(const PostJob& job) {
   if (!job.parts.empty()) return InputKind::Parts;
   if (!job.camera.empty()) return InputKind::Camera;
   if (!job.lavfi.empty() || job.input.starts_with("lavfi:")) return InputKind::Lavfi;
+  if (job.input == "-") return imageOutput(job) ? InputKind::Image : InputKind::Video;  // stdin: see job.h
   return video::isImagePath(job.input) ? InputKind::Image : InputKind::Video;
 }
 
@@ -344,7 +375,7 @@ PostStats runJob(const PostJob& job, ToolRun& run) {
   checkJob(job, run);
   const InputKind kind = inputKind(job);
   if (kind == InputKind::Parts) return runParts(job, run);
-  if (kind == InputKind::Image || video::isImagePath(job.output)) preloadImageIo();  // while the GPU starts
+  if (kind == InputKind::Image || imageOutput(job)) preloadImageIo();  // while the GPU starts
   return kind == InputKind::Image ? runImage(job, run) : runVideo(job, run);
 }
 

@@ -58,7 +58,11 @@ struct PostJob {
   std::string camera;              ///< instead of input: a V4L2 device ("/dev/video0")
   std::string lavfi;               ///< instead of input: "lavfi:GRAPH" (`--input`)
   std::vector<std::string> parts;  ///< instead of input and effects: parts to join, in order
-  std::string output;              ///< an image or a video; the format from its extension
+  std::string output;              ///< an image or a video; the format from its extension; "-": stdout
+  /// The format of "-" (stdout): an image extension (png, jpg, ...; the default, PNG) or a
+  /// streamable container (mkv, nut, ts). Input "-" (stdin) is read as an image when the
+  /// output is one, else as a video stream.
+  std::string format;
   std::vector<Effect> effects;     ///< in chain order (parseEffects)
   video::Codec codec = video::Codec::H264;
   int crf = 18;                    ///< H.264 quality, 0..51
@@ -68,11 +72,16 @@ struct PostJob {
   std::optional<double> cameraRate;  ///< camera: the frame rate to ask for, positive
   bool realtime = false;           ///< pace a file or lavfi source and treat it as live
   bool keepAudio = true;           ///< copy the input's audio when the output can hold it
+  /// Channels of an image written: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA; 0: the input's
+  /// (a video's frames are RGB), in colour when the effects turn a grey input into colour.
+  int channels = 0;
   bool glDebug = false;            ///< a GL debug context
 };
 
 /// The one place the kind of input is worked out (after the one-input check).
 InputKind inputKind(const PostJob& job);
+/// Whether the job writes an image (by -o's extension, or --format for "-").
+bool imageOutput(const PostJob& job);
 
 /// Peak memory of processing frames of `size`, in MiB: measured with posterize on llvmpipe
 /// (GL textures are process memory there): ~150 MiB, plus ~280 bytes per pixel for a video
