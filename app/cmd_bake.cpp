@@ -40,14 +40,13 @@ bake::Distance parseDistance(const std::string& text, const char* option) {
   std::string number = text;
   const bool relative = !number.empty() && number.back() == '%';
   if (relative) number.pop_back();
-  std::size_t used = 0;
-  float value = 0.0f;
+  float value = -1.0f;
   try {
-    value = std::stof(number, &used);
-  } catch (const std::exception&) {
-    used = 0;
+    value = parseFloat(number, option);  // the whole text, finite, no locale
+  } catch (const Error&) {
+    value = -1.0f;
   }
-  if (used == 0 || used != number.size() || !(value >= 0.0f) || !std::isfinite(value)) {
+  if (!(value >= 0.0f)) {
     fail(ErrorKind::Usage, "{} must be a distance like 0.2 (scene units) or 5% (of the low poly's size), got '{}'",
          option, text);
   }
@@ -59,11 +58,7 @@ mat4 parseMatrix(const std::string& text) {
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    try {
-      v.push_back(std::stof(item));
-    } catch (const std::exception&) {
-      fail(ErrorKind::Usage, "--world-matrix: '{}' is not a number", item);
-    }
+    v.push_back(parseFloat(item, "--world-matrix"));
   }
   if (v.size() != 16) fail(ErrorKind::Usage, "--world-matrix needs 16 comma-separated numbers (row by row), got {}", v.size());
   mat4 m;
@@ -144,7 +139,12 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
     (void)global;
     ToolRun run("bake", a->tool);
 
-    // Options and outputs first: fail in a millisecond, not after the bake.
+    // Options and outputs first: fail in a millisecond, not after the bake. No output may
+    // be an input or another output (by file identity: core/file.h).
+    checkDistinctFiles({{a->low, "the low poly"}, {a->high, "the high poly"}, {a->cage, "--cage"},
+                        {a->detail, "--height-detail"}},
+                       {{a->output, "-o"}, {a->ao, "--ao"}, {a->height, "--height"}, {a->missMask, "--miss-mask"},
+                        {a->tool.json, "--json"}});
     bake::BakeOptions options;
     const ivec2 size = parseSize(a->size);
     options.width = size.x;
@@ -176,10 +176,6 @@ Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
       bake::outputType(*extra, a->bits);  // --bits applies to every map: check them all now
       outputs.push_back(*extra);
     }
-    checkDistinctFiles({{a->low, "the low poly"}, {a->high, "the high poly"}, {a->cage, "--cage"},
-                        {a->detail, "--height-detail"}},
-                       {{a->output, "-o"}, {a->ao, "--ao"}, {a->height, "--height"}, {a->missMask, "--miss-mask"},
-                        {a->tool.json, "--json"}});
     if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
     for (const auto& path : outputs) checkWritable(path);
     run.checkMemory(bake::estimatePeakMemoryMiB(options, {a->low, a->high, a->cage}),

@@ -78,6 +78,15 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
   return Command{.run = [a, &global] {
     (void)global;
     ToolRun run("cut", a->tool);
+    // No output may be an input or another output (by file identity: core/file.h).
+    {
+      std::vector<FileUse> in, out;
+      for (const auto& path : a->inputs) in.push_back({path, "the input"});
+      for (const auto& path : a->merge) in.push_back({path, "the shard"});
+      for (const auto& path : a->outputs) out.push_back({path, a->shard.empty() ? "-o" : "the shard file (-o)"});
+      out.push_back({a->tool.json, "--json"});
+      checkDistinctFiles(in, out);
+    }
     if (!a->shard.empty() && !a->merge.empty()) fail(ErrorKind::Usage, "--shard and --merge do not go together");
     std::optional<ShardSpec> shard;
     if (!a->shard.empty()) {
@@ -90,14 +99,6 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
     for (const auto& l : a->lights) options.lights.push_back(cut::parseLight(l));
     std::vector<std::string> outputs = a->outputs;
     if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
-    {
-      std::vector<FileUse> in, out;
-      for (const auto& path : a->inputs) in.push_back({path, "the input"});
-      for (const auto& path : a->merge) in.push_back({path, "the shard"});
-      for (const auto& path : a->outputs) out.push_back({path, a->shard.empty() ? "-o" : "the shard file (-o)"});
-      out.push_back({a->tool.json, "--json"});
-      checkDistinctFiles(in, out);
-    }
     for (const auto& path : outputs) checkWritable(path);
     options.progress = run.showProgress();
     options.cancel = &run.cancelFlag();

@@ -153,6 +153,7 @@ void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleRe
     ao += r.ao;
     height += r.height;
     missed += r.hit ? 0 : 1;
+    counters.inward += r.inward ? 1 : 0;
   }
   counters.samples += p.count;
   counters.hits += p.count - missed;
@@ -361,6 +362,7 @@ void bakeTiles(Context& ctx, BakeStats& stats) {
     stats.conservativeTexels += c.conservative;
     stats.samples += c.samples;
     stats.hits += c.hits;
+    stats.inwardHits += c.inward;
     stats.misses += c.misses;
     stats.rays += c.rays;
     stats.aoRays += c.aoRays;
@@ -377,6 +379,16 @@ void warnAboutSamples(const Context& ctx, const BakeStats& stats, std::vector<st
     const std::string message = fmt::format(
         "low-poly mesh: {} samples lie in more than one UV triangle (overlapping or mirrored-onto-itself UVs); "
         "each texel takes the lowest-numbered triangle", stats.overlappingSamples);
+    log::warn("{}", message);
+    warnings.push_back(message);
+  }
+  // An inside-out high poly (flipped winding or normals): its normals face into the low
+  // poly at most hits, and the map points inward (what glint normalmap --check reports).
+  if (stats.hits > 0 && stats.inwardHits * 2 > stats.hits) {
+    const std::string message = fmt::format(
+        "the high poly's normals face away from the low poly's at {:.0f}% of the hits: the high poly looks inside out "
+        "(flipped normals or winding); the map points inward — fix the mesh and bake again",
+        100.0 * double(stats.inwardHits) / double(stats.hits));
     log::warn("{}", message);
     warnings.push_back(message);
   }

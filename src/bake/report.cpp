@@ -54,6 +54,7 @@ nlohmann::ordered_json toJson(const BakeStats& s) {
   report["rays"] = s.rays;
   report["ao_rays"] = s.aoRays;
   report["hits"] = s.hits;
+  report["inward_hits"] = s.inwardHits;
   report["misses"] = s.misses;
   report["hit_ratio"] = s.hitRatio();
   report["max_front"] = s.frontDistance;

@@ -249,6 +249,7 @@ SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const 
     result.hit = true;
     result.height = f.signedT;
     objectNormal = highNormal(ctx, *f.hit);
+    result.inward = glm::dot(objectNormal, g.normal) < 0.0f;
     if (ctx.aoChannel >= 0) result.ao = ambientOcclusion(ctx, f, objectNormal, in.seed, counters);
   }
   store(ctx, g, objectNormal, in, result);
@@ -359,12 +360,15 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
     r.height = side * (hit->t - before);
     (r.height >= 0.0f ? front : rear) += 1;
     if (!lanes) {
-      store(ctx, geometry[k], highNormal(ctx, *hit), samples[k], r);
+      const vec3 high = highNormal(ctx, *hit);
+      r.inward = glm::dot(high, geometry[k].normal) < 0.0f;
+      store(ctx, geometry[k], high, samples[k], r);
       continue;
     }
     const std::size_t j = laneCount++;
     laneOf[i] = std::uint8_t(j);
     const vec3 h = interpolatedHighNormal(ctx, *hit);
+    r.inward = glm::dot(h, geometry[k].normal) < 0.0f;
     l.hx[j] = h.x;
     l.hy[j] = h.y;
     l.hz[j] = h.z;

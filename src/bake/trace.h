@@ -29,7 +29,8 @@ struct Slot {
 
 /// Per-tile counters, summed at the end (integers: exact in any order).
 struct Counters {
-  std::uint64_t covered = 0, conservative = 0, samples = 0, hits = 0, misses = 0, rays = 0, aoRays = 0, overlaps = 0;
+  std::uint64_t covered = 0, conservative = 0, samples = 0, hits = 0, misses = 0, rays = 0, aoRays = 0, overlaps = 0,
+                inward = 0;
 };
 
 struct Context {
@@ -80,6 +81,7 @@ struct SampleResult {
   float ao = 1.0f;
   float height = 0.0f;
   bool hit = false;
+  bool inward = false;  ///< the high poly's normal at the hit faces against the low poly's
 };
 
 /// The most samples traceGroup takes at once.

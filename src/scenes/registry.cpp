@@ -1,4 +1,5 @@
 #include "glint/core/error.h"
+#include "glint/core/text.h"
 #include "glint/scenes/scene.h"
 
 #include <algorithm>
@@ -130,11 +131,8 @@ void setOption(Scene& scene, const std::string& assignment) {
   const auto bad = [&] { fail(ErrorKind::Usage, "option '{}': cannot use '{}'", name, value); };
   if (auto* f = std::get_if<float*>(&it->value)) {
     try {
-      std::size_t used = 0;
-      const float v = std::stof(value, &used);
-      if (used != value.size() || !std::isfinite(v)) bad();
-      **f = v;
-    } catch (const std::logic_error&) {
+      **f = parseFloat(value, name);  // the whole text, finite, no locale
+    } catch (const Error&) {
       bad();
     }
   } else if (auto* i = std::get_if<int*>(&it->value)) {

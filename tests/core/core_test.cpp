@@ -188,3 +188,56 @@ TEST(ColdRun, TestsRunWithoutAShaderCacheAndWithTheBuildTreesCacheDirectories) {
   EXPECT_EQ(std::string(glintCache), buildTree + "/cache");
   EXPECT_EQ(glint::cacheDirectory(), std::filesystem::path(buildTree + "/cache"));
 }
+
+// ------------------------------------------------------------------ the promise's check
+// An output is never an input, nor another output: by file identity, so a hard link, a
+// symbolic link or another spelling of the same file counts. Stdout ("-") can be used once.
+namespace {
+std::string refusalOf(const std::vector<glint::FileUse>& inputs, const std::vector<glint::FileUse>& outputs) {
+  try {
+    glint::checkDistinctFiles(inputs, outputs);
+  } catch (const glint::Error& e) {
+    EXPECT_EQ(e.kind(), glint::ErrorKind::Usage);
+    return e.what();
+  }
+  return {};
+}
+}  // namespace
+
+TEST(DistinctFiles, AnOutputThatIsAnInputByAnyNameIsRefused) {
+  const std::filesystem::path d = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "core" / "distinct";
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d / "sub");
+  std::ofstream(d / "in.png") << "input";
+  std::filesystem::create_hard_link(d / "in.png", d / "hard.png");
+  std::filesystem::create_symlink(d / "in.png", d / "soft.png");
+  const std::vector<glint::FileUse> inputs{{d / "in.png", "the input"}};
+  for (const std::filesystem::path& same : {d / "in.png", d / "hard.png", d / "soft.png", d / "sub" / ".." / "in.png",
+                                            d / "." / "in.png"}) {
+    const std::string message = refusalOf(inputs, {{same, "-o"}});
+    EXPECT_NE(message.find("-o '" + same.string() + "' is the input '" + (d / "in.png").string() +
+                           "': writing it would destroy the input"), std::string::npos) << same << ": " << message;
+  }
+  EXPECT_EQ(refusalOf(inputs, {{d / "out.png", "-o"}, {d / "report.json", "--json"}, {"-", "--json"}}), "");
+  EXPECT_EQ(refusalOf({{"-", "the input"}}, {{"-", "-o"}}), "") << "stdin in, stdout out";
+  // Two outputs, one file: existing or not yet.
+  EXPECT_NE(refusalOf(inputs, {{d / "m.png", "-o"}, {d / "sub" / ".." / "m.png", "--ao"}}).find(
+                "-o '" + (d / "m.png").string() + "' and --ao '"), std::string::npos);
+  std::ofstream(d / "old.png") << "old";
+  std::filesystem::create_hard_link(d / "old.png", d / "old-link.png");
+  EXPECT_NE(refusalOf(inputs, {{d / "old.png", "-o"}, {d / "old-link.png", "--height"}}).find("are the same file"),
+            std::string::npos);
+  EXPECT_NE(refusalOf(inputs, {{"-", "-o"}, {"-", "--json"}}).find("both write to stdout"), std::string::npos);
+  EXPECT_EQ(refusalOf(inputs, {{"", "--ao"}, {"", "--height"}}), "") << "options not given";
+}
+
+#include "glint/core/progress.h"
+
+TEST(Progress, TheEtaIsTheLinearEstimateOfWhatIsLeft) {
+  EXPECT_EQ(glint::etaText(0, 100, 3.0), "");   // nothing done yet: no estimate
+  EXPECT_EQ(glint::etaText(10, 0, 3.0), "");    // unknown total (a live source)
+  EXPECT_EQ(glint::etaText(100, 100, 3.0), ""); // done
+  EXPECT_EQ(glint::etaText(25, 100, 10.0), "ETA 30 s");
+  EXPECT_EQ(glint::etaText(1, 100, 2.0), "ETA 3:18");
+  EXPECT_EQ(glint::etaText(1, 1000, 10.0), "ETA 2:46:30");
+}

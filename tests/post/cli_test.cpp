@@ -271,3 +271,162 @@ TEST(PostCli, TheViewerShowsTheCameraSceneWithOptionsFromTheCommandLine) {
   EXPECT_NEAR(window.at(630, 470, 1), 1.0f, 0.05f);
   EXPECT_NEAR(window.at(630, 470, 2), 1.0f, 0.05f);
 }
+
+// A --frames range that selects no frame of the input is an input error naming its length,
+// and writes nothing (it used to exit 0 with a stream-less MP4, or an FFV1 file ffprobe
+// calls corrupt); one that runs past the end is a warning with the count written, and the
+// report's expected count is what the container says.
+TEST(PostCli, FrameRangesBeyondTheClipAreAnErrorOrAWarning) {
+  const fs::path d = dir("ranges");
+  const fs::path clip = d / "clip.mkv";
+  ASSERT_EQ(runGlint("-q post --input " + kPattern + " --codec ffv1 -o " + clip.string()).status, 0);  // 48 frames
+  for (const char* range : {"100:200", "48:", "60:"}) {
+    const auto none = runGlint("post " + clip.string() + " --frames " + range + " -e sepia -o " +
+                               (d / "none.mkv").string() + " --codec ffv1 -q");
+    EXPECT_EQ(none.status, 3) << range << ": " << none.output;
+    EXPECT_TRUE(oneLine(none.output)) << none.output;
+    EXPECT_NE(none.output.find(std::string("--frames ") + range + " selects no frame of"), std::string::npos) << none.output;
+    EXPECT_NE(none.output.find("48 frames, 0..47"), std::string::npos) << none.output;
+    EXPECT_FALSE(fs::exists(d / "none.mkv")) << range;
+  }
+  const auto past = runGlint("post " + clip.string() + " --frames 40:100 -e sepia --codec ffv1 -o " +
+                             (d / "tail.mkv").string() + " --json " + (d / "tail.json").string());
+  ASSERT_EQ(past.status, 0) << past.output;
+  EXPECT_NE(past.output.find("warning: --frames 40:100 runs past the end of '" + clip.string() +
+                             "' (it has 48 frames, 0..47): 8 frame(s) written (40..47)"), std::string::npos)
+      << past.output;
+  const auto report = readJson(d / "tail.json");
+  EXPECT_EQ(report["frames_written"], 8);
+  EXPECT_EQ(report["frames_expected"], 8);
+  EXPECT_EQ(readAll((d / "tail.mkv").string()).size(), 8u);
+  ASSERT_EQ(runGlint("-q post " + clip.string() + " --frames 10: -e sepia --codec ffv1 -o " + (d / "rest.mkv").string() +
+                     " --json " + (d / "rest.json").string()).status, 0);
+  EXPECT_EQ(readJson(d / "rest.json")["frames_expected"], 38);
+}
+
+namespace {
+/// The decoded audio of a file's first audio stream, as FFmpeg's command-line tool gives
+/// it (an independent decoder path): raw float samples.
+std::string decodedAudio(const fs::path& file) {
+  return glint::testing::runShell("ffmpeg -v error -i " + glint::testing::shellQuote(file) +
+                                  " -map 0:a:0 -f f32le -").output;
+}
+std::string audioPackets(const fs::path& file) {
+  return glint::testing::runShell("ffprobe -v error -select_streams a -show_entries packet=pts,duration,size -of csv " +
+                                  glint::testing::shellQuote(file)).output;
+}
+}  // namespace
+
+// Audio is copied whole: AAC's first (priming) packet has a negative timestamp and was lost
+// (88 packets in, 87 out, the first 1024 samples different); Opus's pre-skip packet too.
+// Copied audio must decode to the same samples, bit for bit.
+TEST(PostCli, CopiedAudioDecodesToTheSameSamples) {
+  ASSERT_EQ(glint::testing::runShell("command -v ffmpeg ffprobe").status, 0)
+      << "ffmpeg and ffprobe (Debian package ffmpeg) make and decode the test's files: scripts/setup --test installs them";
+  const fs::path d = dir("audio-exact");
+  struct Case {
+    const char* file;
+    const char* codec;
+  };
+  for (const Case c : {Case{"aac.mp4", "aac"}, Case{"opus.mkv", "libopus"}, Case{"aac.mkv", "aac"}}) {
+    const fs::path in = d / c.file, out = d / (std::string("out-") + c.file);
+    const auto made = glint::testing::runShell(
+        "ffmpeg -v error -y -f lavfi -i testsrc2=size=160x120:rate=25:duration=2 -f lavfi -i sine=f=440:duration=2 "
+        "-c:v libx264 -preset ultrafast -c:a " + std::string(c.codec) + " -shortest " + in.string());
+    ASSERT_EQ(made.status, 0) << made.output;
+    const auto run = runGlint("-q post " + in.string() + " -e sepia --preset ultrafast -o " + out.string() +
+                              " --json " + (d / "r.json").string());
+    ASSERT_EQ(run.status, 0) << c.file << ": " << run.output;
+    EXPECT_EQ(readJson(d / "r.json")["audio"], "copied");
+    const std::string original = decodedAudio(in), copied = decodedAudio(out);
+    EXPECT_GT(original.size(), 2 * 44100u) << c.file;
+    EXPECT_TRUE(original == copied) << c.file << ": decoded audio differs (" << original.size() << " against "
+                                    << copied.size() << " bytes)";
+    EXPECT_EQ(audioPackets(in), audioPackets(out)) << c.file << ": packets (timestamps, durations, sizes)";
+  }
+}
+
+// '-' reads stdin and writes stdout: images both ways, video as a stream (NUT); MP4 cannot
+// stream, and the errors say so.
+TEST(PostCli, DashIsStdinAndStdout) {
+  const fs::path d = dir("stdio");
+  const fs::path photo = d / "photo.png";
+  saveImage(glint::testing::noiseImage(64, 48, 3), photo);
+  const auto file = runGlint("-q post " + photo.string() + " -e sobel -o " + (d / "file.png").string());
+  ASSERT_EQ(file.status, 0) << file.output;
+  const auto piped = glint::testing::runShell(std::string(GLINT_EXE) + " -q post - -e sobel -o - < " + photo.string() +
+                                              " > " + (d / "piped.png").string());
+  ASSERT_EQ(piped.status, 0) << piped.output;
+  EXPECT_EQ(loadImage(d / "piped.png"), loadImage(d / "file.png"));
+  const auto jpg = glint::testing::runShell(std::string(GLINT_EXE) + " -q post - -e sobel -o - --format jpg < " +
+                                            photo.string() + " > " + (d / "piped.jpg").string());
+  ASSERT_EQ(jpg.status, 0) << jpg.output;
+  EXPECT_EQ(glint::testing::readBytes(d / "piped.jpg").substr(0, 3), "\xFF\xD8\xFF");
+
+  const fs::path clip = d / "clip.mkv";
+  ASSERT_EQ(runGlint("-q post --input " + kPattern + " --codec ffv1 -o " + clip.string()).status, 0);
+  const auto stream = glint::testing::runShell("cat " + clip.string() + " | " + GLINT_EXE +
+                                               " -q post - -e sepia --codec ffv1 -o - --format nut > " +
+                                               (d / "piped.nut").string());
+  ASSERT_EQ(stream.status, 0) << stream.output;
+  ASSERT_EQ(runGlint("-q post " + clip.string() + " -e sepia --codec ffv1 -o " + (d / "file.nut").string()).status, 0);
+  const auto a = readAll((d / "piped.nut").string()), b = readAll((d / "file.nut").string());
+  ASSERT_EQ(a.size(), 48u);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].image, b[i].image) << "frame " << i;
+
+  const auto mp4Out = runGlint("post " + clip.string() + " -e sepia -o - --format mp4");
+  EXPECT_EQ(mp4Out.status, 2) << mp4Out.output;
+  EXPECT_TRUE(oneLine(mp4Out.output)) << mp4Out.output;
+  EXPECT_NE(mp4Out.output.find("cannot be written to stdout"), std::string::npos) << mp4Out.output;
+  // An MP4 as FFmpeg writes it by default: its index (moov) after the frames.
+  const auto mp4 = glint::testing::runShell("ffmpeg -v error -y -f lavfi -i testsrc2=size=320x240:rate=25:duration=2 "
+                                            "-c:v libx264 -preset ultrafast " + (d / "clip.mp4").string());
+  ASSERT_EQ(mp4.status, 0) << mp4.output << " (scripts/setup --test installs ffmpeg)";
+  const auto mp4In = glint::testing::runShell("cat " + (d / "clip.mp4").string() + " | " + GLINT_EXE + " post - -o " +
+                                              (d / "x.mkv").string());
+  EXPECT_EQ(mp4In.status, 3) << mp4In.output;
+  EXPECT_TRUE(oneLine(mp4In.output)) << mp4In.output;
+  EXPECT_NE(mp4In.output.find("an MP4 cannot be read from stdin unless its index comes first"), std::string::npos)
+      << mp4In.output;
+  EXPECT_FALSE(fs::exists(d / "x.mkv"));
+}
+
+// An image keeps its channels: grey stays grey, RGB stays RGB (they all came out RGBA);
+// an effect that colours a grey image writes RGB and says so; --channels asks otherwise.
+TEST(PostCli, AnImageKeepsItsChannelCount) {
+  const fs::path d = dir("channels");
+  const Image rgba = glint::testing::noiseImage(64, 48, 5);
+  saveImage(rgba.withChannels(1), d / "grey.png");
+  saveImage(rgba.withChannels(3), d / "rgb.png");
+  saveImage(rgba, d / "rgba.png");
+  const auto channels = [&](const std::string& in, const std::string& args) {
+    const auto r = runGlint("post " + (d / in).string() + " " + args + " -o " + (d / "out.png").string());
+    EXPECT_EQ(r.status, 0) << r.output;
+    return std::make_pair(loadImage(d / "out.png").channels(), r.output);
+  };
+  EXPECT_EQ(channels("grey.png", "-e sobel").first, 1);
+  EXPECT_EQ(channels("rgb.png", "-e sobel").first, 3);
+  EXPECT_EQ(channels("rgba.png", "-e sobel").first, 4);
+  EXPECT_EQ(channels("rgb.png", "-e sepia").first, 3);
+  const auto [sepia, said] = channels("grey.png", "-e sepia");
+  EXPECT_EQ(sepia, 3);
+  EXPECT_NE(said.find("the input is grey but sepia"), std::string::npos) << said;
+  EXPECT_EQ(channels("rgb.png", "-e sepia --channels 1").first, 1);
+  EXPECT_EQ(channels("grey.png", "-e sobel --channels 4").first, 4);
+}
+
+// One line and exit 2 for each bad option a user tried: no raw x264 line, no 309-digit range.
+TEST(PostCli, BadOptionsAreOneLineAndExitTwo) {
+  const fs::path d = dir("bad-options");
+  const fs::path clip = d / "clip.mkv";
+  ASSERT_EQ(runGlint("-q post --input " + kPattern + " --codec ffv1 -o " + clip.string()).status, 0);
+  for (const std::string args : {"--preset turbo", "--threads -3", "--crf 60", "--set sigma=1e40 -e lowpass"}) {
+    const auto r = runGlint("post " + clip.string() + " -e sepia -o " + (d / "o.mp4").string() + " " + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.output;
+    EXPECT_TRUE(oneLine(r.output)) << args << ": " << r.output;
+    EXPECT_EQ(r.output.find("x264 ["), std::string::npos) << r.output;
+    EXPECT_LT(r.output.size(), 200u) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(d / "o.mp4"));
+}

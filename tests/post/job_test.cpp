@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 
@@ -125,4 +126,33 @@ TEST(PostJob, AVideoReportHasTheCommandsFields) {
   EXPECT_EQ(keys(PostStats{.kind = InputKind::Parts}.toJson()), (std::vector<std::string>{"parts", "output", "frames"}));
   EXPECT_EQ(keys(PostStats{.kind = InputKind::Video, .still = true}.toJson()),
             (std::vector<std::string>{"input", "output", "frame", "effects"}));
+}
+
+// Ctrl-C before the first frame is processed: no video is made, and a file already at the
+// output path keeps its bytes (it used to be replaced by a 225-byte file without a stream,
+// reported as "complete, playable").
+TEST(PostJob, InterruptedBeforeTheFirstFrameLeavesTheExistingFileAlone) {
+  const fs::path d = glint::testing::freshDir("post-job", "interrupt-first");
+  const std::string before = "an existing video a user cares about";
+  {
+    std::ofstream(d / "keep.mkv") << before;
+  }
+  PostJob job;
+  job.lavfi = "lavfi:testsrc2=size=160x120:rate=24:duration=2";
+  job.output = (d / "keep.mkv").string();
+  job.codec = video::Codec::Ffv1;
+  job.effects = parseEffects(std::vector<std::string>{"sepia"});
+  try {
+    ToolRun run("post", {.quiet = true});
+    ::raise(SIGINT);  // the handler ToolRun installed sets its cancel flag: nothing is read
+    ASSERT_TRUE(run.interrupted());
+    runJob(job, run);
+    ADD_FAILURE() << "an interrupted job with no frame returned normally";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Interrupted) << e.what();
+    EXPECT_NE(std::string(e.what()).find("before the first frame; '" + job.output + "' was left as it was"),
+              std::string::npos) << e.what();
+  }
+  EXPECT_EQ(glint::testing::readBytes(d / "keep.mkv"), before);
+  EXPECT_EQ(glint::testing::fileCount(d), 1u) << "no temporary left";
 }

@@ -147,6 +147,7 @@ struct BakeStats {
   std::uint64_t samples = 0;            ///< sample points on the low poly
   std::uint64_t hits = 0;               ///< samples whose rays found the high poly
   std::uint64_t misses = 0;             ///< samples whose rays found nothing
+  std::uint64_t inwardHits = 0;         ///< hits where the high poly's normal faces against the low poly's
   std::uint64_t rays = 0;               ///< normal-pass rays (front + rear)
   std::uint64_t aoRays = 0;
   std::uint64_t overlappingSamples = 0; ///< samples inside more than one UV triangle
