@@ -260,3 +260,33 @@ TEST(BakeCli, CtrlCOrSigtermLeavesNoPartialFile) {
     EXPECT_EQ(fileCount(out), 0u) << "signal " << signal;
   }
 }
+
+// An inside-out high poly (winding and normals flipped, as an exporter with a mirrored
+// transform makes it) used to bake a map pointing 100% inward without a word; now the
+// bake warns, and the report counts the inward hits. A right-way-out one says nothing.
+TEST(BakeCli, AnInsideOutHighPolyIsWarnedAbout) {
+  const auto d = dir("inside-out");
+  writeSpheres(d);
+  Mesh flipped = makeUvSphere(1.0f, 64, 32);
+  for (std::size_t i = 0; i < flipped.indices.size(); i += 3) std::swap(flipped.indices[i + 1], flipped.indices[i + 2]);
+  for (vec3& n : flipped.normals) n = -n;
+  writeObj(flipped, d / "flipped.obj");
+  const auto bad = runGlint("-q bake " + q(d / "low.obj") + " " + q(d / "flipped.obj") + " -o " + q(d / "bad.png") +
+                            " --size 32x32 --json " + q(d / "bad.json"));
+  ASSERT_EQ(bad.status, 0) << bad.output;
+  EXPECT_NE(bad.output.find("the high poly looks inside out"), std::string::npos) << bad.output;
+  std::ifstream badReport(d / "bad.json");
+  const auto report = nlohmann::json::parse(badReport);
+  EXPECT_EQ(report["inward_hits"], report["hits"]);
+  EXPECT_EQ(report["warnings"].size(), 1u) << report["warnings"];
+  // normalmap --check agrees: the map points inward.
+  const auto check = runGlint("normalmap --check " + q(d / "bad.png"));
+  EXPECT_EQ(check.status, 3) << check.output;
+
+  const auto good = runGlint("-q bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "good.png") +
+                             " --size 32x32 --json " + q(d / "good.json"));
+  ASSERT_EQ(good.status, 0) << good.output;
+  EXPECT_EQ(good.output.find("inside out"), std::string::npos) << good.output;
+  std::ifstream goodReport(d / "good.json");
+  EXPECT_EQ(nlohmann::json::parse(goodReport)["inward_hits"], 0);
+}

@@ -47,7 +47,7 @@ TEST(NormalMapCli, CpuAndGpuAgreeAndMatchTheLibrary) {
   const Image a = loadImage(d / "cpu.png"), b = loadImage(d / "gpu.png");
   EXPECT_EQ(a.width(), 45);
   EXPECT_EQ(a.height(), 29);
-  EXPECT_EQ(a, heightToNormalMap(height, {.scale = 12.0f, .wrap = true}));
+  EXPECT_EQ(a, heightToNormalMap(height, {.scale = 12.0f, .wrap = true}).withChannels(3));  // a normal map is RGB
   EXPECT_LE(compareImages(a, b).maxAbs, 1.0 / 255 + 1e-6);
   EXPECT_EQ(cpu.output.find("warning"), std::string::npos) << "a gray input needs no warning";
 }
@@ -96,4 +96,36 @@ TEST(NormalMapCli, CheckReportsGoodMapsAndExplainsBadOnes) {
   EXPECT_EQ(std::count(colour.output.begin(), colour.output.end(), '\n'), 1) << colour.output;
   const auto noOutput = runGlint("normalmap " + (d / "height.png").string());
   EXPECT_EQ(noOutput.status, 2) << noOutput.output;
+}
+
+// A normal map is RGB: it used to come out RGBA with an opaque alpha whatever the input. A
+// height map with alpha keeps it; stdin and stdout work ('-', --format for stdout).
+TEST(NormalMapCli, WritesRgbKeepsAlphaAndPipes) {
+  const fs::path d = dir();
+  const Image grey = oddHeight();
+  saveImage(grey, d / "h.png");
+  Image withAlpha(grey.width(), grey.height(), 2);
+  for (int y = 0; y < grey.height(); ++y)
+    for (int x = 0; x < grey.width(); ++x) {
+      withAlpha.set(x, y, 0, grey.at(x, y, 0));
+      withAlpha.set(x, y, 1, float((x * 7 + y) % 256) / 255.0f);
+    }
+  saveImage(withAlpha, d / "ha.png");
+  ASSERT_EQ(runGlint("-q normalmap " + (d / "h.png").string() + " -o " + (d / "n.png").string()).status, 0);
+  const Image n = loadImage(d / "n.png");
+  EXPECT_EQ(n.channels(), 3);
+  const Image library = heightToNormalMap(grey, {});
+  for (int y = 0; y < n.height(); ++y)
+    for (int x = 0; x < n.width(); ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(n.at(x, y, c), library.at(x, y, c)) << x << "," << y;
+  ASSERT_EQ(runGlint("-q normalmap " + (d / "ha.png").string() + " -o " + (d / "na.png").string()).status, 0);
+  const Image na = loadImage(d / "na.png");
+  ASSERT_EQ(na.channels(), 4);
+  for (int y = 0; y < na.height(); ++y)
+    for (int x = 0; x < na.width(); ++x) ASSERT_EQ(na.at(x, y, 3), withAlpha.at(x, y, 1)) << x << "," << y;
+
+  const auto piped = glint::testing::runShell(std::string(GLINT_EXE) + " -q normalmap - -o - --format tga < " +
+                                              (d / "h.png").string() + " > " + (d / "piped.tga").string());
+  ASSERT_EQ(piped.status, 0) << piped.output;
+  EXPECT_EQ(loadImage(d / "piped.tga"), n);
 }

@@ -29,7 +29,7 @@ TEST(MaxMemory, BakeTooBigForTheLimitIsRefusedBeforeItStarts) {
   const auto refused = runGlint("bake " + inputs + " --size 16384x16384 --max-memory 2G -o " + q(d / "big.png"));
   EXPECT_EQ(refused.status, 2) << refused.output;
   EXPECT_TRUE(oneLine(refused.output)) << refused.output;
-  EXPECT_NE(refused.output.find("more than --max-memory 2048 (2048 MiB)"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("more than --max-memory 2G (2048 MiB)"), std::string::npos) << refused.output;
   EXPECT_FALSE(fs::exists(d / "big.png"));
 
   const auto ran = runGlint("bake " + inputs + " --size 1024x1024 --max-memory 1G -o " + q(d / "small.png") + " --json " +
