@@ -60,6 +60,22 @@ Examples:
 Exit status: 0 done, 2 bad option, 3 unreadable/unsuitable input, 4 output not
 writable, 130 interrupted (Ctrl-C; no partial file is left).)";
 
+/// One warning for the triangles whose plane contains a light, with their count per light;
+/// empty when there are none.
+std::string grazingWarning(const cut::CutStats& s) {
+  std::uint64_t total = 0;
+  std::string perLight;
+  for (const cut::LightStats& l : s.lights) {
+    if (l.grazingTriangles == 0) continue;
+    total += l.grazingTriangles;
+    perLight += fmt::format("{}{} for '{}'", perLight.empty() ? "" : ", ", l.grazingTriangles, printable(l.name));
+  }
+  if (total == 0) return {};
+  return fmt::format("{} triangle{} graze{} a light ({}): the light lies in their plane, so none of its light reaches "
+                     "them and they are tagged as shadowed for it",
+                     total, total == 1 ? "" : "s", total == 1 ? "s" : "", perLight);
+}
+
 }  // namespace
 
 Command cutCommand(CLI::App& app, const GlobalOptions& global) {
@@ -106,15 +122,18 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
     Mesh scene;
     {
       auto timed = run.phase("load");
+      // The mesh loader logs its warnings itself: they go in the report as well.
+      log::WarningCapture loaderWarnings;
       // Without --light, the glTF inputs' lights (not when merging: the shards carry theirs).
       const bool gltfLights = a->lights.empty() && a->merge.empty();
       scene = cut::loadScene(std::vector<std::filesystem::path>(a->inputs.begin(), a->inputs.end()),
                              gltfLights ? &options.lights : nullptr);
+      for (const auto& w : loaderWarnings.take()) run.recordWarning(w);
     }
     if (options.lights.empty() && a->merge.empty())
       fail(ErrorKind::Usage, "no lights: give --light x,y,z (or a glTF scene with KHR_lights_punctual lights)");
     run.throwIfInterrupted();
-    run.checkMemory(cut::estimatePeakMemoryMiB(scene.triangleCount(), options.lights.size()),
+    run.checkMemory(cut::estimatePeakMemoryMiB(scene.triangleCount(), options.lights.size(), run.threads()),
                     fmt::format("cutting {} triangles for {} light(s)", scene.triangleCount(), options.lights.size()));
 
     auto& report = run.report();
@@ -157,6 +176,7 @@ Command cutCommand(CLI::App& app, const GlobalOptions& global) {
     run.addSeconds("cut", s.cutSeconds);
     run.addSeconds("assemble", s.assembleSeconds);
     for (const auto& w : result.warnings) run.recordWarning(w);
+    if (const std::string grazing = grazingWarning(s); !grazing.empty()) run.warn(grazing);
     {
       auto timed = run.phase("write");
       for (const auto& o : a->outputs) cut::saveCutMesh(result.mesh, result.lights, o);

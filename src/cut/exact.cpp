@@ -349,6 +349,46 @@ int Geometry::compareAlongLine(std::uint32_t u, std::uint32_t v, const PlaneRec&
 }
 
 dvec3 Geometry::position(const VertexRec& v) const {
+  return v.def.kind == VertexKind::Point ? point(v.def.a) : snapped(v.def, rawPosition(v));
+}
+
+dvec3 Geometry::snapped(const VertexDef& d, dvec3 x) const {
+  if (d.kind == VertexKind::Point) return point(d.a);
+  // Only points within a hair of x can be the vertex: the exact tests run for those only.
+  const auto near = [&](std::uint32_t id) {
+    const dvec3& p = point(id);
+    const double tolerance = 1e-9 * std::max({1.0, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    return std::abs(x.x - p.x) <= tolerance && std::abs(x.y - p.y) <= tolerance && std::abs(x.z - p.z) <= tolerance;
+  };
+  // Coordinates in which all of `ids` agree are every point's of their line or plane.
+  const auto keepShared = [&](std::span<const std::uint32_t> ids, dvec3& out) {
+    for (int k = 0; k < 3; ++k) {
+      const double c = point(ids[0])[k];
+      bool shared = true;
+      for (std::uint32_t id : ids) shared = shared && point(id)[k] == c;
+      if (shared) out[k] = c;
+    }
+  };
+  PredicateStats ignored;
+  if (d.kind == VertexKind::LinePlane) {
+    // The line meets q at one point; when an end of the line lies on q, that end is it.
+    for (std::uint32_t id : {d.a, d.b})
+      if (near(id) && side(id, d.q, ignored) == 0) return point(id);
+    const std::array<std::uint32_t, 2> line{d.a, d.b};
+    keepShared(line, x);
+    keepShared(d.q.p, x);
+    return x;
+  }
+  const PlaneDef* planes[3] = {&d.q, &d.r, &d.s};
+  for (const PlaneDef* named : planes)
+    for (std::uint32_t id : named->p)
+      if (near(id) && side(id, d.q, ignored) == 0 && side(id, d.r, ignored) == 0 && side(id, d.s, ignored) == 0)
+        return point(id);
+  for (const PlaneDef* plane : planes) keepShared(plane->p, x);
+  return x;
+}
+
+dvec3 Geometry::rawPosition(const VertexRec& v) const {
   if (v.boxed) {
     // A narrow box: its midpoint is the point to well under a float's precision.
     bool narrow = true;

@@ -120,11 +120,22 @@ public:
                        PredicateStats& stats) const;
 
   /// The vertex's position, correctly rounded to about a double's precision (exact
-  /// arithmetic where the box is wide).
+  /// arithmetic where the box is wide), and exact where its name says the input's numbers
+  /// are (snapped()).
   dvec3 position(const VertexRec& v) const;
+
+  /// `x`, a position of vertex `def`, with the coordinates that the input fixes exactly
+  /// made exact: a vertex that is an input point (a line's end on its plane; a point of one
+  /// of three planes on the other two, decided exactly) is that point; a coordinate that
+  /// every point of one of its lines or planes shares (an axis-aligned floor, wall or edge)
+  /// is that coordinate. So a floor at y = 0 stays at y = 0, not −1e-16. A function of the
+  /// name only: the same vertex gets the same position in every receiver and shard.
+  dvec3 snapped(const VertexDef& def, dvec3 x) const;
 
 private:
   int exactSide(const VertexDef& v, const PlaneDef& plane) const;
+  /// position() before snapped().
+  dvec3 rawPosition(const VertexRec& v) const;
   std::vector<dvec3> m_points;
 };
 

@@ -3,13 +3,19 @@
 #include "glint/cut/cutter.h"
 
 #include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 
 namespace glint::cut {
 
-double estimatePeakMemoryMiB(std::uint64_t triangles, std::size_t lights) {
-  return 200.0 + double(triangles) * (650.0 + 300.0 * double(std::max<std::size_t>(lights, 2))) / (1 << 20);
+double estimatePeakMemoryMiB(std::uint64_t triangles, std::size_t lights, int threads) {
+  // Fitted to measured peaks (docs/cut.md, "Memory"); each term a little above them.
+  constexpr double kMiB = 1 << 20;
+  const double n = double(triangles), l = double(std::max<std::size_t>(lights, 1));
+  if (threads <= 0) threads = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  const double perThread = std::min(4.0 + 6.0 * l, 2048.0 * n * l / kMiB);
+  return 28.0 + double(threads) * perThread + n * (700.0 + 400.0 * l) / kMiB;
 }
 
 nlohmann::ordered_json toJson(const std::vector<Light>& lights) {

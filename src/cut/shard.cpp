@@ -17,7 +17,9 @@ namespace glint::cut {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'U', 'T'};
-constexpr std::uint32_t kVersion = 1;
+/// 2: piece positions snapped to the input's exact coordinates (exact::Geometry::snapped);
+/// shards of version 1 would merge into a mesh no single run writes.
+constexpr std::uint32_t kVersion = 2;
 
 using Writer = detail::BinaryWriter;
 using Reader = detail::BinaryReader;

@@ -152,7 +152,8 @@ Mesh loadWithAssimp(const std::filesystem::path& path, const MeshLoadOptions& op
     fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, firstLine(importer.GetErrorString()));
   }
   checkFaces(*scene, name);
-  for (unsigned i = 0; i < scene->mNumMeshes; ++i) expandForNormals(*scene->mMeshes[i]);
+  if (options.generateNormals)
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i) expandForNormals(*scene->mMeshes[i]);
   scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType);
   if (!scene) fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, firstLine(importer.GetErrorString()));
 
@@ -164,10 +165,13 @@ Mesh loadWithAssimp(const std::filesystem::path& path, const MeshLoadOptions& op
     if (!m.HasNormals()) ++missingNormals;
   }
   if (triangleMeshes == 0) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
-  detail::warnMissingNormals(name, missingNormals, triangleMeshes);
   // GenSmoothNormals leaves meshes that already have normals alone, and Assimp
   // runs the requested steps in its own fixed order (normals before joining).
-  unsigned steps = aiProcess_GenSmoothNormals;
+  unsigned steps = 0;
+  if (options.generateNormals) {
+    detail::warnMissingNormals(name, missingNormals, triangleMeshes);
+    steps |= aiProcess_GenSmoothNormals;
+  }
   if (options.joinVertices) steps |= aiProcess_JoinIdenticalVertices;
   scene = importer.ApplyPostProcessing(steps);
   if (!scene) fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, firstLine(importer.GetErrorString()));

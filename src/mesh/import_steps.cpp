@@ -390,8 +390,8 @@ void joinVertices(Mesh& mesh) {
   mesh = std::move(out);
 }
 
-Mesh finishPart(PolyMesh&& part, bool join, bool& generatedNormals) {
-  generatedNormals = part.normals.empty();
+Mesh finishPart(PolyMesh&& part, bool join, bool generateNormals, bool& generatedNormals) {
+  generatedNormals = generateNormals && part.normals.empty();
   if (generatedNormals && !part.perCorner) expandPerCorner(part);
 
   // Triangulate in parallel blocks of faces, then concatenate in order.

@@ -88,8 +88,9 @@ std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::v
 void joinVertices(Mesh& mesh);
 
 /// The post-processing chain on one part, into a Mesh (normals unit length, as loadMesh's
-/// identity node transform leaves them). `generatedNormals` is set when the part had none.
-Mesh finishPart(PolyMesh&& part, bool join, bool& generatedNormals);
+/// identity node transform leaves them). A part without normals gets smooth ones when
+/// `generateNormals` (and `generatedNormals` is set), or stays without.
+Mesh finishPart(PolyMesh&& part, bool join, bool generateNormals, bool& generatedNormals);
 
 /// Fast paths: the Mesh, with one warning for missing normals like the Assimp path; throws
 /// Error(Input) for a corrupt file and Declined for one Assimp should read.

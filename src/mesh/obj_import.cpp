@@ -639,9 +639,10 @@ PolyMesh gatherCorners(const std::vector<Chunk>& chunks, const VertexTables& tab
 
 /// The parts triangulated and joined into one Mesh, each keeping the uvs and normals its
 /// faces have (all or none: otherwise Assimp, which zero-fills the rest, reads the file).
-/// `missingNormals` counts the parts whose normals were generated.
+/// `missingNormals` counts the parts whose normals were generated (none unless `generateNormals`).
 Mesh finishParts(PolyMesh all, const std::vector<std::pair<std::size_t, std::size_t>>& parts,
-                 std::span<const std::uint8_t> flags, bool joinVertices, unsigned& missingNormals) {
+                 std::span<const std::uint8_t> flags, bool joinVertices, bool generateNormals,
+                 unsigned& missingNormals) {
   struct PartAttributes {
     bool uvs, normals;
   };
@@ -661,7 +662,7 @@ Mesh finishParts(PolyMesh all, const std::vector<std::pair<std::size_t, std::siz
   if (parts.size() == 1 && parts[0].first == 0 && parts[0].second == faceCount) {
     if (!attributes[0].uvs) all.uvs.clear();
     if (!attributes[0].normals) all.normals.clear();
-    result = finishPart(std::move(all), joinVertices, generated);
+    result = finishPart(std::move(all), joinVertices, generateNormals, generated);
     missingNormals += generated ? 1u : 0u;
     return result;
   }
@@ -677,7 +678,7 @@ Mesh finishParts(PolyMesh all, const std::vector<std::pair<std::size_t, std::siz
     for (std::uint32_t k = 0; k < c1 - c0; ++k) part.corners[k] = k;
     part.faceStart.assign(all.faceStart.begin() + std::ptrdiff_t(first), all.faceStart.begin() + std::ptrdiff_t(last) + 1);
     for (std::uint32_t& start : part.faceStart) start -= c0;
-    Mesh mesh = finishPart(std::move(part), joinVertices, generated);
+    Mesh mesh = finishPart(std::move(part), joinVertices, generateNormals, generated);
     missingNormals += generated ? 1u : 0u;
     if (!mesh.indices.empty()) result.append(mesh);
   }
@@ -722,7 +723,7 @@ Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& optio
   const auto t3 = Clock::now();
 
   unsigned missingNormals = 0;
-  Mesh result = finishParts(std::move(all), parts, flags, options.joinVertices, missingNormals);
+  Mesh result = finishParts(std::move(all), parts, flags, options.joinVertices, options.generateNormals, missingNormals);
   warnMissingNormals(name, missingNormals, unsigned(parts.size()));
   log::debug("'{}': {:.1f} MB, {} chunks: map + count {:.0f} ms, parse {:.0f} ms, gather {:.0f} ms, finish {:.0f} ms",
              name, double(file.size()) / 1e6, firstFace.size() - 1, ms(t0, t1), ms(t1, t2), ms(t2, t3), ms(t3, Clock::now()));

@@ -432,7 +432,7 @@ Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& optio
     }
   }
   bool generated = false;
-  Mesh result = finishPart(std::move(mesh), options.joinVertices, generated);
+  Mesh result = finishPart(std::move(mesh), options.joinVertices, options.generateNormals, generated);
   warnMissingNormals(name, generated ? 1u : 0u, 1u);
   return result;
 }

@@ -1,6 +1,9 @@
 // `glint cut` as a user runs it (issue 13, items 7 and 8): outputs and the report,
 // byte-identical output whatever --threads, shards and merge, Ctrl-C, and bad input:
-// one-line errors, the documented exit status, and no file left behind.
+// one-line errors, the documented exit status, and no file left behind. Issue 21: the
+// memory estimate, warnings (grazing, the loader's, none about normals), exact
+// coordinates, glTF extras.
+#include "glint/core/log.h"
 #include "glint/cut/output.h"
 #include "glint/mesh/adjacency.h"
 #include "glint/mesh/machine_room.h"
@@ -8,6 +11,7 @@
 
 #include "support/cli.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -15,10 +19,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <bit>
 #include <chrono>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <thread>
 
 namespace fs = std::filesystem;
@@ -217,4 +226,239 @@ TEST(CutCli, CtrlCLeavesNoPartialFile) {
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 130);
   EXPECT_EQ(fileCount(out), 0u);
+}
+
+// ------------------------------------------------------------------ issue 21
+
+namespace {
+
+/// The smallest scene a user tries first: an 8 × 8 floor at y = 0 (two triangles) and a
+/// unit box floating above it (twelve), as OBJ without normals (as such files often are).
+fs::path tinyScene(const fs::path& d) {
+  std::ofstream(d / "tiny.obj") << "v -4 0 -4\nv 4 0 -4\nv 4 0 4\nv -4 0 4\n"
+                                   "v -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
+                                   "v -0.5 2 -0.5\nv 0.5 2 -0.5\nv 0.5 2 0.5\nv -0.5 2 0.5\n"
+                                   "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 9 12 11\nf 9 11 10\nf 5 9 10\n"
+                                   "f 5 10 6\nf 6 10 11\nf 6 11 7\nf 7 11 12\nf 7 12 8\nf 8 12 9\nf 8 9 5\n";
+  return d / "tiny.obj";
+}
+
+/// The JSON report printed by `--json -` after whatever else the run printed.
+nlohmann::json reportIn(const std::string& output) {
+  const std::size_t start = output.find("\n{");
+  return nlohmann::json::parse(start == std::string::npos ? output : output.substr(start + 1));
+}
+
+/// Whether a report's `warnings` list holds `warning`.
+bool listed(const nlohmann::json& warnings, const std::string& warning) {
+  return std::find(warnings.begin(), warnings.end(), warning) != warnings.end();
+}
+
+/// The lines the run printed as "warning: ...", without that prefix.
+std::vector<std::string> printedWarnings(const std::string& output) {
+  std::vector<std::string> out;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("warning: ", 0) == 0) out.push_back(line.substr(9));
+  return out;
+}
+
+}  // namespace
+
+// The estimate followed measurement: 200 MiB was its floor, so a 14-triangle scene (19 MiB
+// measured) was refused under --max-memory 100M.
+TEST(CutCli, ATinySceneFitsATinyMemoryLimit) {
+  const auto d = dir("tiny-memory");
+  const auto r = runGlint("-q cut " + q(tinyScene(d)) + " -o " + q(d / "o.ply") + " --light 0.3,5,0.2 --max-memory 100M --json -");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = reportIn(r.output);
+  EXPECT_GE(report["memory_estimate_mib"].get<double>(), report["peak_memory_mib"].get<double>()) << report.dump();
+  EXPECT_LE(report["memory_estimate_mib"].get<double>(), 100.0) << report.dump();
+}
+
+TEST(CutCli, TheMemoryEstimateCoversTheMeasuredPeak) {
+  const auto d = dir("memory");
+  const auto in = stage(d, 4);  // 36k triangles
+  // Two threads, as measured (the estimate grows with the threads; docs/cut.md, "Memory").
+  const auto r = runGlint("-q cut " + q(in) + " -o " + q(d / "o.glb") + " -o " + q(d / "o.ply") + kLights +
+                          " --threads 2 --json -");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = reportIn(r.output);
+  const double estimate = report["memory_estimate_mib"].get<double>(), peak = report["peak_memory_mib"].get<double>();
+  std::printf("[ memory   ] %zu triangles, 2 lights: estimate %.0f MiB, peak %.0f MiB\n",
+              report["input_triangles"].get<std::size_t>(), estimate, peak);
+  EXPECT_GE(estimate, peak);
+  EXPECT_LE(estimate, 2.5 * peak) << "an upper bound, with a modest margin";
+}
+
+// docs/cut.md said grazing triangles were warned about; they were only counted.
+TEST(CutCli, GrazingTrianglesAreWarnedAbout) {
+  const auto d = dir("grazing");
+  // The light lies in the plane of the box's top (y = 2), outside the box: the top's two
+  // triangles graze it.
+  const auto r = runGlint("cut " + q(tinyScene(d)) + " -o " + q(d / "o.ply") + " --light 3,2,3,lamp --json -");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto report = reportIn(r.output);
+  EXPECT_EQ(report["per_light"][0]["grazing_triangles"], 2);
+  const auto printed = printedWarnings(r.output);
+  std::vector<std::string> grazing;
+  for (const auto& w : printed)
+    if (w.find("graze") != std::string::npos) grazing.push_back(w);
+  ASSERT_EQ(grazing.size(), 1u) << r.output;
+  EXPECT_NE(grazing[0].find("2 triangles graze a light (2 for 'lamp')"), std::string::npos) << grazing[0];
+  EXPECT_NE(grazing[0].find("the light lies in their plane"), std::string::npos) << grazing[0];
+  EXPECT_TRUE(listed(report["warnings"], grazing[0])) << report["warnings"].dump();
+  // No grazing, no such warning.
+  const auto none = runGlint("cut " + q(tinyScene(d)) + " -o " + q(d / "o.ply") + " --light 3,5,3");
+  ASSERT_EQ(none.status, 0) << none.output;
+  EXPECT_EQ(none.output.find("graze"), std::string::npos) << none.output;
+}
+
+// Every warning a cut prints is in its report: the loader's warning was printed, not listed.
+TEST(CutCli, EveryPrintedWarningIsInTheReport) {
+  const auto d = dir("warnings");
+  // Without normals, with a zero-area triangle, a light on the floor and one grazing the box's top.
+  std::ofstream(d / "odd.obj") << "v -4 0 -4\nv 4 0 -4\nv 4 0 4\nv -4 0 4\n"
+                                  "v -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
+                                  "v -0.5 2 -0.5\nv 0.5 2 -0.5\nv 0.5 2 0.5\nv -0.5 2 0.5\n"
+                                  "v 1 0.5 1\nv 2 0.5 1\nv 3 0.5 1\n"
+                                  "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 9 12 11\nf 9 11 10\nf 5 9 10\n"
+                                  "f 5 10 6\nf 6 10 11\nf 6 11 7\nf 7 11 12\nf 7 12 8\nf 8 12 9\nf 8 9 5\nf 13 14 15\n";
+  for (const std::string format : {"obj", "ply"}) {
+    const fs::path in = d / ("odd." + format);
+    if (format == "ply") {  // the same scene as ASCII PLY, read by the PLY fast path
+      const Mesh m = loadMesh(d / "odd.obj", {.generateNormals = false});
+      std::ofstream ply(in);
+      ply << "ply\nformat ascii 1.0\nelement vertex " << m.positions.size() << "\nproperty float x\nproperty float y\n"
+          << "property float z\nelement face " << m.triangleCount() << "\nproperty list uchar int vertex_indices\nend_header\n";
+      for (const vec3& p : m.positions) ply << p.x << ' ' << p.y << ' ' << p.z << '\n';
+      for (std::size_t i = 0; i < m.indices.size(); i += 3)
+        ply << "3 " << m.indices[i] << ' ' << m.indices[i + 1] << ' ' << m.indices[i + 2] << '\n';
+    }
+    const auto r = runGlint("cut " + q(in) + " -o " + q(d / "o.glb") + " --light 2,0,-3,onfloor --light 3,2,3,grazer --json -");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const auto report = reportIn(r.output);
+    const auto printed = printedWarnings(r.output);
+    EXPECT_GE(printed.size(), 3u) << r.output;  // the zero-area triangle, the light on the floor, grazing
+    EXPECT_EQ(report["warnings"].size(), printed.size()) << r.output;
+    for (std::string w : printed) {
+      if (w.rfind("cut: ", 0) == 0) w = w.substr(5);  // the library's log prefix
+      EXPECT_TRUE(listed(report["warnings"], w))
+          << format << ": '" << w << "' printed but not in the report " << report["warnings"].dump();
+    }
+  }
+}
+
+// The route the loader's warnings take into the report: log::WarningCapture sees what it prints.
+TEST(CutCli, TheLoadersWarningsAreCaptured) {
+  const auto d = dir("capture");
+  log::WarningCapture capture;
+  const Mesh m = loadMesh(tinyScene(d));  // normals generated, and the warning printed
+  EXPECT_TRUE(m.hasNormals());
+  const auto warnings = capture.take();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("have no normals"), std::string::npos) << warnings[0];
+  EXPECT_TRUE(capture.take().empty());
+}
+
+// The cutter needs positions only: it neither generates normals nor warns that there are none.
+TEST(CutCli, NoWarningAboutNormalsACutDoesNotNeed) {
+  const auto d = dir("loader-quiet");
+  const auto obj = tinyScene(d);
+  // An OBJ (fast path), the same as OFF (Assimp) and PLY.
+  {
+    const Mesh m = loadMesh(obj, {.generateNormals = false});
+    EXPECT_FALSE(m.hasNormals());
+    std::ofstream off(d / "tiny.off");
+    off << "OFF\n" << m.positions.size() << ' ' << m.triangleCount() << " 0\n";
+    for (const vec3& p : m.positions) off << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (std::size_t i = 0; i < m.indices.size(); i += 3)
+      off << "3 " << m.indices[i] << ' ' << m.indices[i + 1] << ' ' << m.indices[i + 2] << '\n';
+    std::ofstream ply(d / "tiny.ply");
+    ply << "ply\nformat ascii 1.0\nelement vertex " << m.positions.size() << "\nproperty float x\nproperty float y\n"
+        << "property float z\nelement face " << m.triangleCount() << "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (const vec3& p : m.positions) ply << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (std::size_t i = 0; i < m.indices.size(); i += 3)
+      ply << "3 " << m.indices[i] << ' ' << m.indices[i + 1] << ' ' << m.indices[i + 2] << '\n';
+  }
+  for (const fs::path& in : {obj, d / "tiny.off", d / "tiny.ply"}) {
+    const auto r = runGlint("cut " + q(in) + " -o " + q(d / "o.ply") + " --light 0.3,5,0.2 --json -");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("normals"), std::string::npos) << in << ": " << r.output;
+    EXPECT_EQ(r.output.find("warning: "), std::string::npos) << in << ": " << r.output;
+    EXPECT_EQ(reportIn(r.output)["warnings"], nlohmann::json::array()) << in;
+    EXPECT_EQ(reportIn(r.output)["input_triangles"], 14) << in;
+    // Other users of the loader still get their normals, and the warning.
+    log::WarningCapture capture;
+    EXPECT_TRUE(loadMesh(in).hasNormals()) << in;
+    EXPECT_FALSE(loadMesh(in, {.generateNormals = false}).hasNormals()) << in;
+    EXPECT_EQ(capture.take().size(), 1u) << in;
+  }
+}
+
+// A floor at y = 0 came out at y = −1.1e-16 (`glint mesh-info` showed it in the bounds).
+TEST(CutCli, AFloorAtZeroStaysAtZero) {
+  const auto d = dir("exact");
+  const auto r = runGlint("-q cut " + q(tinyScene(d)) + " -o " + q(d / "o.ply") + " -o " + q(d / "o.glb") + " --light 0.3,5,0.2");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* out : {"o.ply", "o.glb"}) {
+    const Mesh m = loadMesh(d / out, {.generateNormals = false});
+    const Bounds b = m.bounds();
+    EXPECT_EQ(b.min.y, 0.0f) << out;
+    EXPECT_FALSE(std::signbit(b.min.y)) << out;
+    EXPECT_EQ(b.max.y, 2.0f) << out;
+    EXPECT_EQ(b.min.x, -4.0f) << out;
+    EXPECT_EQ(b.max.z, 4.0f) << out;
+    for (const vec3& p : m.positions) {
+      // Every vertex is on the floor (y = 0) or on the box, whose faces are axis-aligned.
+      const bool onFloor = p.y == 0.0f;
+      const bool onBox = (p.x == -0.5f || p.x == 0.5f || p.y == 1.0f || p.y == 2.0f || p.z == -0.5f || p.z == 0.5f) &&
+                         std::abs(p.x) <= 0.5f && std::abs(p.z) <= 0.5f && p.y >= 1.0f && p.y <= 2.0f;
+      EXPECT_TRUE(onFloor || onBox) << out << ": (" << p.x << ", " << p.y << ", " << p.z << ")";
+    }
+  }
+  const auto info = runGlint("mesh-info " + q(d / "o.ply"));
+  EXPECT_NE(info.output.find("bounds:             (-4, 0, -4) .. (4, 2, 4)"), std::string::npos) << info.output;
+}
+
+// glTF extras: light_mask was written as a float (1.0) and lit_by as null instead of [].
+TEST(CutCli, GltfExtrasAreAnIntegerMaskAndAListOfLights) {
+  const auto d = dir("extras");
+  const auto in = tinyScene(d);
+  // 32 lights (all high above: the floor's far parts are lit by all, bit 31 included), and
+  // the floor under the box shadowed for all of them (mask 0).
+  std::string lights;
+  for (int l = 0; l < 32; ++l) lights += fmt::format(" --light {},{},{},l{}", 0.01 * l, 30 + l, 0.02 * l, l);
+  const auto r = runGlint("-q cut " + q(in) + " -o " + q(d / "o.glb") + " -o " + q(d / "o.gltf") + lights);
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* out : {"o.glb", "o.gltf"}) {
+    const std::string file = bytes(d / out);
+    std::string_view text = file;
+    if (std::string(out) == "o.glb") {
+      std::uint32_t header[5];
+      ASSERT_GE(file.size(), sizeof header);
+      std::memcpy(header, file.data(), sizeof header);
+      EXPECT_EQ(header[0], 0x46546C67u);
+      EXPECT_EQ(header[2], file.size()) << "the GLB's length";
+      EXPECT_EQ(header[3] % 4, 0u);
+      text = text.substr(20, header[3]);
+    }
+    const auto gltf = nlohmann::json::parse(text);
+    const auto& primitives = gltf["meshes"][0]["primitives"];
+    ASSERT_GE(primitives.size(), 2u) << out;
+    bool none = false, all = false;
+    for (const auto& p : primitives) {
+      const auto& extras = p["extras"];
+      ASSERT_TRUE(extras["light_mask"].is_number_unsigned()) << out << ": " << extras.dump();
+      ASSERT_TRUE(extras["lit_by"].is_array()) << out << ": " << extras.dump();
+      const std::uint32_t mask = extras["light_mask"].get<std::uint32_t>();
+      EXPECT_EQ(extras["lit_by"].size(), std::size_t(std::popcount(mask))) << out << ": " << extras.dump();
+      none = none || (mask == 0 && extras["lit_by"] == nlohmann::json::array());
+      all = all || (mask == 0xFFFFFFFFu && extras["lit_by"][31] == "l31");
+    }
+    EXPECT_TRUE(none) << out << ": no primitive with mask 0 and lit_by []";
+    EXPECT_TRUE(all) << out << ": no primitive lit by all 32 lights";
+    // Still a glTF file Assimp reads, with every triangle.
+    EXPECT_GT(loadMesh(d / out, {.generateNormals = false}).triangleCount(), 14u) << out;
+  }
 }

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -29,6 +30,29 @@ Mesh boxOverFloor() {
 }
 
 void expectClosed(const Mesh& scene, const CutMesh& mesh) { EXPECT_EQ(surfacesStillClosed(scene, mesh), ""); }
+
+/// Output vertices within a hair (1e-9) of an input point are that point, exactly: precise
+/// and float positions. Returns how many there are.
+std::size_t expectInputPointsExact(const Mesh& scene, const CutMesh& mesh) {
+  std::vector<vec3> points = scene.positions;
+  std::sort(points.begin(), points.end(), [](const vec3& a, const vec3& b) { return a.x < b.x; });
+  std::size_t found = 0, wrong = 0;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const dvec3& x = mesh.precisePositions[v];
+    auto it = std::lower_bound(points.begin(), points.end(), x.x - 1e-9, [](const vec3& q, double key) { return q.x < key; });
+    for (; it != points.end() && double(it->x) <= x.x + 1e-9; ++it) {
+      const dvec3 d = glm::abs(x - dvec3(*it));
+      if (std::max({d.x, d.y, d.z}) > 1e-9) continue;
+      ++found;
+      if ((x != dvec3(*it) || mesh.positions[v] != *it) && ++wrong <= 5)
+        ADD_FAILURE() << fmt::format("vertex {} at ({}, {}, {}) is input point ({}, {}, {}) but for {:.3g}", v, x.x, x.y,
+                                     x.z, it->x, it->y, it->z, std::max({d.x, d.y, d.z}));
+      break;
+    }
+  }
+  EXPECT_EQ(wrong, 0u) << "of " << found << " output vertices on input points";
+  return found;
+}
 
 /// The oracle's figures, printed for docs/cut.md, and checked.
 void expectAgreement(const char* what, const OracleResult& o) {
@@ -295,10 +319,17 @@ TEST(Cut, ReportAndMemoryEstimate) {
   const Shard half = cutShard(scene, options);
   EXPECT_EQ(toJson(half).dump(), fmt::format(R"({{"input_triangles":{},"receivers":{},"clipped_pairs":{}}})",
                                              scene.triangleCount(), half.stats.receivers, half.stats.clippedPairs));
-  // ~200 MiB, 650 bytes per triangle and 300 per triangle and light (at least two lights).
-  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(0, 1), 200.0);
-  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(1 << 20, 1), 200.0 + 650.0 + 600.0);
-  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(1 << 20, 4), 200.0 + 650.0 + 1200.0);
+  // 28 MiB, per thread 4 + 6 MiB per light (at most 2 KiB per triangle and light), 700
+  // bytes per triangle and 400 per triangle and light (at least one light).
+  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(0, 1, 2), 28.0);
+  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(1024, 1, 2), 28.0 + 2 * 2.0 + 1024.0 * 1100.0 / (1 << 20));  // small: small scratch
+  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(1 << 20, 1, 2), 28.0 + 2 * 10.0 + 1100.0);
+  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(1 << 20, 0, 2), estimatePeakMemoryMiB(1 << 20, 1, 2));
+  EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(1 << 20, 4, 8), 28.0 + 8 * 28.0 + 2300.0);
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    EXPECT_DOUBLE_EQ(estimatePeakMemoryMiB(1 << 20, 2), 28.0 + 16.0 + 1500.0);  // threads: oneTBB's limit
+  }
 }
 
 TEST(Cut, DegenerateInputIsCarriedThroughWithWarnings) {
@@ -365,6 +396,47 @@ TEST(Cut, LightsInOddPlacesWarn) {
   EXPECT_GT(r.stats.lights[0].grazingTriangles, 0u);
 }
 
+// Issue 21: a floor at y = 0 came out at y = −1.1e-16. Vertices that are input points, or
+// that lie on an input triangle whose plane is axis-aligned, keep the input's coordinates.
+TEST(Cut, ExactInputCoordinatesStayExact) {
+  Mesh scene = makeGrid(6, 6, 8.0f);                            // the floor: y = 0, open
+  scene.append(makeBox({4.0f, 0.0f, -4.0f}, {4.5f, 3.0f, 4.0f}));  // a wall: its face x = 4
+  scene.append(makeBox({-1.0f, 0.0f, -1.0f}, {0.0f, 1.0f, 0.0f}));  // a box standing on the floor
+  scene.append(makeBox({1.0f, 1.0f, 1.0f}, {1.5f, 1.7f, 1.5f}));    // one floating above it
+  CutOptions options;
+  options.lights = {{.position = {0.3f, 5.0f, 0.2f}, .name = "key"}, {.position = {-2.1f, 3.3f, 1.7f}, .name = "fill"}};
+  const CutResult r = cut::cut(scene, options);
+  const CutMesh& m = r.mesh;
+  ASSERT_GT(m.polygonCount(), scene.triangleCount());
+  std::size_t onAxisPlanes = 0, onInputPoints = 0, floorVertices = 0;
+  for (std::size_t p = 0; p < m.polygonCount(); ++p) {
+    const std::uint32_t f = m.polygonSource[p];
+    const vec3 a = scene.positions[scene.indices[3 * f]], b = scene.positions[scene.indices[3 * f + 1]],
+               c = scene.positions[scene.indices[3 * f + 2]];
+    for (std::uint32_t i = m.polygonStart[p]; i < m.polygonStart[p + 1]; ++i) {
+      const std::uint32_t v = m.corners[i];
+      for (int k = 0; k < 3; ++k) {
+        if (a[k] != b[k] || a[k] != c[k]) continue;
+        ++onAxisPlanes;
+        floorVertices += f < 72;  // the grid's triangles come first
+        EXPECT_EQ(m.positions[v][k], a[k]) << "polygon " << p << " of triangle " << f << ", axis " << k;
+        EXPECT_EQ(m.precisePositions[v][k], double(a[k])) << "polygon " << p << " of triangle " << f << ", axis " << k;
+        EXPECT_FALSE(std::signbit(m.positions[v][k]) && a[k] == 0.0f) << "−0 for 0, polygon " << p;
+      }
+    }
+  }
+  // Vertices that are input points (within a hair: nothing else of this scene comes so close)
+  // are those points exactly: the box's corners on the floor, shadows meeting them.
+  onInputPoints = expectInputPointsExact(scene, m);
+  EXPECT_GT(floorVertices, 300u);
+  EXPECT_GT(onAxisPlanes, 500u);
+  EXPECT_GT(onInputPoints, 50u);
+  // Still the same cut: watertight, every piece's mask as the shadow rays say.
+  expectClosed(scene, m);
+  EXPECT_LT(worstAreaError(scene, m), 1e-6);
+  expectAgreement("exact coordinates", shadowOracle(scene, m, options.lights, 32));
+}
+
 TEST(Cut, MachineRoomAgreesWithShadowRaysAndStaysClosed) {
   // The bench's Pipe Dream stand-in at one module (~10k triangles), its two lights.
   const MachineRoomOptions room{.modules = 1};
@@ -379,6 +451,9 @@ TEST(Cut, MachineRoomAgreesWithShadowRaysAndStaysClosed) {
   EXPECT_LT(areaError, 1e-6);
   expectClosed(scene, r.mesh);
   EXPECT_EQ(r.stats.droppedSlivers, 0u);
+  // Issue 21: where the floor's and the parts' pieces meet a part's corner (another surface's
+  // input point), they have its exact coordinates; a hair off before.
+  EXPECT_GT(expectInputPointsExact(scene, r.mesh), 1000u);
 }
 
 TEST(Cut, MachineRoomPartsAreClosedOutwardSolids) {

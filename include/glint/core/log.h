@@ -14,7 +14,9 @@
 
 #include <fmt/format.h>
 
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace glint::log {
 
@@ -29,6 +31,29 @@ enum class Level {
 void setLevel(Level level);
 Level level();
 void write(Level level, std::string_view message);
+
+/// The warnings printed while it lives, from any thread, kept as well as printed: a tool
+/// runs library code that logs its own warnings (the mesh loader's) under one, and lists
+/// them in its report (ToolRun::recordWarning). Captures may nest; each sees every warning.
+///
+/// ```cpp
+/// glint::log::WarningCapture printed;
+/// glint::log::warn("'{}': no normals", "room.obj");
+/// const std::vector<std::string> warnings = printed.take();  // {"'room.obj': no normals"}
+/// ```
+class WarningCapture {
+public:
+  WarningCapture();
+  ~WarningCapture();
+  WarningCapture(const WarningCapture&) = delete;
+  WarningCapture& operator=(const WarningCapture&) = delete;
+  /// The warnings printed since construction or the last take(), in order; clears them.
+  std::vector<std::string> take();
+
+private:
+  std::vector<std::string> m_warnings;
+  friend void write(Level level, std::string_view message);
+};
 
 template <typename... Args>
 void debug(fmt::format_string<Args...> f, Args&&... a) {

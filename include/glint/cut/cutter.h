@@ -73,8 +73,9 @@ using dvec3 = glm::dvec3;
 
 /// The cutter's version: raised whenever cut() gives different output for the same input
 /// (a fix, a change to merging or rounding), so that cached cuts (cut/cache.h) keyed by it
-/// are rebuilt.
-constexpr std::uint32_t kCutterVersion = 1;
+/// are rebuilt. 2: vertices on input points and on axis-aligned input planes keep the
+/// input's exact coordinates.
+constexpr std::uint32_t kCutterVersion = 2;
 
 /// Bit l set: light l reaches the piece.
 using LightMask = std::uint32_t;
@@ -185,11 +186,19 @@ Shard loadShard(const std::filesystem::path& path);
 CutResult mergeShards(const Mesh& scene, std::vector<Shard> shards, const CutOptions& options = {});
 
 // ------------------------------------------------------------------ estimates and reports
-/// The peak memory (MiB) of a cut of `triangles` input triangles for `lights` lights, one
-/// machine: ~200 MiB, ~0.65 KB per input triangle and ~0.3 KB per triangle and light
-/// (beams, pieces, output; at least two lights counted). Measured on the machine-room
-/// scene with two lights (9.4k → 1.01M → 2.03M triangles: 206 → 1,369 → 2,602 MiB).
-double estimatePeakMemoryMiB(std::uint64_t triangles, std::size_t lights);
+/// The peak memory (MiB) of `glint cut` on `triangles` input triangles for `lights` lights
+/// (at least one counted) with `threads` worker threads (0: as many as oneTBB will use
+/// now), one machine: an upper bound fitted to the peak resident set measured on the
+/// machine-room stand-in (14 to 554k triangles, 1 to 4 lights, 1 and 2 threads, .glb and
+/// .ply written; docs/cut.md, "Memory"): 18 to 25 % above it from 140k triangles on, up to
+/// twice it on small scenes (tens of MiB):
+///   28 MiB                                   the process (the measured floor is 20 MiB)
+/// + threads × min(4 + 6 × lights MiB,        each thread's scratch: the pieces and names of
+///                 2 KiB × triangles × lights)  the receiver it cuts, no bigger than the scene's
+/// + triangles × (700 + 400 × lights) bytes   the scene, beams, pieces, the merge and the output
+/// e.g. 14 triangles, 1 light: 28 MiB (measured 20); 554k triangles, 2 lights, 2 threads:
+/// 853 MiB (measured 697).
+double estimatePeakMemoryMiB(std::uint64_t triangles, std::size_t lights, int threads = 0);
 
 /// The lights as a report lists them: [{"name", "position": [x, y, z]}, ...] (names as
 /// given, possibly empty).

@@ -4,12 +4,14 @@
 //
 // Formats, from the file name's extension:
 //   .glb .gltf  one mesh, one primitive per light mask: the mask is the primitive's
-//               extras {"light_mask": m, "lit_by": [names]} (glTF has no per-face
+//               extras {"light_mask": m, "lit_by": [names]} (m an unsigned integer, the
+//               names [] when no light reaches the faces; glTF has no per-face
 //               attributes; a primitive holds the faces of one mask). COLOR_0 shows it
 //               (grey = the share of lights that reach the face; maskColor). Vertices on
 //               mask borders are repeated per primitive, as glTF needs for the colours.
-//               The lights go along as KHR_lights_punctual point lights. Written by
-//               tinygltf (Debian's libtinygltf); .gltf embeds its buffer.
+//               The lights go along as KHR_lights_punctual point lights. The JSON is
+//               written by tinygltf (Debian's libtinygltf), the extras, the buffer and
+//               the file around them by glint; .gltf embeds its buffer (base64).
 //   .ply        binary PLY with the convex polygons as they are (shared vertices, so a
 //               watertight input stays watertight in the file), per face the properties
 //               `light_mask` (uint), `source` (the input triangle, uint) and red/green/blue
@@ -47,7 +49,9 @@ void checkOutputFormat(const std::filesystem::path& path);
 vec3 maskColor(LightMask mask, int lightCount);
 
 /// The scene of a cut: the meshes in `paths` joined in order (Error(Input) for one that
-/// cannot be read). When `gltfLights` is given, the lights of the glTF files among them
+/// cannot be read), read for their positions: no normals are generated for meshes without
+/// (nor warned about; MeshLoadOptions::generateNormals). The loader's other warnings are
+/// logged (`glint cut` lists them in its report through log::WarningCapture). When `gltfLights` is given, the lights of the glTF files among them
 /// (loadGltfLights) are appended to it, file by file: `glint cut` uses them when no --light
 /// is given.
 Mesh loadScene(const std::vector<std::filesystem::path>& paths, std::vector<Light>* gltfLights = nullptr);

@@ -83,6 +83,10 @@ struct MeshLoadOptions {
   /// parsing. A ray tracer does not need shared vertices: `glint bake` loads its high
   /// poly without.
   bool joinVertices = true;
+  /// Generate smooth normals for meshes the file gives none (and log one warning saying so).
+  /// Tools that use positions only (`glint cut`) turn this off: such meshes then come
+  /// without normals (Mesh::normals empty), silently. Normals the file has are kept either way.
+  bool generateNormals = true;
   /// The fast paths: OBJ on all cores (the file cut into chunks at line starts, parsed in
   /// parallel; the usual `v`/`vn`/`vt`/`f` lines by a std::from_chars lane, every other
   /// line by tinyobjloader), PLY through Draco's PLY reader (ASCII, binary little endian)
@@ -95,11 +99,13 @@ struct MeshLoadOptions {
 /// Loads every mesh in a file into one Mesh (node transforms applied, triangulated,
 /// identical vertices joined unless asked not to). Error(Input) when the file is missing,
 /// corrupt or has no triangles. Missing normals are generated as smooth normals, the
-/// normalized sum of the unit normals of the faces at each position (a warning is logged).
+/// normalized sum of the unit normals of the faces at each position (a warning is logged),
+/// unless options.generateNormals is off.
 ///
 /// ```cpp
 /// const glint::Mesh high = glint::loadMesh("statue.obj", {.joinVertices = false});  // for a ray tracer
 /// const glint::Mesh reference = glint::loadMesh("statue.obj", {.parser = glint::MeshParser::Assimp});
+/// const glint::Mesh shape = glint::loadMesh("statue.obj", {.generateNormals = false});  // positions are all it needs
 /// ```
 Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
