@@ -53,7 +53,7 @@ TEST(MaxMemory, CutTooBigForTheLimitIsRefused) {
   // 9.2k triangles, one light: estimated 58 MiB on two threads (more on more), measured 25.
   const auto refused = runGlint("cut " + q(d / "scene.obj") + " --light 0,4,0 --max-memory 40M -q -o " + q(d / "out.ply"));
   EXPECT_EQ(refused.status, 2) << refused.output;
-  EXPECT_NE(refused.output.find("more than --max-memory 40 MiB"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("more than --max-memory 40M (40 MiB)"), std::string::npos) << refused.output;
   EXPECT_TRUE(oneLine(refused.output)) << refused.output;
   EXPECT_FALSE(fs::exists(d / "out.ply"));
   const auto ran = runGlint("cut " + q(d / "scene.obj") + " --light 0,4,0 --max-memory 2G -q -o " + q(d / "out.ply"));
