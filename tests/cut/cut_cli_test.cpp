@@ -272,8 +272,10 @@ TEST(CutCli, ATinySceneFitsATinyMemoryLimit) {
   const auto r = runGlint("-q cut " + q(tinyScene(d)) + " -o " + q(d / "o.ply") + " --light 0.3,5,0.2 --max-memory 100M --json -");
   ASSERT_EQ(r.status, 0) << r.output;
   const auto report = reportIn(r.output);
-  EXPECT_GE(report["memory_estimate_mib"].get<double>(), report["peak_memory_mib"].get<double>()) << report.dump();
   EXPECT_LE(report["memory_estimate_mib"].get<double>(), 100.0) << report.dump();
+  if (!glint::testing::kAddressSanitizer) {  // ASan's shadow memory inflates the peak (make sanitize)
+    EXPECT_GE(report["memory_estimate_mib"].get<double>(), report["peak_memory_mib"].get<double>()) << report.dump();
+  }
 }
 
 TEST(CutCli, TheMemoryEstimateCoversTheMeasuredPeak) {
@@ -287,6 +289,7 @@ TEST(CutCli, TheMemoryEstimateCoversTheMeasuredPeak) {
   const double estimate = report["memory_estimate_mib"].get<double>(), peak = report["peak_memory_mib"].get<double>();
   std::printf("[ memory   ] %zu triangles, 2 lights: estimate %.0f MiB, peak %.0f MiB\n",
               report["input_triangles"].get<std::size_t>(), estimate, peak);
+  if (glint::testing::kAddressSanitizer) GTEST_SKIP() << "under ASan the peak includes its shadow memory and quarantine";
   EXPECT_GE(estimate, peak);
   EXPECT_LE(estimate, 2.5 * peak) << "an upper bound, with a modest margin";
 }

@@ -12,6 +12,21 @@
 
 namespace glint::testing {
 
+/// Whether this build runs under AddressSanitizer (make sanitize): its shadow memory and
+/// quarantine multiply a process's peak memory, so peaks measured there say nothing about
+/// a plain build's.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+
 struct CliRun {
   int status = -1;     ///< exit status; -1 when killed by a signal
   std::string output;  ///< stdout + stderr
