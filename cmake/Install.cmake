@@ -14,7 +14,7 @@
 #
 # Exported targets, namespace glint:: (the same names work in this build as aliases), one
 # package component each, named as the target (find_package(glint COMPONENTS render)):
-#   glint::core glint::image glint::mesh glint::raytrace glint::bake glint::raster glint::sim
+#   glint::core glint::farm glint::image glint::mesh glint::raytrace glint::bake glint::raster glint::sim
 #   glint::gl glint::render glint::scenes, and as configured glint::video (GLINT_BUILD_VIDEO),
 #   glint::cut (GLINT_BUILD_CUT), glint::bench (GLINT_BUILD_BENCH), glint::window (GLINT_BUILD_VIEWER)
 #   glint::glint (component glint: the command, an imported executable)
@@ -25,7 +25,7 @@
 include(CMakePackageConfigHelpers)
 
 # Layer order, lowest first: an installed package loads the targets files in this order.
-set(glint_components core image)
+set(glint_components core farm image)
 if(GLINT_BUILD_VIDEO)
   list(APPEND glint_components video)
 endif()

@@ -23,7 +23,7 @@
 
 namespace glint::video::backend {
 
-constexpr int kVideoAbiVersion = 2;
+constexpr int kVideoAbiVersion = 3;
 
 /// An entry point's outcome: ok, or the Error it would have thrown.
 struct Status {
@@ -61,6 +61,8 @@ struct Api {
 
   std::int64_t (*concatenate)(std::span<const std::filesystem::path> parts, const std::filesystem::path& destination,
                               Status& status) = nullptr;
+  /// video::indexFrames
+  FrameIndex (*indexFrames)(const std::string& name, Status& status) = nullptr;
   /// av_packet_free, for Packets made by the module and destroyed by glint_video.
   void (*freePacket)(AVPacket* packet) = nullptr;
 };

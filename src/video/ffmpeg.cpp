@@ -116,8 +116,8 @@ Packet& Packet::operator=(Packet&& other) noexcept {
   return *this;
 }
 
-AudioTrack::AudioTrack(const AVCodecParameters& parameters, AVRational timeBase)
-    : m_parameters(avcodec_parameters_alloc()), m_timeBase(timeBase) {
+AudioTrack::AudioTrack(const AVCodecParameters& parameters, AVRational timeBase, double leadSeconds)
+    : m_parameters(avcodec_parameters_alloc()), m_timeBase(timeBase), m_leadSeconds(leadSeconds) {
   avcodec_parameters_copy(m_parameters, &parameters);
 }
 AudioTrack::~AudioTrack() { avcodec_parameters_free(&m_parameters); }

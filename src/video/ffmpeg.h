@@ -6,6 +6,7 @@ extern "C" {
 #include <libavdevice/avdevice.h>
 #include <libavformat/avformat.h>
 #include <libavutil/imgutils.h>
+#include <libavutil/intreadwrite.h>
 #include <libavutil/opt.h>
 #include <libswscale/swscale.h>
 }
@@ -98,16 +99,20 @@ private:
 /// The audio stream a Source keeps and a Sink copies: its codec parameters and time base.
 class AudioTrack {
 public:
-  AudioTrack(const AVCodecParameters& parameters, AVRational timeBase);
+  /// `leadSeconds`: how long before the video's first frame the audio stream starts in the
+  /// source (an AAC encoder's priming), 0 when it does not.
+  AudioTrack(const AVCodecParameters& parameters, AVRational timeBase, double leadSeconds = 0.0);
   ~AudioTrack();
   AudioTrack(const AudioTrack&) = delete;
   AudioTrack& operator=(const AudioTrack&) = delete;
   const AVCodecParameters& parameters() const { return *m_parameters; }
   AVRational timeBase() const { return m_timeBase; }
+  double leadSeconds() const { return m_leadSeconds; }
 
 private:
   AVCodecParameters* m_parameters = nullptr;
   AVRational m_timeBase;
+  double m_leadSeconds = 0.0;
 };
 
 /// Runs `body` and returns its result; a thrown Error (or anything else) is caught into

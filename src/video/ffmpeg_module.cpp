@@ -22,6 +22,7 @@ std::int64_t framesWritten(const SinkHandle* sink);
 const std::string* audioNote(const SinkHandle* sink);
 std::int64_t concatenate(std::span<const std::filesystem::path> parts, const std::filesystem::path& destination,
                          Status& status);
+FrameIndex indexFrames(const std::string& name, Status& status);
 }  // namespace glint::video::backend
 
 extern "C" __attribute__((visibility("default"))) const glint::video::backend::Api* glint_video_api() {
@@ -46,6 +47,7 @@ extern "C" __attribute__((visibility("default"))) const glint::video::backend::A
     a.framesWritten = framesWritten;
     a.audioNote = audioNote;
     a.concatenate = concatenate;
+    a.indexFrames = indexFrames;
     a.freePacket = [](AVPacket* p) { av_packet_free(&p); };
     return a;
   }();

@@ -66,6 +66,7 @@ struct FfmpegSink {
   AVStream* videoStream = nullptr;
   AVStream* audioStream = nullptr;
   const AudioTrack* audio = nullptr;
+  bool matroska = false;  // the output is Matroska (or WebM)
   std::string audioNote;
   RgbaConverter converter;
   FramePtr frame{av_frame_alloc()};
@@ -178,6 +179,16 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_
     }
   }
 
+  // Audio that starts before the first frame (AAC priming) has negative timestamps; a
+  // container that cannot store them (Matroska) would shift the whole file by the lead of
+  // whatever it is given first. Shifting by the source's lead instead gives every part of a
+  // split video (`--frames`) the same timeline as the whole, so the parts join with --concat
+  // into the very bytes of one run.
+  if (s.audio && s.audio->leadSeconds() > 0 && !(s.output->oformat->flags & AVFMT_TS_NEGATIVE))
+    s.output->output_ts_offset = std::llround(s.audio->leadSeconds() * AV_TIME_BASE);
+
+  s.matroska = std::string_view(s.output->oformat->name).find("matroska") != std::string_view::npos ||
+               std::string_view(s.output->oformat->name) == "webm";
   openFile(*s.output, target, destination);
   if (const int h = avformat_write_header(s.output.get(), nullptr); h < 0) {
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(h));
@@ -228,6 +239,20 @@ void FfmpegSink::writeAudio(Packet packet) {
   FfmpegSink& s = *this;
   if (!s.audioStream || !packet) return;
   AVPacket* p = packet.get();
+  // Matroska reads only the end trim of an MP4's skip-samples note (as DiscardPadding); a
+  // note with none would still turn the block into a BlockGroup with DiscardPadding 0, which
+  // a file read back (a --frames part joined by --concat) no longer has.
+  if (std::size_t size = 0; s.matroska) {
+    const std::uint8_t* skip = av_packet_get_side_data(p, AV_PKT_DATA_SKIP_SAMPLES, &size);
+    if (skip && size >= 8 && AV_RL32(skip + 4) == 0) {
+      for (int i = 0; i < p->side_data_elems; ++i) {
+        if (p->side_data[i].type != AV_PKT_DATA_SKIP_SAMPLES) continue;
+        av_freep(&p->side_data[i].data);
+        p->side_data[i] = p->side_data[--p->side_data_elems];
+        break;
+      }
+    }
+  }
   av_packet_rescale_ts(p, s.audio->timeBase(), s.audioStream->time_base);
   p->stream_index = s.audioStream->index;
   p->pos = -1;
@@ -311,12 +336,20 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
   }
 
   PacketPtr packet(av_packet_alloc());
+  const auto write = [&](AVPacket& p) {
+    if (const int w = av_interleaved_write_frame(output.get(), &p); w < 0) {
+      fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(w));
+    }
+  };
   std::int64_t frames = 0;
   std::int64_t previousEnd = kNoTimestamp;  // in the output video stream's time base
   std::vector<std::int64_t> lastDts(first.nb_streams, kNoTimestamp);
   for (std::size_t k = 0; k < inputs.size(); ++k) {
     AVFormatContext& in = *inputs[k];
     std::int64_t partStart = kNoTimestamp, partEnd = kNoTimestamp;
+    const bool holdLast = k + 1 == inputs.size() && in.duration > 0 &&
+                          std::string_view(in.iformat->name).find("matroska") != std::string_view::npos;
+    std::vector<PacketPtr> held(in.nb_streams);
     while (true) {
       const int r = av_read_frame(&in, packet.get());
       if (r == AVERROR_EOF) break;
@@ -339,9 +372,24 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
       }
       if (packet->dts != AV_NOPTS_VALUE) lastDts[std::size_t(index)] = packet->dts;
       packet->pos = -1;
-      if (const int w = av_interleaved_write_frame(output.get(), packet.get()); w < 0) {
-        fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(w));
+      if (holdLast) {  // written one behind, so the last one can be trimmed at the end
+        PacketPtr& h = held[std::size_t(index)];
+        if (h) write(*h);
+        else h.reset(av_packet_alloc());
+        av_packet_move_ref(h.get(), packet.get());
+      } else {
+        write(*packet);
       }
+    }
+    // Matroska keeps no audio durations: read back, a trimmed last packet (an encoder's end
+    // padding) lasts a whole frame. The part's own duration still says where it ended, and
+    // the joined file ends there too, as one run's would.
+    for (unsigned i = 0; holdLast && i < held.size(); ++i) {
+      if (!held[i]) continue;
+      AVPacket& last = *held[i];
+      const std::int64_t end = av_rescale_q(in.duration, AV_TIME_BASE_Q, output->streams[i]->time_base);
+      if (last.pts != AV_NOPTS_VALUE && last.pts < end && last.pts + last.duration > end) last.duration = end - last.pts;
+      write(last);
     }
     // A part must begin where the previous one ended: within half a frame (containers
     // round timestamps and last-packet durations to their own time bases).

@@ -64,6 +64,7 @@ struct FfmpegSource {
   }
 
   void open(const std::string& name);
+  double audioLead();
   void seekTo(std::int64_t frameIndex);
   bool decodeOne(Frame& frame);  // the next decoded frame, any index
   void keepAudio(AVPacket& packet);
@@ -161,18 +162,52 @@ void FfmpegSource::open(const std::string& name) {
     info.audioCodec = avcodec_get_name(a->codecpar->codec_id);
     if (options.keepAudio) {
       audioStream = found;
-      audio = std::make_unique<AudioTrack>(*a->codecpar, a->time_base);
     }
   }
   // Only the streams glint reads are demuxed.
   for (unsigned i = 0; i < format->nb_streams; ++i)
     if (int(i) != videoStream && int(i) != audioStream) format->streams[i]->discard = AVDISCARD_ALL;
+  if (audioStream >= 0) {
+    AVStream* a = format->streams[audioStream];
+    audio = std::make_unique<AudioTrack>(*a->codecpar, a->time_base, audioLead());
+  }
 
   if (options.firstFrame < 0) fail(ErrorKind::Usage, "--frames: the first frame must not be negative");
   if (options.lastFrame >= 0 && options.lastFrame <= options.firstFrame) {
     fail(ErrorKind::Usage, "--frames {}:{} selects no frames", options.firstFrame, options.lastFrame);
   }
   if (options.firstFrame > 0) seekTo(options.firstFrame);
+}
+
+// How long before the video's start the audio begins when it begins before 0 (AAC priming
+// in an MP4: its first packet is stamped -1024 samples, though start_time says 0). Read
+// from the first packets of the file through a second demuxer (this one stays where it is),
+// so a part made with --frames knows the whole file's lead too. 0 for anything but a file,
+// and for Opus, whose pre-skip Matroska keeps as CodecDelay.
+double FfmpegSource::audioLead() {
+  if (info.kind != SourceKind::File || info.name == "-") return 0.0;
+  if (format->streams[audioStream]->codecpar->codec_id == AV_CODEC_ID_OPUS) return 0.0;
+  AVFormatContext* raw = nullptr;
+  if (avformat_open_input(&raw, info.name.c_str(), nullptr, nullptr) < 0) return 0.0;
+  FormatPtr probe(raw);
+  if (avformat_find_stream_info(probe.get(), nullptr) < 0) return 0.0;
+  if (int(probe->nb_streams) <= std::max(videoStream, audioStream)) return 0.0;
+  AVStream* video = probe->streams[videoStream];
+  AVStream* a = probe->streams[audioStream];
+  for (unsigned i = 0; i < probe->nb_streams; ++i)
+    if (int(i) != videoStream && int(i) != audioStream) probe->streams[i]->discard = AVDISCARD_ALL;
+  std::int64_t firstAudio = AV_NOPTS_VALUE, firstVideo = video->start_time;
+  PacketPtr p{av_packet_alloc()};
+  for (int i = 0; i < 4096 && (firstAudio == AV_NOPTS_VALUE || firstVideo == AV_NOPTS_VALUE); ++i) {
+    if (av_read_frame(probe.get(), p.get()) < 0) break;
+    if (p->stream_index == audioStream && firstAudio == AV_NOPTS_VALUE) firstAudio = p->pts;
+    else if (p->stream_index == videoStream && firstVideo == AV_NOPTS_VALUE) firstVideo = p->pts;
+    av_packet_unref(p.get());
+  }
+  if (firstAudio == AV_NOPTS_VALUE || firstVideo == AV_NOPTS_VALUE) return 0.0;
+  // Only a negative first timestamp makes a muxer shift the file (positive ones are kept).
+  const double audioStart = double(firstAudio) * av_q2d(a->time_base);
+  return audioStart < 0.0 ? std::max(0.0, double(firstVideo) * av_q2d(video->time_base) - audioStart) : 0.0;
 }
 
 void FfmpegSource::seekTo(std::int64_t frameIndex) {
@@ -313,6 +348,59 @@ void counters(const SourceHandle* h, std::int64_t out[4]) {
   out[3] = cast(h).decoderErrors.count();
 }
 std::string firstDecoderError(const SourceHandle* h) { return cast(h).decoderErrors.first(); }
+
+FrameIndex indexFrames(const std::string& name, Status& status) {
+  return guarded(status, [&] {
+    // Packets only, no decoding: the same numbering as FfmpegSource::indexOf (the stream's
+    // start time is frame 0, index = seconds × average rate).
+    AVFormatContext* raw = nullptr;
+    if (const int e = avformat_open_input(&raw, name.c_str(), nullptr, nullptr); e < 0)
+      fail(ErrorKind::Input, "cannot read '{}': {}", name, ffmpegError(e));
+    FormatPtr format(raw);
+    if (const int s = avformat_find_stream_info(format.get(), nullptr); s < 0)
+      fail(ErrorKind::Input, "cannot read '{}': {}", name, ffmpegError(s));
+    const int video = av_find_best_stream(format.get(), AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
+    if (video < 0) fail(ErrorKind::Input, "'{}' has no video stream", name);
+    AVStream* stream = format->streams[video];
+    for (unsigned i = 0; i < format->nb_streams; ++i)
+      if (int(i) != video) format->streams[i]->discard = AVDISCARD_ALL;
+    const AVRational rate = stream->avg_frame_rate.num > 0 ? stream->avg_frame_rate : stream->r_frame_rate;
+    FrameIndex index;
+    index.frameRate = toRational(rate);
+    std::int64_t start = stream->start_time != AV_NOPTS_VALUE ? stream->start_time : kNoTimestamp;
+    std::vector<std::pair<std::int64_t, bool>> packets;  // (pts or decode position, keyframe)
+    bool timestamps = rate.num > 0;
+    PacketPtr packet{av_packet_alloc()};
+    std::int64_t counter = 0;
+    while (av_read_frame(format.get(), packet.get()) >= 0) {
+      if (packet->stream_index == video) {
+        const std::int64_t pts = packet->pts;
+        if (pts == AV_NOPTS_VALUE) timestamps = false;
+        packets.emplace_back(pts == AV_NOPTS_VALUE ? counter : pts, (packet->flags & AV_PKT_FLAG_KEY) != 0);
+        ++counter;
+      }
+      av_packet_unref(packet.get());
+    }
+    if (timestamps && start == kNoTimestamp && !packets.empty()) {
+      start = packets.front().first;
+      for (const auto& p : packets) start = std::min(start, p.first);
+    }
+    std::vector<std::int64_t> frames;
+    for (std::size_t i = 0; i < packets.size(); ++i) {
+      const std::int64_t frame =
+          timestamps ? std::llround(double(packets[i].first - start) * av_q2d(stream->time_base) * av_q2d(rate))
+                     : std::int64_t(i);
+      frames.push_back(frame);
+      if (packets[i].second) index.keyframes.push_back(frame);
+    }
+    std::sort(frames.begin(), frames.end());
+    frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+    std::sort(index.keyframes.begin(), index.keyframes.end());
+    index.keyframes.erase(std::unique(index.keyframes.begin(), index.keyframes.end()), index.keyframes.end());
+    index.frameCount = std::int64_t(frames.size());
+    return index;
+  }, FrameIndex{});
+}
 }  // namespace backend
 
 }  // namespace glint::video

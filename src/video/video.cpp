@@ -186,4 +186,11 @@ std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destin
   return frames;
 }
 
+FrameIndex indexFrames(const std::string& path) {
+  backend::Status status;
+  FrameIndex index = api().indexFrames(path, status);
+  check(status);
+  return index;
+}
+
 }  // namespace glint::video

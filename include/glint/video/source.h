@@ -44,6 +44,7 @@
 #include <deque>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace glint::video {
 
@@ -128,6 +129,20 @@ private:
   explicit Source(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> m_impl;
 };
+
+/// A video file's frames, from its packets alone (nothing is decoded): how many there are
+/// and which are keyframes, numbered as Source numbers them (from the timestamps: frame 0 is
+/// the stream's start). `glint farm post` splits a video at keyframes with it, so every
+/// part (`glint post --frames a:b`) starts decoding at its own first frame.
+struct FrameIndex {
+  std::int64_t frameCount = 0;          ///< frames in the file
+  std::vector<std::int64_t> keyframes;  ///< ascending frame indices of the keyframes
+  Rational frameRate;                   ///< the average rate (as SourceInfo::frameRate)
+};
+
+/// The frame index of the video file `path`. Error(Input) as Source::open for a file that
+/// cannot be read or has no video stream. Reads the whole file once (packets only).
+FrameIndex indexFrames(const std::string& path);
 
 /// Whether `name` looks like a still image glint reads through OpenImageIO (by extension:
 /// .png .jpg .jpeg .tga .tif .tiff .exr .hdr .bmp .webp), not a video.

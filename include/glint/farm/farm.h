@@ -1,0 +1,194 @@
+#pragma once
+// glint/farm/farm.h — a tool job split into pieces and a join, run on a Slurm cluster
+// (`glint farm`).
+//
+// glint's tools already split their own work: `glint cut --shard i/n` then `--merge`,
+// `glint post --frames a:b` then `--concat`, `glint render --frames a:b` then
+// `glint post --concat`, one `glint bake --batch F --job i` per bake. A Plan is such a job
+// written down: the pieces (plain glint command lines, each writing its own files) and the
+// join (one command line that reads every piece's output and writes the final output).
+// A Farm submits a plan to Slurm as one job array (task i = piece i) and one join job that
+// depends on the whole array (`afterok`, killed when a dependency fails), through the
+// standard client commands — sbatch, squeue, scontrol, scancel — so nothing links Slurm and
+// any Slurm version with those commands works.
+//
+//   pieces named     every piece has a key: a hash of its command line (glint's own
+//   by their inputs  options, the piece's index) and of each input file's absolute path, size
+//                    and modification time. Its output is `<work dir>/<key>.<ext>`, and a
+//                    piece counts as done when its output and its marker (`<key>.done`,
+//                    written by the task after glint exits 0) are both there.
+//   resubmit rule    running the same plan again submits only the pieces that are not done
+//                    and not still queued or running (a live task from the last submission is
+//                    waited for, not doubled), then the join; a plan whose join already
+//                    succeeded submits nothing.
+//   atomic outputs   each piece and the join write through glint's own atomic writes, so a
+//                    cancelled task leaves no half file under the final name; the join job
+//                    removes the intermediates only after the join command succeeded.
+//   faults           wait() follows the tasks (squeue, then scontrol for tasks that ended)
+//                    and reports every failed or cancelled one with its state, exit code
+//                    and log file; the join does not run.
+//
+/// ```cpp
+/// glint::farm::Plan plan;
+/// plan.tool = "post";
+/// plan.title = "clip.mp4 → graded.mp4";
+/// plan.workDir = "/shared/farm";
+/// for (int i = 0; i < 2; ++i) {
+///   glint::farm::Piece piece;
+///   piece.label = "frames " + std::to_string(i * 100) + ":" + std::to_string(i * 100 + 100);
+///   piece.command = {"post", "/shared/clip.mp4", "-o", glint::farm::kPieceOutput, "--codec", "ffv1",
+///                    "--frames", std::to_string(i * 100) + ":" + std::to_string(i * 100 + 100), "-e", "sepia"};
+///   piece.extension = ".mkv";
+///   piece.inputs = {"/shared/clip.mp4"};
+///   plan.pieces.push_back(piece);
+/// }
+/// plan.join = {"post", "--concat", glint::farm::kAllPieceOutputs, "-o", "/shared/graded.mkv"};
+/// plan.outputs = {"/shared/graded.mkv"};
+/// glint::farm::Resources resources;
+/// resources.memoryMiB = 2048;
+/// glint::farm::Farm farm(plan, resources);   // finds sbatch, keys the pieces, reads the work dir
+/// std::string scripts = farm.scripts();      // what --dry-run prints: the two batch scripts
+/// // farm.submit() submits what is missing; farm.wait() follows it (see below).
+/// ```
+//
+// Errors are glint::Error with one line: Usage for a plan without pieces or an option
+// Slurm would refuse, Input for a missing `sbatch` ("install slurm-client") or a
+// submission Slurm refused (its own message), Output for a work directory that cannot be
+// written.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint::farm {
+
+/// In a piece's command: replaced by the piece's output path (`<work dir>/<key><extension>`).
+inline constexpr const char* kPieceOutput = "{piece}";
+/// In the join's command: replaced by every piece's output path, in piece order.
+inline constexpr const char* kAllPieceOutputs = "{pieces}";
+
+/// One task of the array: a glint command line (without the program itself).
+struct Piece {
+  std::string label;                 ///< for people: "shard 2/4", "frames 250:500", "bake 3 (crate_n.png)"
+  std::vector<std::string> command;  ///< glint's arguments; kPieceOutput where the piece's output goes
+  std::string extension;             ///< of the piece's output in the work directory (".glint-shard", ".mkv");
+                                     ///< empty: the piece writes final outputs itself (a bake)
+  std::vector<std::filesystem::path> inputs;   ///< files the piece reads (their size and time key it)
+  std::vector<std::filesystem::path> outputs;  ///< final files it writes itself (with an empty extension)
+};
+
+/// A split job: the pieces, the join, and what the whole writes.
+struct Plan {
+  std::string tool;                    ///< "cut", "post", "render", "bake": names the job and its directory
+  std::string title;                   ///< one line for reports: "city.glb → city-cut.glb"
+  std::vector<Piece> pieces;
+  std::vector<std::string> join;       ///< glint's arguments for the join (kAllPieceOutputs); empty: no join
+  std::vector<std::filesystem::path> outputs;  ///< the final outputs (written by the join, or by the pieces)
+  std::filesystem::path workDir;       ///< intermediates, scripts, logs (on a filesystem every node sees)
+};
+
+/// What each task asks Slurm for.
+struct Resources {
+  std::string partition;     ///< --partition; empty: the cluster's default
+  std::string time;          ///< --time (e.g. "1:00:00"); empty: the partition's default
+  std::int64_t memoryMiB = 0;  ///< --mem in MiB (also the piece's --max-memory); 0: the cluster's default
+  int cpusPerTask = 0;       ///< --cpus-per-task; 0: Slurm's default (1)
+  std::string glint;         ///< the glint program the tasks run; empty: this process's executable
+};
+
+/// Where a piece stands.
+enum class PieceState { Done, Queued, Running, Failed, Missing };
+
+struct PieceStatus {
+  PieceState state = PieceState::Missing;
+  std::string slurmState;  ///< "COMPLETED", "FAILED", "CANCELLED", "TIMEOUT", ... (empty when unknown)
+  std::string exitCode;    ///< Slurm's "code:signal", e.g. "3:0", "0:15"; or the rc the task wrote
+  std::string jobId;       ///< "1234_2" once submitted
+};
+
+/// The outcome of wait().
+struct WaitResult {
+  bool joined = false;           ///< the join succeeded: the outputs exist
+  std::vector<std::string> failures;  ///< one line per failed or cancelled task: label, state, exit code, log
+  int exitCode = 0;              ///< 0 when joined; else the first failed task's exit code, or 1
+};
+
+/// What submit() did.
+struct Submission {
+  std::vector<int> submitted;    ///< pieces submitted now (indices)
+  std::vector<int> reused;       ///< pieces already done, or still queued/running from before
+  std::string arrayJob;          ///< the array's job id ("" when no piece needed submitting)
+  std::string joinJob;           ///< the join's job id ("" when the plan was already joined)
+  bool alreadyJoined = false;    ///< nothing to do: the outputs of this very plan exist
+};
+
+class Farm {
+public:
+  /// Keys the pieces (reads the inputs' size and time) and loads the work directory's
+  /// record of an earlier submission. Error(Usage) for a plan without pieces.
+  Farm(Plan plan, Resources resources);
+
+  /// The plan's directory: `<workDir>/<tool>-<plan key>`.
+  const std::filesystem::path& directory() const { return m_directory; }
+  const Plan& plan() const { return m_plan; }
+  /// Piece i's output path in the directory (empty for pieces that write final outputs).
+  std::filesystem::path pieceOutput(int i) const;
+  /// Piece i's log file (the task's stdout and stderr).
+  std::filesystem::path pieceLog(int i) const;
+  std::filesystem::path joinLog() const;
+
+  /// The two batch scripts as submit() writes them (the array's, then the join's), each
+  /// headed by its `sbatch` line: what `glint farm --dry-run` prints. Submits nothing.
+  std::string scripts() const;
+
+  /// Submits the pieces that are neither done nor live, and the join. Error(Input) when
+  /// sbatch is missing or refuses.
+  Submission submit();
+
+  /// Follows the submission until the join has ended or a task failed and nothing is left
+  /// running; `progress(done, total, line)` is called whenever something changes.
+  WaitResult wait(const std::function<void(int done, int total, const std::string& line)>& progress = {});
+
+  /// Each piece's state now (markers, then squeue and scontrol).
+  std::vector<PieceStatus> status();
+
+private:
+  struct Record;
+  void keyPieces();
+  void loadRecord();
+  void saveRecord() const;
+  std::string pieceScript(const std::vector<int>& indices) const;
+  std::string joinScript() const;
+  std::vector<std::string> pieceCommand(int i) const;
+  std::vector<std::string> joinCommand() const;
+  bool pieceDone(int i) const;
+  bool joinedBefore() const;
+
+  Plan m_plan;
+  Resources m_resources;
+  std::string m_key;                   ///< the plan's key (all piece keys and the join)
+  std::vector<std::string> m_pieceKeys;
+  std::filesystem::path m_directory;
+  std::string m_arrayJob, m_joinJob;   ///< from submit(), or the record of an earlier one
+  std::vector<std::string> m_pieceJobs;  ///< per piece, "ARRAY_TASK" of its latest submission
+};
+
+/// Whether Slurm's client commands are on PATH; when not, the one-line reason ("sbatch not
+/// found: install Debian's slurm-client (apt install slurm-client) and point SLURM_CONF at the
+/// cluster's slurm.conf").
+std::optional<std::string> slurmMissing();
+
+/// Splits frames [first, end) into at most `chunks` ranges whose starts are keyframes (so
+/// each range decodes on its own), as even as the keyframes allow. `keyframes` are frame
+/// indices, ascending, starting with `first` or earlier. Fewer ranges come back when there
+/// are fewer keyframes than chunks.
+std::vector<std::pair<std::int64_t, std::int64_t>> splitAtKeyframes(const std::vector<std::int64_t>& keyframes,
+                                                                    std::int64_t first, std::int64_t end, int chunks);
+
+/// Splits frames [first, end) into `chunks` ranges as even as possible (a render: any frame
+/// may start a piece).
+std::vector<std::pair<std::int64_t, std::int64_t>> splitEvenly(std::int64_t first, std::int64_t end, int chunks);
+
+}  // namespace glint::farm

@@ -1,0 +1,253 @@
+// `glint farm` against a real Slurm cluster (issue 22): munged, slurmctld and slurmd from
+// Debian's packages, started by the test on this machine (support/slurm_cluster.h). Every
+// farmed output is compared with one local run of the same tool: byte for byte for cut,
+// bake and FFV1 video; frame count and the decoded frames for lossless H.264. Faults: a
+// cancelled task and a failing one stop the join, are reported with their exit code and log,
+// and a rerun redoes only them.
+#include "glint/farm/farm.h"
+#include "glint/mesh/machine_room.h"
+#include "glint/mesh/mesh.h"
+#include "support/cli.h"
+#include "support/slurm_cluster.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <memory>
+#include <thread>
+
+namespace fs = std::filesystem;
+using namespace glint;
+using glint::testing::oneLine;
+using glint::testing::readBytes;
+using glint::testing::runGlint;
+using glint::testing::runShell;
+using glint::testing::SlurmCluster;
+
+namespace {
+
+constexpr auto q = glint::testing::shellQuote;
+
+/// One cluster for the whole test program (started before the first test, stopped after
+/// the last).
+SlurmCluster* cluster = nullptr;
+
+class ClusterEnvironment : public ::testing::Environment {
+public:
+  void SetUp() override {
+    if (geteuid() != 0 && !std::getenv("CI")) return;  // slurmd runs jobs as root; tests below skip
+    m_cluster = std::make_unique<SlurmCluster>(fs::path(GLINT_TEST_OUTPUT_DIR) / "farm" /
+                                               fmt::format("cluster-{}", getpid()));
+    cluster = m_cluster.get();
+  }
+  void TearDown() override {
+    cluster = nullptr;
+    m_cluster.reset();
+  }
+
+private:
+  std::unique_ptr<SlurmCluster> m_cluster;
+};
+const auto* const registered = ::testing::AddGlobalTestEnvironment(new ClusterEnvironment);
+
+#define NEED_CLUSTER() \
+  if (!cluster) GTEST_SKIP() << "the Slurm fixture runs as root (slurmd starts the jobs)"
+
+fs::path dir(const char* name) { return glint::testing::freshDir("farm", name); }
+
+void writeObj(const Mesh& m, const fs::path& path) {
+  std::ofstream out(path);
+  out.precision(9);
+  for (const vec3& p : m.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (const vec3& n : m.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
+  for (std::size_t i = 0; i < m.indices.size(); i += 3) {
+    out << 'f';
+    for (std::size_t k = 0; k < 3; ++k) out << ' ' << m.indices[i + k] + 1 << "//" << m.indices[i + k] + 1;
+    out << '\n';
+  }
+}
+
+constexpr const char* kLights = " --light -1.1,10.9,2.2,key --light 2.4,7.1,0.6,fill";
+
+/// A 4-second 320×240 H.264 clip with a keyframe every second and AAC audio (made by ffmpeg).
+fs::path clip(const fs::path& d, int seconds = 4, const char* size = "320x240") {
+  const fs::path path = d / "clip.mp4";
+  const auto r = runShell(fmt::format("ffmpeg -nostdin -loglevel error -f lavfi -i testsrc2=size={}:rate=25:duration={} "
+                                      "-f lavfi -i sine=frequency=440:duration={} -c:v libx264 -g 25 -pix_fmt yuv420p "
+                                      "-c:a aac -shortest {}",
+                                      size, seconds, seconds, q(path)));
+  EXPECT_EQ(r.status, 0) << r.output;
+  return path;
+}
+
+/// Files in `d` (not recursive) whose name ends in `suffix`.
+int countFiles(const fs::path& d, const std::string& suffix) {
+  int n = 0;
+  std::error_code ec;
+  for (const auto& e : fs::recursive_directory_iterator(d, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) ++n;
+  }
+  return n;
+}
+
+std::string squeue() { return SlurmCluster::shell("squeue -h -o '%i %T'"); }
+
+/// A video's decoded frames, one MD5 per frame (ffmpeg's framemd5, timestamps dropped).
+std::vector<std::string> frameHashes(const fs::path& video) {
+  const auto r = runShell(fmt::format("ffmpeg -nostdin -loglevel error -i {} -map 0:v -f framemd5 -", q(video)));
+  std::vector<std::string> hashes;
+  std::stringstream lines(r.output);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    hashes.push_back(line.substr(line.rfind(',') + 1));
+  }
+  return hashes;
+}
+
+}  // namespace
+
+TEST(FarmSlurm, CutShardsMergeToTheSameBytesAsOneLocalRun) {
+  NEED_CLUSTER();
+  const fs::path d = dir("cut");
+  writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
+  const std::string in = q(d / "stage.obj");
+  ASSERT_EQ(runGlint("-q cut " + in + " -o " + q(d / "local.glb") + " -o " + q(d / "local.ply") + kLights).status, 0);
+
+  const std::string command = "farm cut " + in + " -o " + q(d / "farm.glb") + " -o " + q(d / "farm.ply") + kLights +
+                              " --shards 3 --wait --work-dir " + q(d / "work");
+  const auto r = runGlint(command);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readBytes(d / "farm.glb"), readBytes(d / "local.glb"));
+  EXPECT_EQ(readBytes(d / "farm.ply"), readBytes(d / "local.ply"));
+  EXPECT_NE(r.output.find("submitted 3 pieces"), std::string::npos) << r.output;
+  // The intermediates went after the join; the scripts and logs stay.
+  EXPECT_EQ(countFiles(d / "work", ".shard"), 0);
+  EXPECT_EQ(countFiles(d / "work", ".log"), 4);
+
+  // The same command again: the job is done, nothing is submitted.
+  const auto again = runGlint(command);
+  EXPECT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("already made"), std::string::npos) << again.output;
+  EXPECT_EQ(squeue(), "");
+}
+
+TEST(FarmSlurm, PostChunksStartOnKeyframesAndJoinToOneLocalRun) {
+  NEED_CLUSTER();
+  const fs::path d = dir("post");
+  const fs::path in = clip(d);
+  // FFV1: the farmed video is the local one, byte for byte (audio included).
+  ASSERT_EQ(runGlint("-q post " + q(in) + " -o " + q(d / "local.mkv") + " --codec ffv1 -e sepia").status, 0);
+  const std::string farm = "farm post " + q(in) + " -o " + q(d / "farm.mkv") + " --codec ffv1 -e sepia --chunks 3";
+  const auto dry = runGlint(farm + " --dry-run");
+  ASSERT_EQ(dry.status, 0) << dry.output;
+  // 100 frames, keyframes every 25: chunks at the keyframes nearest 33 and 66.
+  EXPECT_NE(dry.output.find("--frames 0:25 "), std::string::npos) << dry.output;
+  EXPECT_NE(dry.output.find("--frames 25:75 "), std::string::npos) << dry.output;
+  EXPECT_NE(dry.output.find("--frames 75:100 "), std::string::npos) << dry.output;
+  EXPECT_NE(dry.output.find("post --concat"), std::string::npos) << dry.output;
+  EXPECT_EQ(squeue(), "") << "--dry-run submits nothing";
+  EXPECT_FALSE(fs::exists(d / "farm.mkv"));
+
+  const auto r = runGlint(farm + " --wait");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readBytes(d / "farm.mkv"), readBytes(d / "local.mkv"));
+
+  // H.264, lossless: the frame count, and every decoded frame, as one local run.
+  ASSERT_EQ(runGlint("-q post " + q(in) + " -o " + q(d / "local.mp4") + " --crf 0 -e sepia").status, 0);
+  const auto h264 = runGlint("farm post " + q(in) + " -o " + q(d / "farm.mp4") + " --crf 0 -e sepia --chunks 2 --wait");
+  ASSERT_EQ(h264.status, 0) << h264.output;
+  const auto local = frameHashes(d / "local.mp4"), farmed = frameHashes(d / "farm.mp4");
+  EXPECT_EQ(farmed.size(), 100u);
+  EXPECT_EQ(farmed, local);
+}
+
+TEST(FarmSlurm, ACancelledTaskStopsTheJoinAndARerunRedoesOnlyIt) {
+  NEED_CLUSTER();
+  const fs::path d = dir("cancel");
+  const fs::path in = clip(d, 8, "640x360");
+  const fs::path out = d / "out.mkv";
+  const std::string command = "farm post " + q(in) + " -o " + q(out) + " --codec ffv1 -e kuwahara --chunks 2 --wait "
+                              "--work-dir " + q(d / "work");
+  auto first = std::async(std::launch::async, [&] { return runGlint(command); });
+  // Cancel piece 1 once it runs.
+  std::string job;
+  for (int i = 0; i < 600 && job.empty(); ++i) {
+    std::stringstream lines(squeue());
+    std::string id, state;
+    while (lines >> id >> state)
+      if (id.size() > 2 && id.substr(id.size() - 2) == "_1" && state == "RUNNING") job = id;
+    if (job.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_FALSE(job.empty()) << "piece 1 never ran: " << squeue();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_EQ(runShell("scancel " + job).status, 0);
+  const auto r = first.get();
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("piece 1 (frames 100:200): CANCELLED"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("piece-1.log"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "the join must not run";
+  EXPECT_EQ(squeue(), "") << "nothing left queued";
+
+  // Piece 0 finished; a rerun submits piece 1 only, then the join.
+  fs::path log0;
+  for (const auto& e : fs::recursive_directory_iterator(d / "work"))
+    if (e.path().filename() == "piece-0.log") log0 = e.path();
+  ASSERT_FALSE(log0.empty());
+  const auto before = fs::last_write_time(log0);
+  const auto again = runGlint(command);
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("submitted 1 piece (1 of 2 already done"), std::string::npos) << again.output;
+  EXPECT_EQ(fs::last_write_time(log0), before) << "piece 0 ran again";
+  ASSERT_EQ(runGlint("-q post " + q(in) + " -o " + q(d / "local.mkv") + " --codec ffv1 -e kuwahara").status, 0);
+  EXPECT_EQ(readBytes(out), readBytes(d / "local.mkv"));
+}
+
+TEST(FarmSlurm, AFailingTaskIsNamedWithItsExitCodeAndLog) {
+  NEED_CLUSTER();
+  const fs::path d = dir("fail");
+  writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
+  // 1 MiB is far below the cut's estimate: every piece refuses (exit 2) before it starts.
+  const auto r = runGlint("farm cut " + q(d / "stage.obj") + " -o " + q(d / "out.glb") + kLights +
+                          " --shards 2 --mem 1 --wait");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("piece 0 (shard 1/2): FAILED, exit code 2; log: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("run the same command again"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(d / "out.glb"));
+  // The log says why.
+  const std::size_t at = r.output.find("log: ");
+  const std::string log = r.output.substr(at + 5, r.output.find('\n', at) - at - 5);
+  EXPECT_NE(readBytes(log).find("--max-memory"), std::string::npos) << readBytes(log);
+}
+
+TEST(Farm, WithoutSlurmItSaysWhatToInstall) {
+  const fs::path d = dir("no-slurm");
+  writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
+  const auto r = runGlint("farm cut " + q(d / "stage.obj") + " -o " + q(d / "out.glb") + kLights + " --shards 2",
+                          "PATH=/nonexistent");
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_TRUE(oneLine(r.output)) << r.output;
+  EXPECT_NE(r.output.find("slurm-client"), std::string::npos) << r.output;
+}
+
+TEST(Farm, SplitsFramesAtTheKeyframesNearestAnEvenSplit) {
+  EXPECT_EQ(farm::splitAtKeyframes({0, 25, 50, 75}, 0, 100, 3),
+            (std::vector<std::pair<std::int64_t, std::int64_t>>{{0, 25}, {25, 75}, {75, 100}}));
+  EXPECT_EQ(farm::splitAtKeyframes({0, 25, 50, 75}, 0, 100, 4),
+            (std::vector<std::pair<std::int64_t, std::int64_t>>{{0, 25}, {25, 50}, {50, 75}, {75, 100}}));
+  // Fewer keyframes than chunks: fewer chunks.
+  EXPECT_EQ(farm::splitAtKeyframes({0, 50}, 0, 100, 4),
+            (std::vector<std::pair<std::int64_t, std::int64_t>>{{0, 50}, {50, 100}}));
+  // A range that starts between keyframes starts there (the source seeks back).
+  EXPECT_EQ(farm::splitAtKeyframes({0, 25, 50, 75}, 10, 60, 2),
+            (std::vector<std::pair<std::int64_t, std::int64_t>>{{10, 25}, {25, 60}}));
+  EXPECT_EQ(farm::splitEvenly(0, 10, 3), (std::vector<std::pair<std::int64_t, std::int64_t>>{{0, 3}, {3, 6}, {6, 10}}));
+  EXPECT_EQ(farm::splitEvenly(0, 2, 5), (std::vector<std::pair<std::int64_t, std::int64_t>>{{0, 1}, {1, 2}}));
+}
