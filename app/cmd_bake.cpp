@@ -1,5 +1,10 @@
 // glint bake LOW HIGH -o OUT — the normal mapper: high-poly detail into a texture for the
 // low poly. Thin: options → bake::BakeOptions, files in and out, the report.
+//
+// glint bake --batch JOBS.json [--job I | --list] — many bakes from one file. Each job is
+// turned into a `glint bake` argument list (generically: a key is any option's long name)
+// and parsed by the same option definitions (addBakeOptions), checked by the same checks
+// (checkBake) and run by the same code (runBake) as the command line.
 #include "common.h"
 
 #include "glint/bake/baker.h"
@@ -12,18 +17,31 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <future>
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 namespace glint::app {
 
 namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+/// CLI11's type name of the options that name files. A batch file's relative paths are
+/// resolved against the batch file's folder for exactly these options.
+constexpr const char* kFile = "FILE";
 
 struct BakeArgs {
   std::string low, high, output, size = "1024x1024", space = "tangent", worldMatrix;
@@ -71,6 +89,21 @@ constexpr const char* kFooter = R"(Examples:
   glint bake car_low.obj car_high.ply -o car_normal.png
   glint bake head_low.fbx head_high.fbx -o head.png --size 2048x2048 --samples 36 \
         --height-detail pores.png --detail-scale 4 --ao head_ao.png --json report.json
+  glint bake --batch jobs.json          # every job of a batch file, one after another
+  glint bake --batch jobs.json --job 3  # job 3 only (0-based), as a render-farm task runs it
+  glint bake --batch jobs.json --list   # the jobs as `glint bake ...` command lines
+
+Batch files (JSON; relative paths are relative to the file; docs/bake.md, "Batches"):
+  {"defaults": {"size": "1024x1024", "samples": 4, "max-front": "2%"},
+   "bakes": [{"low": "crate_low.obj", "high": "crate_high.ply", "output": "crate_n.png",
+              "ao": "crate_ao.png"},
+             {"low": "barrel_low.obj", "high": "barrel_high.ply", "output": "barrel_n.png",
+              "size": "2048x2048"}]}
+  A key is an option's long name ("low", "high" and "output" for LOW, HIGH and -o); a
+  flag is true or false. A job's key overrides the defaults; options given on the command
+  line with --batch (e.g. --threads, -q, --samples) override both, for every job. Every job
+  is checked before the first one runs; a failed job does not stop the others (the exit
+  status is the first failure's); --json writes one report listing every job's.
 
 How it works: for every texel, rays start on the low poly (interpolated position) and
 follow its interpolated normal forwards (--max-front) and backwards (--max-rear): the
@@ -95,152 +128,553 @@ Notes for artists:
 Exit status: 0 done, 2 bad option, 3 unreadable/unsuitable input, 4 output not
 writable, 130 interrupted (Ctrl-C; no partial file is left).)";
 
+
+/// Every option of `glint bake` but the batch ones, bound to `a`: the command line and each
+/// job of a batch file go through this one definition. `required`: LOW, HIGH and -o must be
+/// given (a job; the command line checks them itself, since --batch replaces them).
+void addBakeOptions(CLI::App& cmd, BakeArgs& a, bool required) {
+  CLI::Option* low = cmd.add_option("low", a.low, "Low-poly mesh: positions, normals, one UV set (OBJ, PLY, glTF/GLB, "
+                                    "FBX, ...)")->type_name(kFile);
+  CLI::Option* high = cmd.add_option("high", a.high, "High-poly mesh: positions and normals")->type_name(kFile);
+  CLI::Option* output = cmd.add_option("-o,--output", a.output, "Normal map to write; format from the extension: .png "
+                                       ".tga .tif .exr")->type_name(kFile);
+  if (required)
+    for (CLI::Option* option : {low, high, output}) option->required();
+  cmd.add_option("--size", a.size, "Map size WIDTHxHEIGHT, any size")->capture_default_str();
+  cmd.add_option("--samples", a.samples, "Rays per texel, a square: 1, 4, 9, 16, 36, 64 (stratified √N×√N grid, "
+                 "averaged; 36 is smooth)")->capture_default_str();
+  cmd.add_option("--space", a.space, "tangent (MikkTSpace), object, or world (see --world-matrix)")
+      ->check(CLI::IsMember({"tangent", "object", "world"}))->capture_default_str();
+  cmd.add_option("--world-matrix", a.worldMatrix, "Object-to-world matrix for --space world: 16 numbers, row by row");
+  cmd.add_flag("--directx", a.directX, "Flip green (DirectX/Unreal convention); the default is OpenGL's +Y");
+  cmd.add_option("--bits", a.bits, "Bits per channel of every map written: 8 or 16 for PNG/TIFF (default: 8 PNG/TGA, "
+                 "16 TIFF, 32 float EXR)")
+      ->check(CLI::IsMember({8, 16, 32}));
+  cmd.add_option("--max-front", a.maxFront, "How far in front of the low poly rays look: 0.2 (scene units) or 5% "
+                 "(of its bounding-box diagonal)")->capture_default_str();
+  cmd.add_option("--max-rear", a.maxRear, "How far behind the low poly rays look (negative rays)")->capture_default_str();
+  cmd.add_flag("--front-first", a.frontFirst, "Prefer hits in front of the low poly; default: the closest hit either way");
+  cmd.add_option("--cage", a.cage, "Cage mesh: the low poly with vertices pushed outwards (same vertices and "
+                 "triangles); rays then go from the cage inwards")->type_name(kFile);
+  cmd.add_option("--padding", a.padding, "Texels of dilation around UV islands (0: none)")->capture_default_str();
+  cmd.add_flag("--fill-all", a.fillAll, "Dilate until every texel is filled");
+  cmd.add_option("--height-detail", a.detail, "Painted height map (scars, pores) combined with the baked normals; "
+                 "tiled over the UVs")->type_name(kFile);
+  cmd.add_option("--detail-scale", a.detailScale, "Bumpiness of --height-detail: the height of its 0..1 range in "
+                 "texel widths (8: a black-to-white ramp over 8 texels is 45°; negative engraves)")->capture_default_str();
+  cmd.add_option("--ao", a.ao, "Also bake ambient occlusion (hemisphere rays against the high poly) to this file")
+      ->type_name(kFile);
+  cmd.add_option("--ao-samples", a.aoSamples, "AO rays per sample")->capture_default_str();
+  cmd.add_option("--ao-distance", a.aoDistance, "AO ray length: scene units or % of the low poly's diagonal")
+      ->capture_default_str();
+  cmd.add_option("--height", a.height, "Also bake height/displacement (signed ray distance) to this file; 8/16-bit "
+                 "files map ±max(--max-front, --max-rear) to 0..1, EXR keeps distances")->type_name(kFile);
+  cmd.add_option("--miss-mask", a.missMask, "Also write the fraction of each texel's rays that found nothing (debug)")
+      ->type_name(kFile);
+  addToolOptions(cmd, a.tool, "texels, rays, hit ratio, misses, BVH size");
+  cmd.get_option("--json")->type_name(kFile);
+}
+
+/// The files a bake reads and writes, named as its messages name them.
+struct BakeFiles {
+  std::vector<FileUse> inputs, outputs;
+};
+
+BakeFiles bakeFiles(const BakeArgs& a) {
+  return {{{a.low, "the low poly"}, {a.high, "the high poly"}, {a.cage, "--cage"}, {a.detail, "--height-detail"}},
+          {{a.output, "-o"}, {a.ao, "--ao"}, {a.height, "--height"}, {a.missMask, "--miss-mask"},
+           {a.tool.json, "--json"}}};
+}
+
+/// What checkBake worked out for runBake.
+struct BakePlan {
+  bake::BakeOptions options;
+  ivec2 size{0};
+  bool needsImageIo = false;  ///< a detail map to read or an output other than PNG
+};
+
+/// Everything a bake checks before it reads an input: options, the files (no output is an
+/// input or another output, by file identity: core/file.h), writable folders, memory.
+/// Fails in a millisecond, not after the bake.
+BakePlan checkBake(const BakeArgs& a, ToolRun& run) {
+  const BakeFiles files = bakeFiles(a);
+  checkDistinctFiles(files.inputs, files.outputs);
+  BakePlan plan;
+  bake::BakeOptions& options = plan.options;
+  plan.size = parseSize(a.size);
+  options.width = plan.size.x;
+  options.height = plan.size.y;
+  options.samples = a.samples;
+  options.space = a.space == "object" ? NormalSpace::Object
+                : a.space == "world"  ? NormalSpace::World
+                                      : NormalSpace::Tangent;
+  if (!a.worldMatrix.empty()) options.objectToWorld = parseMatrix(a.worldMatrix);
+  options.directX = a.directX;
+  options.maxFront = parseDistance(a.maxFront, "--max-front");
+  options.maxRear = parseDistance(a.maxRear, "--max-rear");
+  options.selection = a.frontFirst ? bake::HitSelection::FrontFirst : bake::HitSelection::Closest;
+  options.padding = a.padding;
+  options.fillAll = a.fillAll;
+  options.ambientOcclusion = !a.ao.empty();
+  options.aoSamples = a.aoSamples;
+  options.aoDistance = parseDistance(a.aoDistance, "--ao-distance");
+  options.heightMap = !a.height.empty();
+  options.missMask = !a.missMask.empty();
+  bake::validateOptions(options);
+  options.normalType = bake::outputType(a.output, a.bits);  // quantized by the baker: no float copy of the map
+  std::vector<std::string> outputs{a.output};
+  for (const std::string* extra : {&a.ao, &a.height, &a.missMask}) {
+    if (extra->empty()) continue;
+    bake::outputType(*extra, a.bits);  // --bits applies to every map: check them all now
+    outputs.push_back(*extra);
+  }
+  if (!a.tool.json.empty() && a.tool.json != "-") outputs.push_back(a.tool.json);
+  for (const auto& path : outputs) checkWritable(path);
+  run.checkMemory(bake::estimatePeakMemoryMiB(options, {a.low, a.high, a.cage}),
+                  fmt::format("a {}x{} bake", plan.size.x, plan.size.y));
+  // OpenImageIO is needed for a detail map and for outputs other than PNG (libspng).
+  plan.needsImageIo = !a.detail.empty();
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const bool json = !a.tool.json.empty() && a.tool.json != "-" && i + 1 == outputs.size();
+    std::string ext = fs::path(outputs[i]).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (!json && ext != ".png") plan.needsImageIo = true;
+  }
+  if (plan.needsImageIo) requireImageIo();
+  return plan;
+}
+
+/// Loads the meshes, bakes, writes the maps and fills the run's report (finish() is the
+/// caller's).
+void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
+  bake::BakeOptions& options = plan.options;
+  options.progress = run.showProgress();
+  options.cancel = &run.cancelFlag();
+  if (plan.needsImageIo) preloadImageIo();
+
+  // Inputs (never modified: loaded into memory, prepared there).
+  // The high poly (the big file) is parsed here while a second thread reads the rest;
+  // errors are reported in argument order: low, high, cage, detail.
+  std::optional<ToolRun::Phase> loading(std::in_place, run, "load");
+  auto others = std::async(std::launch::async, [&] {
+    Mesh low = loadMesh(a.low);
+    if (!a.cage.empty()) options.cage = loadMesh(a.cage);
+    if (!a.detail.empty()) options.detail = bake::HeightDetail{loadImage(a.detail), a.detailScale};
+    return low;
+  });
+  // Rays need no shared vertices: skipping Assimp's vertex joining halves the load.
+  std::optional<Mesh> high;
+  std::exception_ptr highError;
+  try {
+    high = loadMesh(a.high, {.joinVertices = false});
+  } catch (...) {
+    highError = std::current_exception();
+  }
+  const Mesh low = others.get();
+  if (highError) std::rethrow_exception(highError);
+  loading.reset();
+  run.throwIfInterrupted();
+  const bake::BakeResult result = bake::bake(low, *high, options);
+  const bake::BakeStats& s = result.stats;
+  run.addSeconds("prepare", s.prepareSeconds);
+  run.addSeconds("trace", s.traceSeconds);
+  run.addSeconds("dilate", s.dilateSeconds);
+
+  std::optional<ToolRun::Phase> writing(std::in_place, run, "write");
+  saveImage(result.normal, a.output);
+  if (!a.ao.empty()) saveImage(bake::forOutput(result.ao, bake::outputType(a.ao, a.bits)), a.ao);
+  if (!a.height.empty()) {
+    const float range = std::max(result.stats.frontDistance, result.stats.rearDistance);
+    saveImage(bake::heightForOutput(result.height, bake::outputType(a.height, a.bits), range), a.height);
+  }
+  if (!a.missMask.empty()) saveImage(bake::forOutput(result.missMask, bake::outputType(a.missMask, a.bits)), a.missMask);
+  writing.reset();
+  log::info("bake: {} ({} triangles) → {} ({}x{}, {} per texel): {} texels baked, {} padded; {} rays, hit ratio "
+            "{:.4f}; {:.2f} s", a.high, high->triangleCount(), a.output, options.width, options.height,
+            options.samples, s.coveredTexels, s.paddedTexels, s.rays, s.hitRatio(), run.elapsed());
+
+  auto& report = run.report();
+  report["low"] = a.low;
+  report["high"] = a.high;
+  report["output"] = a.output;
+  report.update(bake::toJson(options));
+  report.update(bake::toJson(s));
+  for (const auto& w : result.warnings) run.recordWarning(w);
+}
+
+// ---------------------------------------------------------------------------- batches
+
+/// Inside a catch block: the same Error, its message prefixed with `where` ("bake: jobs.json job 2 (crate_low.obj)").
+[[noreturn]] void rethrowIn(const std::string& where) {
+  try {
+    throw;
+  } catch (const Error& e) {
+    throw Error(e.kind(), fmt::format("{}: {}", where, e.what()));
+  }
+}
+
+/// A batch file: the defaults and one object per job, in order.
+struct BatchFile {
+  Json defaults = Json::object();
+  std::vector<Json> jobs;
+};
+
+BatchFile loadBatch(const std::string& path) {
+  const std::string text = readTextFile(path);  // Error(Input): exit 3, like every unreadable input
+  Json doc;
+  try {
+    doc = Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..."
+    std::string what = e.what();
+    if (const auto end = what.find("] "); what.starts_with("[json.exception") && end != std::string::npos)
+      what.erase(0, end + 2);
+    fail(ErrorKind::Usage, "bake: {}: not valid JSON: {}", path, printable(what));
+  }
+  if (!doc.is_object())
+    fail(ErrorKind::Usage, "bake: {}: a batch file is an object {{\"defaults\": {{...}}, \"bakes\": [...]}}, got {}", path,
+         doc.type_name());
+  BatchFile batch;
+  for (const auto& [key, value] : doc.items()) {
+    if (key == "defaults") {
+      if (!value.is_object()) fail(ErrorKind::Usage, "bake: {}: \"defaults\" must be an object of options, got {}", path, value.type_name());
+      batch.defaults = value;
+    } else if (key == "bakes") {
+      if (!value.is_array()) fail(ErrorKind::Usage, "bake: {}: \"bakes\" must be a list of jobs, got {}", path, value.type_name());
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        if (!value[i].is_object())
+          fail(ErrorKind::Usage, "bake: {} job {}: a job must be an object of options, got {}", path, i, value[i].type_name());
+        batch.jobs.push_back(value[i]);
+      }
+    } else {
+      fail(ErrorKind::Usage, "bake: {}: unknown key '{}' (a batch file has \"defaults\" and \"bakes\")", path, printable(key));
+    }
+  }
+  if (batch.jobs.empty()) fail(ErrorKind::Usage, "bake: {}: no jobs: \"bakes\" is missing or empty", path);
+  return batch;
+}
+
+/// The option a batch file's key stands for: its long name without the dashes ("size",
+/// "output"), or a positional's name ("low"). Null when there is none (help included).
+const CLI::Option* optionForKey(const CLI::App& app, const std::string& key) {
+  for (const CLI::Option* option : app.get_options()) {
+    if (option == app.get_help_ptr()) continue;
+    const auto& names = option->get_lnames();
+    if (std::find(names.begin(), names.end(), key) != names.end()) return option;
+    if (option->get_positional() && names.empty() && option->get_single_name() == key) return option;
+  }
+  return nullptr;
+}
+
+/// `settings` with each key replaced by its option's first name; Error(Usage) naming a key
+/// that is no option.
+Json canonicalKeys(const CLI::App& app, const Json& settings) {
+  Json out = Json::object();
+  for (const auto& [key, value] : settings.items()) {
+    const CLI::Option* option = optionForKey(app, key);
+    if (!option) fail(ErrorKind::Usage, "unknown key '{}': not an option of glint bake (see glint bake --help)", printable(key));
+    out[option->get_single_name()] = value;
+  }
+  return out;
+}
+
+/// The argument list `glint bake` gets for settings (canonical keys, later layers winning):
+/// positionals first, then the options in the command's order; a flag appears when true;
+/// a number is written as JSON writes it; a relative path (a FILE option) is made relative
+/// to `base`, the batch file's folder.
+std::vector<std::string> argumentsFor(const CLI::App& app, const std::vector<const Json*>& layers, const fs::path& base) {
+  Json merged = Json::object();
+  for (const Json* layer : layers)
+    for (const auto& [key, value] : layer->items()) merged[key] = value;
+  std::vector<std::string> positionals, named;
+  for (const CLI::Option* option : app.get_options()) {
+    const std::string& key = option->get_single_name();
+    if (option == app.get_help_ptr() || !merged.contains(key)) continue;
+    const Json& value = merged[key];
+    const std::string spelling = option->get_snames().empty() ? "--" + key : "-" + option->get_snames().front();
+    if (option->get_expected_max() == 0) {  // a flag
+      if (!value.is_boolean()) fail(ErrorKind::Usage, "'{}' is a flag: true or false, got {}", key, printable(value.dump()));
+      if (value.get<bool>()) named.push_back(spelling);
+      continue;
+    }
+    std::string text;
+    if (value.is_string()) text = value.get<std::string>();
+    else if (value.is_number()) text = value.dump();
+    else fail(ErrorKind::Usage, "'{}' takes a value (a string or a number), got {}", key, printable(value.dump()));
+    if (option->get_type_name() == kFile && !text.empty() && text != "-") {
+      fs::path path(text);
+      if (path.is_relative() && !base.empty()) path = base / path;
+      text = path.string();
+      if (text.starts_with('-')) text = "./" + text;  // a file, not an option
+    }
+    if (option->get_positional()) {
+      positionals.push_back(text);
+    } else if (text.starts_with('-')) {  // a negative number: one word, not taken for an option
+      named.push_back("--" + key + "=" + text);
+    } else {
+      named.push_back(spelling);
+      named.push_back(text);
+    }
+  }
+  const bool dashed = std::any_of(positionals.begin(), positionals.end(), [](const std::string& p) { return p.starts_with('-'); });
+  if (dashed) {  // after "--", where nothing is an option
+    named.push_back("--");
+    named.insert(named.end(), positionals.begin(), positionals.end());
+    return named;
+  }
+  positionals.insert(positionals.end(), named.begin(), named.end());
+  return positionals;
+}
+
+/// Parses a job's argument list exactly as the command line is parsed: a fresh CLI::App with
+/// the bake command's options. Error(Usage) with CLI11's message.
+BakeArgs parseJob(const std::vector<std::string>& arguments) {
+  CLI::App app{"glint bake", "bake"};
+  BakeArgs args;
+  addBakeOptions(app, args, true);
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    fail(ErrorKind::Usage, "{}", e.what());
+  }
+  return args;
+}
+
+/// `word` as one POSIX shell word: unchanged when it is safe, else in single quotes.
+std::string shellWord(const std::string& word) {
+  const bool safe = !word.empty() && std::all_of(word.begin(), word.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("@%+=:,./_-").find(c) != std::string_view::npos;
+  });
+  if (safe) return word;
+  std::string out = "'";
+  for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+struct BatchRequest {
+  std::string file;  ///< --batch, as typed
+  int job = -1;      ///< --job; -1: every job
+  bool list = false; ///< --list
+};
+
+struct BatchJob {
+  std::string where;  ///< "bake: jobs.json job 2 (barrel_low.obj)", for messages
+  std::vector<std::string> arguments;
+  BakeArgs args;
+};
+
+/// glint bake --batch. `cmd` is the parsed bake command: the options given with --batch
+/// (except --json, the batch's own report) apply to every job.
+int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& request,
+             const std::vector<const CLI::Option*>& batchOptions) {
+  const BatchFile batch = loadBatch(request.file);
+  const int count = int(batch.jobs.size());
+  if (request.job >= count || request.job < -1 || (request.job == -1 && cmd.get_option("--job")->count() > 0))
+    fail(ErrorKind::Usage, "bake: --job {} is out of range: {} has {} job{} (0 to {})", request.job, request.file, count,
+         count == 1 ? "" : "s", count - 1);
+
+  // Options given on the command line, for every job (the batch's --json excepted).
+  Json commandLine = Json::object();
+  for (const CLI::Option* option : cmd.get_options()) {
+    if (option == cmd.get_help_ptr() || option->count() == 0 || option->get_positional() ||
+        option == cmd.get_option("--json") ||
+        std::find(batchOptions.begin(), batchOptions.end(), option) != batchOptions.end())
+      continue;
+    if (option->get_expected_max() == 0) commandLine[option->get_single_name()] = true;
+    else commandLine[option->get_single_name()] = option->results().back();
+  }
+
+  // Every job through the command line's option parsing, before anything runs.
+  CLI::App prototype{"glint bake", "bake"};
+  BakeArgs unused;
+  addBakeOptions(prototype, unused, true);
+  const fs::path base = fs::path(request.file).parent_path();
+  Json defaults;
+  try {
+    defaults = canonicalKeys(prototype, batch.defaults);
+  } catch (const Error&) {
+    rethrowIn(fmt::format("bake: {} defaults", request.file));
+  }
+  std::vector<BatchJob> jobs(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    BatchJob& job = jobs[std::size_t(i)];
+    const Json& raw = batch.jobs[std::size_t(i)];
+    const Json* low = raw.contains("low") ? &raw["low"] : batch.defaults.contains("low") ? &batch.defaults["low"] : nullptr;
+    job.where = fmt::format("bake: {} job {}", request.file, i);
+    if (low && low->is_string()) job.where += fmt::format(" ({})", printable(low->get<std::string>()));
+    try {
+      const Json settings = canonicalKeys(prototype, raw);
+      job.arguments = argumentsFor(prototype, {&defaults, &settings, &commandLine}, base);
+      job.args = parseJob(job.arguments);
+    } catch (const Error&) {
+      rethrowIn(job.where);
+    }
+  }
+  std::vector<int> selected;
+  for (int i = 0; i < count; ++i)
+    if (request.job < 0 || request.job == i) selected.push_back(i);
+
+  if (request.list) {
+    for (int i : selected) {
+      std::string line = "glint bake";
+      for (const std::string& word : jobs[std::size_t(i)].arguments) line += " " + shellWord(word);
+      std::printf("%s\n", line.c_str());
+    }
+    std::fflush(stdout);
+    return 0;
+  }
+
+  // The whole batch's files: no output is an input or another output of any job (also with
+  // --job, so that every farm task agrees on whether the file is valid).
+  std::vector<FileUse> inputs{{request.file, "the batch file"}}, outputs;
+  for (int i = 0; i < count; ++i) {
+    const BakeFiles files = bakeFiles(jobs[std::size_t(i)].args);
+    const auto named = [i](const FileUse& f) {
+      return FileUse{f.path, f.role.starts_with("the ") ? fmt::format("job {}'s {}", i, f.role.substr(4))
+                                                        : fmt::format("job {} {}", i, f.role)};
+    };
+    for (const FileUse& f : files.inputs) inputs.push_back(named(f));
+    for (const FileUse& f : files.outputs) outputs.push_back(named(f));
+  }
+  outputs.push_back({given.tool.json, "--json"});
+  try {
+    checkDistinctFiles(inputs, outputs);
+    if (!given.tool.json.empty() && given.tool.json != "-") checkWritable(given.tool.json);
+  } catch (const Error&) {
+    rethrowIn(fmt::format("bake: {}", request.file));
+  }
+  // Every job's own checks (options, folders, memory), each as its bake will make them.
+  for (const BatchJob& job : jobs) {
+    try {
+      ToolRun check("bake", job.args.tool);
+      checkBake(job.args, check);
+    } catch (const Error&) {
+      rethrowIn(job.where);
+    }
+  }
+
+  // One job after another: each bake already uses every core.
+  const auto start = std::chrono::steady_clock::now();
+  const log::Level level = log::level();
+  if (given.tool.quiet && level < log::Level::Warn) log::setLevel(log::Level::Warn);
+  struct Outcome {
+    int job = 0;
+    double seconds = 0.0;
+    int status = 0;
+    std::string error;
+  };
+  std::vector<Outcome> outcomes;
+  Json reports = Json::array();
+  std::optional<ErrorKind> firstFailure;
+  for (std::size_t k = 0; k < selected.size(); ++k) {
+    const int i = selected[k];
+    const BatchJob& job = jobs[std::size_t(i)];
+    const std::string step = fmt::format("{}/{}", k + 1, selected.size());
+    log::info("bake {}: job {}: {} → {}", step, i, job.args.low, job.args.output);
+    Outcome outcome{.job = i};
+    Json entry = Json::object();
+    entry["job"] = i;
+    ToolRun run("bake", job.args.tool);
+    try {
+      BakePlan plan = checkBake(job.args, run);
+      plan.options.progressLabel = "bake " + step;
+      runBake(job.args, std::move(plan), run);
+      entry["status"] = "ok";
+      entry.update(run.finish());
+    } catch (const Error& e) {
+      if (e.kind() == ErrorKind::Interrupted) {
+        log::setLevel(level);
+        throw;  // Ctrl-C stops the batch: exit 130, no partial file
+      }
+      outcome.status = exitCode(e.kind());
+      outcome.error = fmt::format("{}: {}", job.where, e.what());
+      log::error("{}", outcome.error);
+      if (!firstFailure) firstFailure = e.kind();
+      entry["status"] = "failed";
+      entry["exit_status"] = outcome.status;
+      entry["error"] = outcome.error;
+      entry.update(run.completedReport());
+    }
+    outcome.seconds = run.elapsed();
+    outcomes.push_back(outcome);
+    reports.push_back(std::move(entry));
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const std::size_t failed = std::size_t(std::count_if(outcomes.begin(), outcomes.end(), [](const Outcome& o) { return o.status != 0; }));
+  log::info("bake: {}: {} job{} in {:.2f} s, {} ok, {} failed", request.file, outcomes.size(),
+            outcomes.size() == 1 ? "" : "s", seconds, outcomes.size() - failed, failed);
+  for (const Outcome& o : outcomes) {
+    log::info("  job {:<3} {:<40} {:7.2f} s  {}", o.job, jobs[std::size_t(o.job)].args.output, o.seconds,
+              o.status == 0 ? std::string("ok") : fmt::format("failed (exit {})", o.status));
+  }
+  log::setLevel(level);
+
+  if (!given.tool.json.empty()) {
+    Json report;
+    report["tool"] = "bake";
+    report["version"] = GLINT_VERSION;
+    report["batch"] = request.file;
+    report["jobs"] = std::move(reports);
+    report["failed"] = failed;
+    report["seconds"] = {{"total", seconds}};
+    report["peak_memory_mib"] = ToolRun::peakMemoryMiB();
+    const std::string text = report.dump(2) + "\n";
+    if (given.tool.json == "-") {
+      std::fputs(text.c_str(), stdout);
+      std::fflush(stdout);
+    } else {
+      writeTextAtomically(given.tool.json, text);
+    }
+  }
+  if (firstFailure) {  // each failure was printed when it happened; the exit status is the first one's
+    std::string which;
+    std::size_t named = 0;
+    for (const Outcome& o : outcomes) {
+      if (o.status == 0) continue;
+      if (++named > 10) {
+        which += ", ...";
+        break;
+      }
+      which += fmt::format("{}{}", named == 1 ? "" : ", ", o.job);
+    }
+    fail(*firstFailure, "bake: {}: {} of {} job{} failed (job{} {})", request.file, failed, outcomes.size(),
+         outcomes.size() == 1 ? "" : "s", failed == 1 ? "" : "s", which);
+  }
+  return 0;
+}
+
 }  // namespace
 
 Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
   auto a = std::make_shared<BakeArgs>();
+  auto request = std::make_shared<BatchRequest>();
   auto* cmd = app.add_subcommand("bake", "Bake a high-poly mesh's detail into a normal map for a low-poly mesh");
   cmd->footer(kFooter);
-  cmd->add_option("low", a->low, "Low-poly mesh: positions, normals, one UV set (OBJ, PLY, glTF/GLB, FBX, ...)")->required();
-  cmd->add_option("high", a->high, "High-poly mesh: positions and normals")->required();
-  cmd->add_option("-o,--output", a->output, "Normal map to write; format from the extension: .png .tga .tif .exr")->required();
-  cmd->add_option("--size", a->size, "Map size WIDTHxHEIGHT, any size")->capture_default_str();
-  cmd->add_option("--samples", a->samples, "Rays per texel, a square: 1, 4, 9, 16, 36, 64 (stratified √N×√N grid, "
-                  "averaged; 36 is smooth)")->capture_default_str();
-  cmd->add_option("--space", a->space, "tangent (MikkTSpace), object, or world (see --world-matrix)")
-      ->check(CLI::IsMember({"tangent", "object", "world"}))->capture_default_str();
-  cmd->add_option("--world-matrix", a->worldMatrix, "Object-to-world matrix for --space world: 16 numbers, row by row");
-  cmd->add_flag("--directx", a->directX, "Flip green (DirectX/Unreal convention); the default is OpenGL's +Y");
-  cmd->add_option("--bits", a->bits, "Bits per channel of every map written: 8 or 16 for PNG/TIFF (default: 8 PNG/TGA, "
-                  "16 TIFF, 32 float EXR)")
-      ->check(CLI::IsMember({8, 16, 32}));
-  cmd->add_option("--max-front", a->maxFront, "How far in front of the low poly rays look: 0.2 (scene units) or 5% "
-                  "(of its bounding-box diagonal)")->capture_default_str();
-  cmd->add_option("--max-rear", a->maxRear, "How far behind the low poly rays look (negative rays)")->capture_default_str();
-  cmd->add_flag("--front-first", a->frontFirst, "Prefer hits in front of the low poly; default: the closest hit either way");
-  cmd->add_option("--cage", a->cage, "Cage mesh: the low poly with vertices pushed outwards (same vertices and "
-                  "triangles); rays then go from the cage inwards");
-  cmd->add_option("--padding", a->padding, "Texels of dilation around UV islands (0: none)")->capture_default_str();
-  cmd->add_flag("--fill-all", a->fillAll, "Dilate until every texel is filled");
-  cmd->add_option("--height-detail", a->detail, "Painted height map (scars, pores) combined with the baked normals; "
-                  "tiled over the UVs");
-  cmd->add_option("--detail-scale", a->detailScale, "Bumpiness of --height-detail: the height of its 0..1 range in "
-                  "texel widths (8: a black-to-white ramp over 8 texels is 45°; negative engraves)")->capture_default_str();
-  cmd->add_option("--ao", a->ao, "Also bake ambient occlusion (hemisphere rays against the high poly) to this file");
-  cmd->add_option("--ao-samples", a->aoSamples, "AO rays per sample")->capture_default_str();
-  cmd->add_option("--ao-distance", a->aoDistance, "AO ray length: scene units or % of the low poly's diagonal")
-      ->capture_default_str();
-  cmd->add_option("--height", a->height, "Also bake height/displacement (signed ray distance) to this file; 8/16-bit "
-                  "files map ±max(--max-front, --max-rear) to 0..1, EXR keeps distances");
-  cmd->add_option("--miss-mask", a->missMask, "Also write the fraction of each texel's rays that found nothing (debug)");
-  addToolOptions(*cmd, a->tool, "texels, rays, hit ratio, misses, BVH size");
+  addBakeOptions(*cmd, *a, false);  // LOW HIGH -o are checked in run: --batch replaces them
+  CLI::Option* batch = cmd->add_option("--batch", request->file, "Run the bakes a JSON file lists (instead of LOW "
+                                       "HIGH -o; see the footer)")->type_name(kFile);
+  CLI::Option* job = cmd->add_option("--job", request->job, "With --batch: run only this job (0-based)")
+                         ->type_name("I")->needs(batch);
+  CLI::Option* list = cmd->add_flag("--list", request->list, "With --batch: print the jobs as glint bake command "
+                                    "lines, run nothing")->needs(batch);
+  const std::vector<const CLI::Option*> batchOptions{batch, job, list};
 
-  return Command{.run = [a, &global] {
+  return Command{.run = [a, request, cmd, batchOptions, &global] {
     (void)global;
+    CLI::Option* low = cmd->get_option("low");
+    CLI::Option* high = cmd->get_option("high");
+    if (!request->file.empty() || cmd->get_option("--batch")->count() > 0) {
+      if (low->count() > 0 || high->count() > 0)
+        fail(ErrorKind::Usage, "bake: --batch takes the meshes from {}: give no LOW HIGH with it", request->file);
+      return runBatch(*cmd, *a, *request, batchOptions);
+    }
+    for (const char* name : {"low", "high", "--output"})
+      if (cmd->get_option(name)->count() == 0) fail(ErrorKind::Usage, "{} is required (see --help)", name);
     ToolRun run("bake", a->tool);
-
-    // Options and outputs first: fail in a millisecond, not after the bake. No output may
-    // be an input or another output (by file identity: core/file.h).
-    checkDistinctFiles({{a->low, "the low poly"}, {a->high, "the high poly"}, {a->cage, "--cage"},
-                        {a->detail, "--height-detail"}},
-                       {{a->output, "-o"}, {a->ao, "--ao"}, {a->height, "--height"}, {a->missMask, "--miss-mask"},
-                        {a->tool.json, "--json"}});
-    bake::BakeOptions options;
-    const ivec2 size = parseSize(a->size);
-    options.width = size.x;
-    options.height = size.y;
-    options.samples = a->samples;
-    options.space = a->space == "object" ? NormalSpace::Object
-                  : a->space == "world"  ? NormalSpace::World
-                                         : NormalSpace::Tangent;
-    if (!a->worldMatrix.empty()) options.objectToWorld = parseMatrix(a->worldMatrix);
-    options.directX = a->directX;
-    options.maxFront = parseDistance(a->maxFront, "--max-front");
-    options.maxRear = parseDistance(a->maxRear, "--max-rear");
-    options.selection = a->frontFirst ? bake::HitSelection::FrontFirst : bake::HitSelection::Closest;
-    options.padding = a->padding;
-    options.fillAll = a->fillAll;
-    options.ambientOcclusion = !a->ao.empty();
-    options.aoSamples = a->aoSamples;
-    options.aoDistance = parseDistance(a->aoDistance, "--ao-distance");
-    options.heightMap = !a->height.empty();
-    options.missMask = !a->missMask.empty();
-    options.progress = run.showProgress();
-    options.cancel = &run.cancelFlag();
-    bake::validateOptions(options);
-    const PixelType normalType = bake::outputType(a->output, a->bits);
-    options.normalType = normalType;  // quantized by the baker: no float copy of the map
-    std::vector<std::string> outputs{a->output};
-    for (const std::string* extra : {&a->ao, &a->height, &a->missMask}) {
-      if (extra->empty()) continue;
-      bake::outputType(*extra, a->bits);  // --bits applies to every map: check them all now
-      outputs.push_back(*extra);
-    }
-    if (!a->tool.json.empty() && a->tool.json != "-") outputs.push_back(a->tool.json);
-    for (const auto& path : outputs) checkWritable(path);
-    run.checkMemory(bake::estimatePeakMemoryMiB(options, {a->low, a->high, a->cage}),
-                    fmt::format("a {}x{} bake", size.x, size.y));
-    // OpenImageIO is needed for a detail map and for outputs other than PNG (libspng).
-    bool needsImageIo = !a->detail.empty();
-    for (std::size_t i = 0; i < outputs.size(); ++i) {
-      const bool json = !a->tool.json.empty() && a->tool.json != "-" && i + 1 == outputs.size();
-      std::string ext = std::filesystem::path(outputs[i]).extension().string();
-      for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-      if (!json && ext != ".png") needsImageIo = true;
-    }
-    if (needsImageIo) {
-      requireImageIo();
-      preloadImageIo();
-    }
-
-    // Inputs (never modified: loaded into memory, prepared there).
-    // The high poly (the big file) is parsed here while a second thread reads the rest;
-    // errors are reported in argument order: low, high, cage, detail.
-    std::optional<ToolRun::Phase> loading(std::in_place, run, "load");
-    auto others = std::async(std::launch::async, [&] {
-      Mesh low = loadMesh(a->low);
-      if (!a->cage.empty()) options.cage = loadMesh(a->cage);
-      if (!a->detail.empty()) options.detail = bake::HeightDetail{loadImage(a->detail), a->detailScale};
-      return low;
-    });
-    // Rays need no shared vertices: skipping Assimp's vertex joining halves the load.
-    std::optional<Mesh> high;
-    std::exception_ptr highError;
-    try {
-      high = loadMesh(a->high, {.joinVertices = false});
-    } catch (...) {
-      highError = std::current_exception();
-    }
-    const Mesh low = others.get();
-    if (highError) std::rethrow_exception(highError);
-    loading.reset();
-    run.throwIfInterrupted();
-    const bake::BakeResult result = bake::bake(low, *high, options);
-    const bake::BakeStats& s = result.stats;
-    run.addSeconds("prepare", s.prepareSeconds);
-    run.addSeconds("trace", s.traceSeconds);
-    run.addSeconds("dilate", s.dilateSeconds);
-
-    std::optional<ToolRun::Phase> writing(std::in_place, run, "write");
-    saveImage(result.normal, a->output);
-    if (!a->ao.empty()) saveImage(bake::forOutput(result.ao, bake::outputType(a->ao, a->bits)), a->ao);
-    if (!a->height.empty()) {
-      const float range = std::max(result.stats.frontDistance, result.stats.rearDistance);
-      saveImage(bake::heightForOutput(result.height, bake::outputType(a->height, a->bits), range), a->height);
-    }
-    if (!a->missMask.empty()) saveImage(bake::forOutput(result.missMask, bake::outputType(a->missMask, a->bits)), a->missMask);
-    writing.reset();
-    log::info("bake: {} ({} triangles) → {} ({}x{}, {} per texel): {} texels baked, {} padded; {} rays, hit ratio "
-              "{:.4f}; {:.2f} s", a->high, high->triangleCount(), a->output, options.width, options.height,
-              options.samples, s.coveredTexels, s.paddedTexels, s.rays, s.hitRatio(), run.elapsed());
-
-    auto& report = run.report();
-    report["low"] = a->low;
-    report["high"] = a->high;
-    report["output"] = a->output;
-    report.update(bake::toJson(options));
-    report.update(bake::toJson(s));
-    for (const auto& w : result.warnings) run.recordWarning(w);
+    BakePlan plan = checkBake(*a, run);
+    runBake(*a, std::move(plan), run);
     run.finish();
     return 0;
   },

@@ -343,7 +343,7 @@ void bakeTiles(Context& ctx, BakeStats& stats) {
   std::vector<std::vector<raytrace::Ray>> tileRays(options.rayLog ? tileCount : 0);
   std::atomic<bool> cancelled{false};
   {
-    Progress progress("bake", tileCount);
+    Progress progress(options.progressLabel, tileCount);
     const bool showProgress = options.progress;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tileCount, 1), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) {

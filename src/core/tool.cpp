@@ -115,8 +115,7 @@ double ToolRun::peakMemoryMiB() {
   return double(usage.ru_maxrss) / 1024.0;  // kilobytes on Linux
 }
 
-void ToolRun::finish() {
-  if (m_settings.json.empty()) return;
+nlohmann::ordered_json ToolRun::completedReport() const {
   nlohmann::ordered_json out;
   out["tool"] = m_tool;
   out["version"] = GLINT_VERSION;
@@ -128,6 +127,12 @@ void ToolRun::finish() {
   out["seconds"] = seconds;
   out["peak_memory_mib"] = peakMemoryMiB();
   out["warnings"] = m_warnings;
+  return out;
+}
+
+nlohmann::ordered_json ToolRun::finish() {
+  nlohmann::ordered_json out = completedReport();
+  if (m_settings.json.empty()) return out;
   // Non-finite numbers have no JSON spelling: nlohmann writes them as null.
   const std::string text = out.dump(2) + "\n";
   if (m_settings.json == "-") {
@@ -136,6 +141,7 @@ void ToolRun::finish() {
   } else {
     writeTextAtomically(m_settings.json, text);
   }
+  return out;
 }
 
 }  // namespace glint

@@ -17,6 +17,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <thread>
 
 namespace fs = std::filesystem;
@@ -289,4 +291,185 @@ TEST(BakeCli, AnInsideOutHighPolyIsWarnedAbout) {
   EXPECT_EQ(good.output.find("inside out"), std::string::npos) << good.output;
   std::ifstream goodReport(d / "good.json");
   EXPECT_EQ(nlohmann::json::parse(goodReport)["inward_hits"], 0);
+}
+
+// ------------------------------------------------------------------ --batch (issue 22)
+
+namespace {
+
+/// Three small jobs in `d` sharing defaults, with overrides: job 1 another low poly, size
+/// and --directx; job 2 more samples and an AO map. Paths in the file are relative to it.
+constexpr const char* kBatch = R"({
+  "defaults": {"size": "32x32", "samples": 1, "padding": 2, "max-front": "5%"},
+  "bakes": [
+    {"low": "low.obj", "high": "high.obj", "output": "a.png"},
+    {"low": "low2.obj", "high": "high.obj", "output": "b.png", "size": "48x24", "directx": true, "front-first": false},
+    {"low": "low.obj", "high": "high.obj", "output": "c.png", "samples": 4, "ao": "c_ao.png", "ao-samples": 4}
+  ]
+})";
+
+void writeBatch(const fs::path& d, const std::string& json = kBatch) {
+  writeSpheres(d);
+  writeObj(makeUvSphere(1.0f, 12, 6), d / "low2.obj");
+  std::ofstream(d / "jobs.json") << json;
+}
+
+/// The same three bakes as plain `glint bake` commands, writing into `out`.
+void bakeOneByOne(const fs::path& d, const fs::path& out) {
+  fs::create_directories(out);
+  const std::string common = " --padding 2 --max-front 5% -q";
+  for (const std::string& args :
+       {q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(out / "a.png") + " --size 32x32 --samples 1" + common,
+        q(d / "low2.obj") + " " + q(d / "high.obj") + " -o " + q(out / "b.png") + " --size 48x24 --samples 1 --directx" + common,
+        q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(out / "c.png") + " --size 32x32 --samples 4 --ao " +
+            q(out / "c_ao.png") + " --ao-samples 4" + common}) {
+    const auto r = runGlint("bake " + args);
+    ASSERT_EQ(r.status, 0) << args << ": " << r.output;
+  }
+}
+
+std::string bytes(const fs::path& p) { return glint::testing::readBytes(p); }
+
+}  // namespace
+
+TEST(BakeCli, BatchGivesTheBytesOfSeparateBakes) {
+  const auto d = dir("batch");
+  writeBatch(d);
+  bakeOneByOne(d, d / "separate");
+  const auto r = runGlint("bake --batch " + q(d / "jobs.json") + " --json " + q(d / "report.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* file : {"a.png", "b.png", "c.png", "c_ao.png"}) {
+    EXPECT_FALSE(bytes(d / file).empty()) << file;
+    EXPECT_TRUE(bytes(d / file) == bytes(d / "separate" / file)) << file;
+  }
+  EXPECT_EQ(loadImage(d / "b.png").width(), 48);  // the job's size, not the default
+  // Progress names the job, and a summary lists every job.
+  EXPECT_NE(r.output.find("bake 2/3: job 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("3 jobs in"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("3 ok, 0 failed"), std::string::npos) << r.output;
+  std::ifstream in(d / "report.json");
+  const auto report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["tool"], "bake");
+  ASSERT_EQ(report["jobs"].size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(report["jobs"][i]["job"], i);
+    EXPECT_EQ(report["jobs"][i]["status"], "ok");
+    EXPECT_GT(report["jobs"][i]["seconds"]["total"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(report["jobs"][1]["output"], (d / "b.png").string());
+  EXPECT_EQ(report["jobs"][2]["samples_per_texel"], 4);
+  EXPECT_EQ(report["failed"], 0);
+}
+
+TEST(BakeCli, BatchJobRunsOnlyThatJob) {
+  const auto d = dir("batch-job");
+  writeBatch(d);
+  bakeOneByOne(d, d / "separate");
+  const auto r = runGlint("bake --batch " + q(d / "jobs.json") + " --job 1 -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, "") << "-q: nothing on success";
+  EXPECT_TRUE(bytes(d / "b.png") == bytes(d / "separate" / "b.png"));
+  for (const char* file : {"a.png", "c.png", "c_ao.png"}) EXPECT_FALSE(fs::exists(d / file)) << file;
+}
+
+TEST(BakeCli, BatchListPrintsTheEquivalentCommands) {
+  const auto d = dir("batch-list");
+  writeBatch(d);
+  const auto list = runGlint("bake --batch " + q(d / "jobs.json") + " --list --threads 2");
+  ASSERT_EQ(list.status, 0) << list.output;
+  std::vector<std::string> lines;
+  std::istringstream in(list.output);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u) << list.output;
+  EXPECT_NE(lines[1].find("--size 48x24"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find("--directx"), std::string::npos) << lines[1];
+  EXPECT_EQ(lines[1].find("--front-first"), std::string::npos) << "false: the flag is left out: " << lines[1];
+  EXPECT_NE(lines[1].find("--threads 2"), std::string::npos) << "command-line options apply to every job: " << lines[1];
+  EXPECT_EQ(fileCount(d), 4u) << "--list runs nothing";
+  // Run as commands, the lines give the batch's files.
+  std::map<std::string, std::string> listed;
+  for (const std::string& line : lines) {
+    ASSERT_EQ(line.rfind("glint bake ", 0), 0u) << line;
+    const auto r = runShell(std::string(GLINT_EXE) + line.substr(5) + " -q");
+    ASSERT_EQ(r.status, 0) << line << ": " << r.output;
+  }
+  for (const char* file : {"a.png", "b.png", "c.png", "c_ao.png"}) {
+    listed[file] = bytes(d / file);
+    EXPECT_FALSE(listed[file].empty()) << file;
+    fs::remove(d / file);
+  }
+  ASSERT_EQ(runGlint("bake --batch " + q(d / "jobs.json") + " -q").status, 0);
+  for (const auto& [file, contents] : listed) EXPECT_TRUE(bytes(d / file) == contents) << file;
+}
+
+TEST(BakeCli, BatchErrorsNameTheJobAndBakeNothing) {
+  const auto d = dir("batch-errors");
+  writeBatch(d);
+  const std::string jobA = R"({"low": "low.obj", "high": "high.obj", "output": "a.png"})";
+  const std::string jobB = R"({"low": "low2.obj", "high": "high.obj", "output": "b.png"})";
+  const auto file = [&](const std::string& job2) {
+    return R"({"defaults": {"size": "32x32", "samples": 1}, "bakes": [)" + jobA + ", " + jobB + ", " + job2 + "]}";
+  };
+  struct Case {
+    std::string json, args;
+    int status;
+    std::vector<const char*> messages;
+  };
+  const std::vector<Case> cases{
+      {file(R"({"low": "low.obj", "high": "high.obj", "output": "c.png", "colour": "red"})"), "", 2,
+       {"job 2 (low.obj)", "unknown key 'colour'"}},
+      {file(R"({"low": "low.obj", "high": "high.obj", "output": "c.png", "size": "big"})"), "", 2,
+       {"jobs.json job 2 (low.obj): size must be WIDTHxHEIGHT", "'big'"}},
+      {file(R"({"low": "low.obj", "high": "high.obj", "output": "c.png", "samples": 5})"), "", 2, {"job 2", "square"}},
+      {file(R"({"low": "low.obj", "high": "high.obj", "output": "c.png", "directx": "yes"})"), "", 2,
+       {"job 2", "'directx' is a flag"}},
+      {file(R"({"low": "low.obj", "high": "high.obj", "output": "a.png"})"), "", 2,
+       {"job 0 -o", "job 2 -o", "same file"}},
+      {file(R"({"low": "low.obj", "high": "high.obj", "output": "c.png", "ao": "low2.obj"})"), "", 2,
+       {"job 2 --ao", "job 1's low poly", "destroy the input"}},
+      {file(R"({"low": "low.obj", "output": "c.png"})"), "", 2, {"job 2 (low.obj)", "high is required"}},
+      {file(R"({"low": "low.obj", "high": "high.obj", "output": "c.png"})"), " --job 5", 2, {"--job 5", "has 3 jobs"}},
+      {file(R"({"low": "low.obj", "high": "high.obj", "output": "c.png"})"), " " + q(d / "low.obj") + " " + q(d / "high.obj"), 2,
+       {"--batch", "LOW HIGH"}},
+      {R"({"defaults": {"size": "32x32",}, "bakes": []})", "", 2, {"not valid JSON", "line 1, column 31"}},
+      {R"({"defaults": {"size": "32x32"}, "bakes": []})", "", 2, {"no jobs"}},
+      {R"({"defaults": {"sise": "32x32"}, "bakes": [)" + jobA + "]}", "", 2, {"defaults", "unknown key 'sise'"}},
+      {R"({"bake": [)" + jobA + "]}", "", 2, {"unknown key 'bake'"}},
+  };
+  for (const Case& c : cases) {
+    std::ofstream(d / "jobs.json") << c.json;
+    const auto r = runGlint("bake --batch " + q(d / "jobs.json") + c.args);
+    EXPECT_EQ(r.status, c.status) << c.json << c.args << ": " << r.output;
+    EXPECT_TRUE(oneLine(r.output)) << c.json << ": " << r.output;
+    for (const char* message : c.messages) EXPECT_NE(r.output.find(message), std::string::npos) << message << ": " << r.output;
+    EXPECT_EQ(fileCount(d), 4u) << "nothing baked: " << c.json;
+  }
+  const auto missing = runGlint("bake --batch " + q(d / "missing.json"));
+  EXPECT_EQ(missing.status, 3) << missing.output;
+  EXPECT_TRUE(oneLine(missing.output)) << missing.output;
+  EXPECT_NE(missing.output.find("missing.json"), std::string::npos) << missing.output;
+}
+
+TEST(BakeCli, BatchAFailedJobDoesNotStopTheOthers) {
+  const auto d = dir("batch-failed");
+  writeBatch(d, R"({"defaults": {"size": "32x32", "samples": 1}, "bakes": [
+    {"low": "low.obj", "high": "high.obj", "output": "a.png"},
+    {"low": "gone.obj", "high": "high.obj", "output": "b.png"},
+    {"low": "low2.obj", "high": "high.obj", "output": "c.png"}]})");
+  const auto r = runGlint("bake --batch " + q(d / "jobs.json") + " -q --json " + q(d / "report.json"));
+  EXPECT_EQ(r.status, 3) << "the failed job's status: " << r.output;
+  EXPECT_NE(r.output.find("job 1 (gone.obj)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 of 3 jobs failed (job 1)"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(d / "a.png"));
+  EXPECT_FALSE(fs::exists(d / "b.png"));
+  EXPECT_TRUE(fs::exists(d / "c.png"));
+  std::ifstream in(d / "report.json");
+  const auto report = nlohmann::json::parse(in);
+  ASSERT_EQ(report["jobs"].size(), 3u);
+  EXPECT_EQ(report["jobs"][0]["status"], "ok");
+  EXPECT_EQ(report["jobs"][1]["status"], "failed");
+  EXPECT_EQ(report["jobs"][1]["exit_status"], 3);
+  EXPECT_NE(report["jobs"][1]["error"].get<std::string>().find("gone.obj"), std::string::npos);
+  EXPECT_EQ(report["jobs"][2]["status"], "ok");
+  EXPECT_EQ(report["failed"], 1);
 }

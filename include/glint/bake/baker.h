@@ -130,6 +130,7 @@ struct BakeOptions {
   PixelType normalType = PixelType::F32;
 
   bool progress = true;           ///< draw a progress bar (only on a terminal, see core/progress.h)
+  std::string progressLabel = "bake";  ///< the bar's label (`glint bake --batch`: "bake 2/3")
   /// Polled between tiles; when it becomes true bake() throws Error(Interrupted).
   const std::atomic<bool>* cancel = nullptr;
   /// Benchmarks only: receives every ray the normal pass casts, in a deterministic order

@@ -110,8 +110,11 @@ public:
   /// A warning the library already logged (e.g. bake::BakeResult::warnings): report only.
   void recordWarning(const std::string& message) { m_warnings.push_back(message); }
   /// Completes the report (tool, version, threads, seconds, peak_memory_mib, warnings) and
-  /// writes it where --json said. Call once, after the outputs are written.
-  void finish();
+  /// writes it where --json said. Call once, after the outputs are written. Returns the
+  /// completed report (also without --json: `glint bake --batch` lists its jobs' reports).
+  nlohmann::ordered_json finish();
+  /// The report as finish() would write it now (a failed job's, in a batch report).
+  nlohmann::ordered_json completedReport() const;
 
   /// The process's peak resident set size so far, in MiB.
   static double peakMemoryMiB();
