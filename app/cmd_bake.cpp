@@ -464,6 +464,38 @@ struct BatchJob {
   BakeArgs args;
 };
 
+/// Every job of a batch through the command line's option parsing: its argument list
+/// (defaults, then the job, then `commandLine`, later layers winning) and its parsed options.
+std::vector<BatchJob> parseBatchJobs(const BatchFile& batch, const std::string& file, const Json& commandLine) {
+  const int count = int(batch.jobs.size());
+  CLI::App prototype{"glint bake", "bake"};
+  BakeArgs unused;
+  addBakeOptions(prototype, unused, true);
+  const fs::path base = fs::path(file).parent_path();
+  Json defaults;
+  try {
+    defaults = canonicalKeys(prototype, batch.defaults);
+  } catch (const Error&) {
+    rethrowIn(fmt::format("bake: {} defaults", file));
+  }
+  std::vector<BatchJob> jobs(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    BatchJob& job = jobs[std::size_t(i)];
+    const Json& raw = batch.jobs[std::size_t(i)];
+    const Json* low = raw.contains("low") ? &raw["low"] : batch.defaults.contains("low") ? &batch.defaults["low"] : nullptr;
+    job.where = fmt::format("bake: {} job {}", file, i);
+    if (low && low->is_string()) job.where += fmt::format(" ({})", printable(low->get<std::string>()));
+    try {
+      const Json settings = canonicalKeys(prototype, raw);
+      job.arguments = argumentsFor(prototype, {&defaults, &settings, &commandLine}, base);
+      job.args = parseJob(job.arguments);
+    } catch (const Error&) {
+      rethrowIn(job.where);
+    }
+  }
+  return jobs;
+}
+
 /// glint bake --batch. `cmd` is the parsed bake command: the options given with --batch
 /// (except --json, the batch's own report) apply to every job.
 int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& request,
@@ -486,31 +518,7 @@ int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& req
   }
 
   // Every job through the command line's option parsing, before anything runs.
-  CLI::App prototype{"glint bake", "bake"};
-  BakeArgs unused;
-  addBakeOptions(prototype, unused, true);
-  const fs::path base = fs::path(request.file).parent_path();
-  Json defaults;
-  try {
-    defaults = canonicalKeys(prototype, batch.defaults);
-  } catch (const Error&) {
-    rethrowIn(fmt::format("bake: {} defaults", request.file));
-  }
-  std::vector<BatchJob> jobs(static_cast<std::size_t>(count));
-  for (int i = 0; i < count; ++i) {
-    BatchJob& job = jobs[std::size_t(i)];
-    const Json& raw = batch.jobs[std::size_t(i)];
-    const Json* low = raw.contains("low") ? &raw["low"] : batch.defaults.contains("low") ? &batch.defaults["low"] : nullptr;
-    job.where = fmt::format("bake: {} job {}", request.file, i);
-    if (low && low->is_string()) job.where += fmt::format(" ({})", printable(low->get<std::string>()));
-    try {
-      const Json settings = canonicalKeys(prototype, raw);
-      job.arguments = argumentsFor(prototype, {&defaults, &settings, &commandLine}, base);
-      job.args = parseJob(job.arguments);
-    } catch (const Error&) {
-      rethrowIn(job.where);
-    }
-  }
+  std::vector<BatchJob> jobs = parseBatchJobs(batch, request.file, commandLine);
   std::vector<int> selected;
   for (int i = 0; i < count; ++i)
     if (request.job < 0 || request.job == i) selected.push_back(i);
@@ -646,6 +654,31 @@ int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& req
 }
 
 }  // namespace
+
+std::vector<BatchBake> batchBakes(const std::string& file) {
+  const BatchFile batch = loadBatch(file);
+  std::vector<BatchBake> bakes;
+  for (const BatchJob& job : parseBatchJobs(batch, file, Json::object())) {
+    const BakeFiles files = bakeFiles(job.args);
+    BatchBake b{.where = job.where};
+    for (const FileUse& f : files.inputs)
+      if (!f.path.empty()) b.inputs.push_back(f.path);
+    for (const FileUse& f : files.outputs)
+      if (!f.path.empty() && f.path != "-") b.outputs.push_back(f.path);
+    bake::BakeOptions options;
+    const ivec2 size = parseSize(job.args.size);
+    options.width = size.x;
+    options.height = size.y;
+    options.samples = job.args.samples;
+    options.ambientOcclusion = !job.args.ao.empty();
+    options.aoSamples = job.args.aoSamples;
+    options.heightMap = !job.args.height.empty();
+    options.missMask = !job.args.missMask.empty();
+    b.memoryMiB = bake::estimatePeakMemoryMiB(options, {job.args.low, job.args.high, job.args.cage});
+    bakes.push_back(std::move(b));
+  }
+  return bakes;
+}
 
 Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
   auto a = std::make_shared<BakeArgs>();

@@ -126,7 +126,8 @@ std::set<const CLI::Option*> addFarmOptions(CLI::App& cmd, FarmArgs& a, const ch
   for (const char* name : {"--partition", "--time", "--mem", "--cpus-per-task", "--work-dir", "--dry-run", "--wait"})
     if (CLI::Option* clash = cmd.get_option_no_throw(name)) cmd.remove_option(clash);
   std::set<const CLI::Option*> options;
-  options.insert(cmd.add_option(piecesName, a.pieces, piecesHelp)->required()->check(CLI::Range(1, 100000)));
+  if (piecesName)
+    options.insert(cmd.add_option(piecesName, a.pieces, piecesHelp)->required()->check(CLI::Range(1, 100000)));
   options.insert(cmd.add_option("--partition", a.partition, "Slurm partition for every task (default: the cluster's)"));
   options.insert(cmd.add_option("--time", a.time, "Slurm time limit per task, e.g. 2:00:00 (default: the partition's)"));
   options.insert(cmd.add_option("--mem", a.mem, "Memory per task: MiB, or 512M, 4G (default: the tool's own estimate "
@@ -339,6 +340,31 @@ farm::Plan renderPlan(CLI::App& cmd, const std::vector<Given>& given, int chunks
   return plan;
 }
 
+farm::Plan bakePlan(const std::string& file, std::int64_t& mib, const FarmArgs& a) {
+  const std::vector<BatchBake> bakes = batchBakes(file);
+  double most = 0.0;
+  for (const auto& b : bakes) most = std::max(most, b.memoryMiB);
+  mib = memoryMiB(a, most);
+  farm::Plan plan{.tool = "bake"};
+  plan.title = fmt::format("{} ({} bake{})", fs::path(file).filename().string(), bakes.size(), bakes.size() == 1 ? "" : "s");
+  plan.workDir = a.workDir.empty() ? fs::path(absolute(file)).parent_path() : fs::path(a.workDir);
+  for (std::size_t i = 0; i < bakes.size(); ++i) {
+    const BatchBake& b = bakes[i];
+    farm::Piece piece{.label = b.where.substr(b.where.find(" job ") + 1), .command = {"bake", "--batch", absolute(file),
+                                                                                      "--job", std::to_string(i)}};
+    piece.command.insert(piece.command.end(), {"--max-memory", std::to_string(mib)});
+    if (a.cpusPerTask > 0) piece.command.insert(piece.command.end(), {"--threads", std::to_string(a.cpusPerTask)});
+    piece.inputs.push_back(absolute(file));
+    for (const auto& in : b.inputs) piece.inputs.push_back(absolute(in));
+    for (const auto& out : b.outputs) {
+      piece.outputs.push_back(absolute(out));
+      plan.outputs.push_back(absolute(out));
+    }
+    plan.pieces.push_back(std::move(piece));
+  }
+  return plan;
+}
+
 }  // namespace
 
 Command farmCommand(CLI::App& app, const GlobalOptions& global) {
@@ -387,7 +413,25 @@ Command farmCommand(CLI::App& app, const GlobalOptions& global) {
     parsed->push_back({cmd, tool.name, args, std::move(options), std::move(toolCommand)});
   }
 
-  return Command{.run = [parsed] {
+  // bake: one task per bake of a batch file, each `glint bake --batch F --job i`; no join.
+  auto bakeArgs = std::make_shared<FarmArgs>();
+  auto bakeFile = std::make_shared<std::string>();
+  auto* bakeCmd = farmCmd->add_subcommand("bake", "`glint bake --batch JOBS.json` over a Slurm cluster: one task per "
+                                                  "bake (`--job i`), no join");
+  bakeCmd->add_option("jobs", *bakeFile, "Batch file: {\"defaults\": {...}, \"bakes\": [...]} (see glint bake --help)")
+      ->required();
+  addFarmOptions(*bakeCmd, *bakeArgs, nullptr, nullptr);
+  bakeCmd->footer(std::string("Example:\n  glint farm bake assets.json --mem 8G --cpus-per-task 16 --wait\n") + kCommonHelp);
+
+  return Command{.run = [parsed, bakeCmd, bakeArgs, bakeFile] {
+                   if (bakeCmd->parsed()) {
+                     if (!bakeArgs->dryRun) {
+                       if (auto missing = farm::slurmMissing()) throw Error(ErrorKind::Input, *missing);
+                     }
+                     std::int64_t mib = 0;
+                     farm::Plan plan = bakePlan(*bakeFile, mib, *bakeArgs);
+                     return runFarm(std::move(plan), *bakeArgs, mib);
+                   }
                    for (Parsed& p : *parsed) {
                      if (!p.cmd->parsed()) continue;
                      const FarmArgs& a = *p.args;

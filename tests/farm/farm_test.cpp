@@ -61,14 +61,20 @@ const auto* const registered = ::testing::AddGlobalTestEnvironment(new ClusterEn
 
 fs::path dir(const char* name) { return glint::testing::freshDir("farm", name); }
 
-void writeObj(const Mesh& m, const fs::path& path) {
+/// OBJ with normals, and with texture coordinates when `uvs`.
+void writeObj(const Mesh& m, const fs::path& path, bool uvs = false) {
   std::ofstream out(path);
   out.precision(9);
   for (const vec3& p : m.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  if (uvs)
+    for (const vec2& t : m.uvs) out << "vt " << t.x << ' ' << t.y << '\n';
   for (const vec3& n : m.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
   for (std::size_t i = 0; i < m.indices.size(); i += 3) {
     out << 'f';
-    for (std::size_t k = 0; k < 3; ++k) out << ' ' << m.indices[i + k] + 1 << "//" << m.indices[i + k] + 1;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t v = m.indices[i + k] + 1;
+      out << ' ' << v << '/' << (uvs ? std::to_string(v) : "") << '/' << v;
+    }
     out << '\n';
   }
 }
@@ -225,6 +231,40 @@ TEST(FarmSlurm, AFailingTaskIsNamedWithItsExitCodeAndLog) {
   const std::size_t at = r.output.find("log: ");
   const std::string log = r.output.substr(at + 5, r.output.find('\n', at) - at - 5);
   EXPECT_NE(readBytes(log).find("--max-memory"), std::string::npos) << readBytes(log);
+}
+
+TEST(FarmSlurm, BakeRunsOneTaskPerBakeWithTheBytesOfLocalBakes) {
+  NEED_CLUSTER();
+  const fs::path d = dir("bake");
+  writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj", true);
+  writeObj(makeUvSphere(1.0f, 64, 32), d / "high.obj", true);
+  // Relative paths: from the batch file's folder, wherever the tasks run.
+  std::ofstream(d / "jobs.json") << R"({
+  "defaults": {"size": "32x32", "padding": 2, "quiet": true},
+  "bakes": [
+    {"low": "low.obj", "high": "high.obj", "output": "out/a.png"},
+    {"low": "low.obj", "high": "high.obj", "output": "out/b.png", "directx": true, "size": "48x24"},
+    {"low": "low.obj", "high": "high.obj", "output": "out/c.png", "samples": 4, "ao": "out/c_ao.png", "ao-samples": 4}
+  ]
+})";
+  fs::create_directories(d / "out");
+  fs::create_directories(d / "local");
+  ASSERT_EQ(runGlint("bake --batch " + q(d / "jobs.json")).status, 0);
+  for (const char* f : {"a.png", "b.png", "c.png", "c_ao.png"}) fs::rename(d / "out" / f, d / "local" / f);
+
+  const auto r = runGlint("farm bake " + q(d / "jobs.json") + " --wait");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("submitted 3 pieces"), std::string::npos) << r.output;
+  for (const char* f : {"a.png", "b.png", "c.png", "c_ao.png"}) {
+    EXPECT_FALSE(readBytes(d / "out" / f).empty()) << f;
+    EXPECT_TRUE(readBytes(d / "out" / f) == readBytes(d / "local" / f)) << f;
+  }
+  // One bake's output lost: only that bake runs again.
+  fs::remove(d / "out" / "b.png");
+  const auto again = runGlint("farm bake " + q(d / "jobs.json") + " --wait");
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("submitted 1 piece (2 of 3 already done"), std::string::npos) << again.output;
+  EXPECT_TRUE(readBytes(d / "out" / "b.png") == readBytes(d / "local" / "b.png"));
 }
 
 TEST(Farm, WithoutSlurmItSaysWhatToInstall) {
