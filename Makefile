@@ -23,8 +23,9 @@ SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
 # GL test processes a run, sometimes twice in a row. ASan and UBSan stay on.
 # Not under ASan: the viewer tests (X11 and GLX modules that Xvfb's GLFW loads and unloads
 # leak 112 bytes that LeakSanitizer cannot name a library for), and the install test (it
-# builds a consumer project without the sanitizer flags).
-ASAN_EXCLUDE := Viewer|Install\.AConsumer
+# builds a consumer project without the sanitizer flags), and the farm test (a Slurm cluster
+# running plain glint tools, which the other tests already run under ASan; make test runs it).
+ASAN_EXCLUDE := Viewer|Install\.AConsumer|farm_test
 # Tests of the multi-threaded tools that TSan runs: the baker's and the cutter's parallel
 # loops (oneTBB) and post's three-thread decode/process/encode pipeline (video/transcode).
 # Library tests only, so the TSan build skips the GL layers and the glint command.

@@ -6,6 +6,7 @@
 // and a rerun redoes only them.
 #include "glint/farm/farm.h"
 #include "glint/mesh/machine_room.h"
+#include <algorithm>
 #include "glint/mesh/mesh.h"
 #include "support/cli.h"
 #include "support/slurm_cluster.h"
@@ -290,4 +291,80 @@ TEST(Farm, SplitsFramesAtTheKeyframesNearestAnEvenSplit) {
             (std::vector<std::pair<std::int64_t, std::int64_t>>{{10, 25}, {25, 60}}));
   EXPECT_EQ(farm::splitEvenly(0, 10, 3), (std::vector<std::pair<std::int64_t, std::int64_t>>{{0, 3}, {3, 6}, {6, 10}}));
   EXPECT_EQ(farm::splitEvenly(0, 2, 5), (std::vector<std::pair<std::int64_t, std::int64_t>>{{0, 1}, {1, 2}}));
+}
+
+// ------------------------------------------------------------------ measurements
+// Not tests (no assertion on time): the figures of docs/farm.md, on this machine's one-node
+// cluster. Run by hand:
+//   build/tests/farm/farm_test --gtest_also_run_disabled_tests --gtest_filter='FarmMeasure.*'
+namespace {
+double now() { return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count(); }
+
+template <class F>
+double seconds(F&& f) {
+  const double t0 = now();
+  f();
+  return now() - t0;
+}
+}  // namespace
+
+TEST(FarmMeasure, DISABLED_SlurmOverheadPerTask) {
+  NEED_CLUSTER();
+  const fs::path d = dir("measure-overhead");
+  std::ofstream(d / "task.sh") << "#!/bin/bash\ndate +%s.%N > " << (d / "start-").string() << "$SLURM_ARRAY_TASK_ID\n";
+  // One task at a time: submit → start latency.
+  std::vector<double> latency;
+  for (int i = 0; i < 5; ++i) {
+    fs::remove(d / "start-0");
+    const double t0 = now();
+    ASSERT_EQ(runShell("sbatch -Q --array=0 -o /dev/null " + q(d / "task.sh")).status, 0);
+    while (!fs::exists(d / "start-0") || readBytes(d / "start-0").empty()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    latency.push_back(std::stod(readBytes(d / "start-0")) - t0);
+    while (!squeue().empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  std::sort(latency.begin(), latency.end());
+  // 64 trivial tasks: throughput of the array on this node.
+  const double wall = seconds([&] {
+    ASSERT_EQ(runShell("sbatch -Q --array=0-63 -o /dev/null " + q(d / "task.sh")).status, 0);
+    while (!squeue().empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  });
+  std::printf("slurm: submit→start %.3f s median (%.3f–%.3f, 5 runs); 64 trivial tasks in %.2f s (%.3f s each, %ld CPUs)\n",
+              latency[2], latency.front(), latency.back(), wall, wall / 64, sysconf(_SC_NPROCESSORS_ONLN));
+}
+
+TEST(FarmMeasure, DISABLED_Cut550kTwoShards) {
+  NEED_CLUSTER();
+  const fs::path d = dir("measure-cut");
+  const MachineRoomOptions options{.modules = machineRoomModulesFor(550000)};
+  const Mesh stage = makeMachineRoom(options);
+  writeObj(stage, d / "stage.obj");
+  std::string lights;
+  for (const auto& l : machineRoomLights(options))
+    lights += fmt::format(" --light {},{},{}", l.x, l.y, l.z);
+  const std::string in = q(d / "stage.obj");
+  const double local = seconds([&] { ASSERT_EQ(runGlint("-q cut " + in + " -o " + q(d / "local.glb") + lights).status, 0); });
+  const double farmed = seconds([&] {
+    const auto r = runGlint("farm cut " + in + " -o " + q(d / "farm.glb") + lights + " --shards 2 --cpus-per-task 1 --wait");
+    ASSERT_EQ(r.status, 0) << r.output;
+  });
+  EXPECT_EQ(readBytes(d / "farm.glb"), readBytes(d / "local.glb"));
+  std::printf("cut %zu triangles: local %.1f s, farm (2 shards, 1 CPU each) %.1f s\n", stage.triangleCount(), local, farmed);
+}
+
+TEST(FarmMeasure, DISABLED_Post1080pTwentySecondsFourChunks) {
+  NEED_CLUSTER();
+  const fs::path d = dir("measure-post");
+  const fs::path in = clip(d, 20, "1920x1080");
+  const double local = seconds([&] {
+    ASSERT_EQ(runGlint("-q post " + q(in) + " -o " + q(d / "local.mp4") + " -e sepia").status, 0);
+  });
+  const double farmed = seconds([&] {
+    const auto r = runGlint("farm post " + q(in) + " -o " + q(d / "farm.mp4") + " -e sepia --chunks 4 --wait");
+    ASSERT_EQ(r.status, 0) << r.output;
+  });
+  const double concat = seconds([&] {
+    ASSERT_EQ(runGlint("-q post --concat " + q(d / "farm.mp4") + " -o " + q(d / "again.mp4")).status, 0);
+  });
+  std::printf("post 1080p 20 s (500 frames, sepia, H.264): local %.1f s, farm (4 chunks) %.1f s; a concat of the "
+              "whole %.2f s\n", local, farmed, concat);
 }
