@@ -81,9 +81,10 @@ Command renderCommand(CLI::App& app, const GlobalOptions& global) {
       ToolRun run("render", {.quiet = global.quiet});
       contexts.use(ref.scene->profile);
       const scenes::ClipStats s = scenes::renderClip(ref, clip, output, run);
-      log::info("render: {} frames ({}..{}) → {}: {}x{}, {} fps, {}, {:.2f} s ({:.1f} frames/s)", s.framesWritten,
-                s.frames.first, s.frames.end - 1, s.output, s.size.x, s.size.y, s.fps, s.codec, s.seconds,
-                double(s.framesWritten) / s.seconds);
+      const double n = double(s.framesWritten);
+      log::info("render: {} frames ({}..{}) → {}: {}x{}, {} fps, {}, {:.2f} s ({:.1f} frames/s; a frame: render {:.0f} ms, "
+                "encode {:.0f} ms)", s.framesWritten, s.frames.first, s.frames.end - 1, s.output, s.size.x, s.size.y,
+                s.fps, s.codec, s.seconds, n / s.seconds, 1000 * s.renderSeconds / n, 1000 * s.encodeSeconds / n);
       run.finish();
       return 0;
     }
