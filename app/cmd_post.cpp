@@ -8,8 +8,6 @@
 
 #include <fmt/format.h>
 
-#include <climits>
-
 namespace glint::app {
 
 namespace {
@@ -22,16 +20,6 @@ struct PostArgs {
   ToolSettings tool;
 };
 
-/// "a:b", "a:" or ":b" → frames [first, end) (end −1 = to the end): whole numbers, no signs or spaces.
-render::post::FrameRange parseFrames(const std::string& text) {
-  const auto colon = text.find(':');
-  if (colon == std::string::npos) fail(ErrorKind::Usage, "--frames must be FIRST:END (e.g. 0:250 or 250:), got '{}'", text);
-  const auto number = [&](const std::string& s, std::int64_t empty) -> std::int64_t {
-    return s.empty() ? empty : parseInt(s, "--frames (FIRST:END, frame numbers, END excluded)", 0, INT_MAX);
-  };
-  return {number(text.substr(0, colon), 0), number(text.substr(colon + 1), -1)};
-}
-
 /// The job the options describe (parsed: effects, codec, frames, camera size and rate).
 render::post::PostJob makeJob(const PostArgs& a, const GlobalOptions& global) {
   render::post::PostJob job{.input = a.input, .camera = a.camera, .lavfi = a.lavfi, .parts = a.concat,
@@ -40,7 +28,7 @@ render::post::PostJob makeJob(const PostArgs& a, const GlobalOptions& global) {
   job.format = a.format;
   job.effects = render::post::parseEffects(a.effects, a.settings);
   job.codec = video::parseCodec(a.codec);
-  if (!a.frames.empty()) job.frames = parseFrames(a.frames);
+  if (!a.frames.empty()) job.frames = parseFrameRange(a.frames, "--frames");
   if (!a.size.empty()) job.cameraSize = parseSize(a.size);
   if (!a.rate.empty()) job.cameraRate = parseFloat(a.rate, "--fps");
   return job;

@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 
 #include <charconv>
+#include <climits>
 #include <cmath>
 
 namespace glint {
@@ -83,6 +84,18 @@ int parseInt(std::string_view text, std::string_view what, int lo, int hi) {
   if (!wholeInt(text, value)) fail(ErrorKind::Usage, "{}: '{}' is not an integer", what, printable(text));
   if (value < lo || value > hi) fail(ErrorKind::Usage, "{}: {} is out of range ({}..{})", what, value, lo, hi);
   return value;
+}
+
+FrameRange parseFrameRange(std::string_view text, std::string_view what) {
+  const auto colon = text.find(':');
+  if (colon == std::string_view::npos) {
+    fail(ErrorKind::Usage, "{} must be FIRST:END (e.g. 0:250 or 250:), got '{}'", what, printable(text));
+  }
+  const std::string numbers = fmt::format("{} (FIRST:END, frame numbers, END excluded)", what);
+  const auto number = [&](std::string_view s, std::int64_t empty) -> std::int64_t {
+    return s.empty() ? empty : parseInt(s, numbers, 0, INT_MAX);
+  };
+  return {number(text.substr(0, colon), 0), number(text.substr(colon + 1), -1)};
 }
 
 ShardSpec parseShard(std::string_view text, std::string_view what) {

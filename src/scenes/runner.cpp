@@ -34,28 +34,35 @@ std::string ContextPool::unavailableReason(gl::Profile profile) const {
   return it == m_failures.end() ? std::string() : it->second;
 }
 
-RenderResult renderVariant(const VariantRef& ref, const RenderRequest& request) {
-  const SceneDesc& desc = *ref.scene;
-  const ivec2 size = request.size.x > 0 ? request.size : desc.defaultSize;
-  const double time = request.time.value_or(desc.defaultTime);
+namespace {
+double checkedTime(double time) {
   if (!std::isfinite(time)) fail(ErrorKind::Usage, "time must be a finite number of seconds");
+  return time;
+}
+}  // namespace
 
-  std::unique_ptr<Scene> scene = desc.create(ref.variant);
-  for (const auto& assignment : request.options) setOption(*scene, assignment);
-  gl::RenderTarget target(size, GL_RGBA8, "frame");
-  const FrameInput frame{.target = target.target(), .time = time, .deltaTime = 0.0};
+VariantRenderer::VariantRenderer(const VariantRef& ref, const RenderRequest& request)
+    : m_ref(ref), m_size(request.size.x > 0 ? request.size : ref.scene->defaultSize) {
+  m_scene = ref.scene->create(ref.variant);
+  for (const auto& assignment : request.options) setOption(*m_scene, assignment);
+  m_target = std::make_unique<gl::RenderTarget>(m_size, GL_RGBA8, "frame");
+}
 
+VariantRenderer::~VariantRenderer() = default;
+
+RenderResult VariantRenderer::frame(double time, int timingRepeats) {
+  const FrameInput frame{.target = m_target->target(), .time = checkedTime(time), .deltaTime = 0.0};
   // Every frame starts from default state, whatever the previous scene left.
   auto renderFrame = [&] {
     render::resetState();
-    scene->render(frame);
+    m_scene->render(frame);
   };
   RenderResult result;
   renderFrame();
-  if (request.timingRepeats > 0) {
-    result.gpuMs = gl::GpuTimer::measureMs(renderFrame, request.timingRepeats, 0);
+  if (timingRepeats > 0) {
+    result.gpuMs = gl::GpuTimer::measureMs(renderFrame, timingRepeats, 0);
     std::vector<double> cpu;
-    for (int i = 0; i < request.timingRepeats; ++i) {
+    for (int i = 0; i < timingRepeats; ++i) {
       const auto start = std::chrono::steady_clock::now();
       renderFrame();
       glFinish();
@@ -66,14 +73,20 @@ RenderResult renderVariant(const VariantRef& ref, const RenderRequest& request) 
     // Timed repeats must leave the same picture as a single frame (deterministic scenes).
     renderFrame();
   }
-  result.image = gl::readColor(target.framebuffer(), size);
+  result.image = gl::readColor(m_target->framebuffer(), m_size);
   // A window shows colour only; destination alpha is a working value of some
   // techniques, not transparency, so the picture is made opaque.
   auto px = result.image.pixels<std::uint8_t>();
   for (std::size_t i = 3; i < px.size(); i += 4) px[i] = 255;
-  result.notes = scene->notes();
-  gl::checkGlError(ref.fullName().c_str());
+  result.notes = m_scene->notes();
+  gl::checkGlError(m_ref.fullName().c_str());
   return result;
+}
+
+RenderResult renderVariant(const VariantRef& ref, const RenderRequest& request) {
+  const double time = checkedTime(request.time.value_or(ref.scene->defaultTime));  // before the scene is made
+  VariantRenderer renderer(ref, request);
+  return renderer.frame(time, request.timingRepeats);
 }
 
 }  // namespace glint::scenes

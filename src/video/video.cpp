@@ -55,6 +55,13 @@ bool isImagePath(const std::string& name) {
   return std::find(kImages.begin(), kImages.end(), ext) != kImages.end();
 }
 
+bool isVideoPath(const std::string& name) {
+  std::string ext = fs::path(name).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  static constexpr std::array<std::string_view, 5> kVideos = {".mp4", ".mkv", ".mov", ".avi", ".nut"};
+  return std::find(kVideos.begin(), kVideos.end(), ext) != kVideos.end();
+}
+
 Codec parseCodec(const std::string& name) {
   if (name == "h264" || name == "H264" || name == "x264") return Codec::H264;
   if (name == "ffv1" || name == "FFV1") return Codec::Ffv1;

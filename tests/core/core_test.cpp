@@ -122,6 +122,25 @@ TEST(Text, ShardIsTwoPlainIntegersInOrder) {
   }
 }
 
+TEST(Text, FrameRangeIsFirstColonEndEitherSideOptional) {
+  // `glint post --frames` and `glint render --frames` share this parser.
+  const FrameRange part = parseFrameRange("150:300", "--frames");
+  EXPECT_EQ(part.first, 150);
+  EXPECT_EQ(part.end, 300);
+  EXPECT_EQ(parseFrameRange("250:", "--frames").end, -1);  // to the end
+  EXPECT_EQ(parseFrameRange(":9", "--frames").first, 0);
+  EXPECT_EQ(parseFrameRange("9:3", "--frames").end, 3);  // empty ranges are the caller's to refuse
+  for (const char* bad : {"", "12", "0-3", "-1:3", "+1:3", "1:2:3", "a:b", " 1:2", "1:2 ", "99999999999:"}) {
+    try {
+      parseFrameRange(bad, "--frames");
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Usage) << bad;
+      EXPECT_NE(std::string(e.what()).find("--frames"), std::string::npos) << e.what();
+    }
+  }
+}
+
 #include "glint/core/locations.h"
 
 #include <cstdlib>

@@ -13,10 +13,12 @@
 /// const glint::vec3 p = glint::parseVec3("1,2.5,-3", "--light");           // {1, 2.5, -3}
 /// const double mib = glint::parseMemorySize("4G", "--max-memory");         // 4096
 /// const auto fields = glint::splitFields("a,,b", ',');                     // {"a", "", "b"}
+/// const glint::FrameRange part = glint::parseFrameRange("150:300", "--frames");  // {150, 300}
 /// ```
 
 #include "glint/core/math.h"
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -56,6 +58,18 @@ struct ShardSpec {
 /// "i/n": two integers (parseInt's form: no spaces, no '+') with 1 ≤ i ≤ n. Error(Usage)
 /// "<what> must be i/n with 1 ≤ i ≤ n, got '<text>'" for anything else.
 ShardSpec parseShard(std::string_view text, std::string_view what);
+
+/// Frames [first, end) of a video, `--frames FIRST:END` (`glint post`, `glint render`):
+/// END is excluded; `end` −1 means "to the end" (the text "250:").
+struct FrameRange {
+  std::int64_t first = 0;
+  std::int64_t end = -1;
+};
+
+/// "a:b", "a:" (to the end) or ":b" (from frame 0): whole numbers 0..INT_MAX, no signs or
+/// spaces. Error(Usage) naming `what` otherwise. Whether the range may be open or empty is
+/// the caller's to check (glint render needs an END after FIRST).
+FrameRange parseFrameRange(std::string_view text, std::string_view what);
 
 /// "x,y,z": three finite numbers.
 vec3 parseVec3(std::string_view text, std::string_view what);

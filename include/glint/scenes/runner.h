@@ -54,7 +54,41 @@ struct RenderResult {
 
 /// Creates the variant's scene, applies options, renders one frame at the requested
 /// time into an offscreen target and reads it back. Needs a current context of the
-/// scene's profile (ContextPool::use).
+/// scene's profile (ContextPool::use). VariantRenderer, below, with one frame.
 RenderResult renderVariant(const VariantRef& variant, const RenderRequest& request = {});
+
+/// One variant's scene, created once, rendered at as many times as asked: the frames of a
+/// clip (scenes/clip.h). Scenes are deterministic (scene.h), so frame(t) is the picture
+/// renderVariant gives for --time t, whatever was rendered before — a scene that keeps state
+/// between frames (water's simulation) keeps it only to go faster. Every frame is rendered
+/// as a single headless frame: state reset first, deltaTime 0, the scene's own camera.
+///
+/// ```cpp
+/// glint::scenes::ContextPool contexts;
+/// const glint::scenes::VariantRef ref = glint::scenes::Registry::builtin().resolve("rtt/texture");
+/// contexts.use(ref.scene->profile);
+/// glint::scenes::VariantRenderer renderer(ref, {.size = {320, 180}});  // request.time unused
+/// for (int i = 0; i < 30; ++i) glint::saveImage(renderer.frame(i / 30.0).image, "f" + std::to_string(i) + ".png");
+/// ```
+class VariantRenderer {
+public:
+  /// Creates the scene (current context of its profile needed) and applies request.options;
+  /// Error(Usage) for a bad option. request.size 0: the scene's default size.
+  VariantRenderer(const VariantRef& variant, const RenderRequest& request);
+  ~VariantRenderer();
+  VariantRenderer(const VariantRenderer&) = delete;
+  VariantRenderer& operator=(const VariantRenderer&) = delete;
+
+  /// Renders the frame at `time` seconds (finite; Error(Usage) otherwise) and reads it back:
+  /// RGBA8, opaque. timingRepeats > 0 also measures GPU and CPU time (RenderResult).
+  RenderResult frame(double time, int timingRepeats = 0);
+  ivec2 size() const { return m_size; }
+
+private:
+  VariantRef m_ref;
+  ivec2 m_size;
+  std::unique_ptr<Scene> m_scene;
+  std::unique_ptr<gl::RenderTarget> m_target;
+};
 
 }  // namespace glint::scenes

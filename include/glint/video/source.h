@@ -148,4 +148,9 @@ FrameIndex indexFrames(const std::string& path);
 /// .png .jpg .jpeg .tga .tif .tiff .exr .hdr .bmp .webp), not a video.
 bool isImagePath(const std::string& name);
 
+/// Whether `name` names a video file glint writes (by extension: .mp4 .mkv .mov .avi .nut,
+/// the containers a Sink holds H.264 or FFV1 in) — how `glint render` tells a clip from a
+/// picture.
+bool isVideoPath(const std::string& name);
+
 }  // namespace glint::video

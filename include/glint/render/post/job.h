@@ -25,6 +25,7 @@
 // frame size (render/post/effects.h). Errors are glint::Error, one line (core/error.h).
 
 #include "glint/core/math.h"
+#include "glint/core/text.h"
 #include "glint/core/tool.h"
 #include "glint/render/post/effects.h"
 #include "glint/video/sink.h"
@@ -47,11 +48,9 @@ enum class InputKind {
   Parts    ///< finished --frames parts, joined by copying packets (no effects)
 };
 
-/// Frames [first, end) of a video (`--frames first:end`); end −1: to the end.
-struct FrameRange {
-  std::int64_t first = 0;
-  std::int64_t end = -1;
-};
+/// Frames [first, end) of a video (`--frames first:end`, core/text.h's parseFrameRange);
+/// end −1: to the end.
+using FrameRange = glint::FrameRange;
 
 struct PostJob {
   std::string input;               ///< an image or video file, or "lavfi:GRAPH"
