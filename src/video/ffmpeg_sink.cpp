@@ -361,7 +361,13 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
         ++frames;
         if (packet->pts != AV_NOPTS_VALUE) {
           if (partStart == kNoTimestamp || packet->pts < partStart) partStart = packet->pts;
-          const std::int64_t end = packet->pts + std::max<std::int64_t>(packet->duration, 0);
+          // An MP4's last sample often has no duration: it lasts a frame.
+          const AVRational rate = in.streams[index]->avg_frame_rate.num > 0 ? in.streams[index]->avg_frame_rate
+                                                                            : in.streams[index]->r_frame_rate;
+          const std::int64_t duration = packet->duration > 0 ? packet->duration
+                                        : rate.num > 0       ? av_rescale_q(1, av_inv_q(rate), out->time_base)
+                                                             : 0;
+          const std::int64_t end = packet->pts + duration;
           if (partEnd == kNoTimestamp || end > partEnd) partEnd = end;
         }
       }

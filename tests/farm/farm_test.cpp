@@ -234,6 +234,25 @@ TEST(FarmSlurm, AFailingTaskIsNamedWithItsExitCodeAndLog) {
   EXPECT_NE(readBytes(log).find("--max-memory"), std::string::npos) << readBytes(log);
 }
 
+TEST(FarmSlurm, RenderChunksJoinToTheVideoOfOneLocalRun) {
+  NEED_CLUSTER();
+  const fs::path d = dir("render");
+  const std::string scene = "rtt/texture/fbo --fps 10 --size 64x48";  // a spinning cube
+  ASSERT_EQ(runGlint("-q render " + scene + " --frames 0:12 --codec ffv1 -o " + q(d / "local.mkv")).status, 0);
+  const auto r = runGlint("farm render " + scene + " --frames 0:12 --codec ffv1 -o " + q(d / "farm.mkv") +
+                          " --chunks 3 --wait");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readBytes(d / "farm.mkv"), readBytes(d / "local.mkv"));
+  // H.264, lossless: every frame, each the frame of one local run.
+  ASSERT_EQ(runGlint("-q render " + scene + " --frames 0:12 --crf 0 -o " + q(d / "local.mp4")).status, 0);
+  const auto h264 = runGlint("farm render " + scene + " --frames 0:12 --crf 0 -o " + q(d / "farm.mp4") +
+                             " --chunks 2 --wait");
+  ASSERT_EQ(h264.status, 0) << h264.output;
+  const auto local = frameHashes(d / "local.mp4"), farmed = frameHashes(d / "farm.mp4");
+  EXPECT_EQ(farmed.size(), 12u);
+  EXPECT_EQ(farmed, local);
+}
+
 TEST(FarmSlurm, BakeRunsOneTaskPerBakeWithTheBytesOfLocalBakes) {
   NEED_CLUSTER();
   const fs::path d = dir("bake");
@@ -366,5 +385,22 @@ TEST(FarmMeasure, DISABLED_Post1080pTwentySecondsFourChunks) {
     ASSERT_EQ(runGlint("-q post --concat " + q(d / "farm.mp4") + " -o " + q(d / "again.mp4")).status, 0);
   });
   std::printf("post 1080p 20 s (500 frames, sepia, H.264): local %.1f s, farm (4 chunks) %.1f s; a concat of the "
+              "whole %.2f s\n", local, farmed, concat);
+}
+
+TEST(FarmMeasure, DISABLED_PipeDream600FramesFourChunks) {
+  NEED_CLUSTER();
+  const fs::path d = dir("measure-render");
+  const std::string scene = "pipedream --fps 30 --size 320x180 --frames 0:600";
+  const double local = seconds([&] { ASSERT_EQ(runGlint("-q render " + scene + " -o " + q(d / "local.mp4")).status, 0); });
+  const double farmed = seconds([&] {
+    const auto r = runGlint("farm render " + scene + " -o " + q(d / "farm.mp4") + " --chunks 4 --wait");
+    ASSERT_EQ(r.status, 0) << r.output;
+  });
+  const double concat = seconds([&] {
+    ASSERT_EQ(runGlint("-q post --concat " + q(d / "farm.mp4") + " -o " + q(d / "again.mp4")).status, 0);
+  });
+  EXPECT_EQ(frameHashes(d / "farm.mp4").size(), 600u);
+  std::printf("render pipedream 600 frames 320x180 H.264: local %.1f s, farm (4 chunks) %.1f s; a concat of the "
               "whole %.2f s\n", local, farmed, concat);
 }
