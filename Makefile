@@ -41,8 +41,13 @@ setup:
 setup-test:
 	@scripts/setup --test
 
+# Optimised as RelWithDebInfo (-O2, NDEBUG) but without debug info: a clean build compiles
+# about a third faster (one large unit: 26.5 → 17.8 CPU s), and a new user's first
+# `make gallery` / `make test` waits that much less. For a debugger:
+# make BUILD=build-debug BUILD_TYPE=RelWithDebInfo test
+BUILD_TYPE ?= Release
 $(BUILD)/build.ninja:
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG"
 
 configure: $(BUILD)/build.ninja
 

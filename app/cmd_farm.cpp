@@ -6,6 +6,7 @@
 #include "common.h"
 
 #include "glint/core/error.h"
+#include "glint/core/file.h"
 #include "glint/core/log.h"
 #include "glint/core/progress.h"
 #include "glint/core/text.h"
@@ -168,6 +169,8 @@ int runFarm(farm::Plan plan, const FarmArgs& a, std::int64_t mib) {
   farm::Resources resources{.partition = a.partition, .time = a.time, .memoryMiB = mib, .cpusPerTask = a.cpusPerTask};
   if (plan.workDir.empty()) plan.workDir = a.workDir.empty() ? fs::path(absolute(plan.outputs.front().string())).parent_path()
                                                              : fs::path(a.workDir);
+  // The outputs' folders must exist and be writable: found now, not after the cluster's work.
+  for (const auto& output : plan.outputs) checkWritable(output);
   farm::Farm job(std::move(plan), resources);
   if (a.dryRun) {
     fmt::print("{}", job.scripts());
