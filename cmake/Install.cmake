@@ -15,7 +15,7 @@
 # Exported targets, namespace glint:: (the same names work in this build as aliases), one
 # package component each, named as the target (find_package(glint COMPONENTS render)):
 #   glint::core glint::farm glint::image glint::mesh glint::raytrace glint::bake glint::raster glint::sim
-#   glint::gl glint::render glint::scenes, and as configured glint::video (GLINT_BUILD_VIDEO),
+#   glint::gl glint::render glint::scenes glint::video (without GLINT_BUILD_VIDEO: no FFmpeg module),
 #   glint::cut (GLINT_BUILD_CUT), glint::bench (GLINT_BUILD_BENCH), glint::window (GLINT_BUILD_VIEWER)
 #   glint::glint (component glint: the command, an imported executable)
 # Each library brings the layers below it: linking glint::scenes is enough to render
@@ -25,10 +25,10 @@
 include(CMakePackageConfigHelpers)
 
 # Layer order, lowest first: an installed package loads the targets files in this order.
-set(glint_components core farm image)
-if(GLINT_BUILD_VIDEO)
-  list(APPEND glint_components video)
-endif()
+# video is always a component: without GLINT_BUILD_VIDEO it is the library without its
+# FFmpeg module (opening a video is a usage error naming the option), which scenes links for
+# `glint render`'s clips.
+set(glint_components core farm image video)
 list(APPEND glint_components mesh raytrace bake)
 if(GLINT_BUILD_CUT)
   list(APPEND glint_components cut)
@@ -45,7 +45,7 @@ if(GLINT_BUILD_VIEWER)
   list(APPEND glint_components window)
 endif()
 # The parts a configuration can leave out, and the option that does (glintConfig names it).
-set(glint_optional_components video=GLINT_BUILD_VIDEO cut=GLINT_BUILD_CUT bench=GLINT_BUILD_BENCH window=GLINT_BUILD_VIEWER)
+set(glint_optional_components cut=GLINT_BUILD_CUT bench=GLINT_BUILD_BENCH window=GLINT_BUILD_VIEWER)
 
 # How an installed glint finds each third-party target its libraries link: a name that
 # glintConfig.cmake's glint_find_dependency knows. A linked target missing here stops the

@@ -445,6 +445,20 @@ Submission Farm::submit() {
     result.arrayJob = m_arrayJob;
   }
   result.submitted = needed;
+  // A join from the last submission that is still waiting: kept when nothing was resubmitted
+  // (it waits for exactly these pieces), else cancelled (it would wait for a failed one).
+  std::string oldJoinState;
+  if (!m_joinJob.empty())
+    for (const auto& record : showJobs(m_joinJob))
+      if (record.count("JobState")) oldJoinState = record.at("JobState");
+  if (!m_plan.join.empty() && liveState(oldJoinState)) {
+    if (needed.empty()) {
+      result.joinJob = m_joinJob;
+      saveRecord();
+      return result;
+    }
+    runProcess({"scancel", m_joinJob});
+  }
   if (!m_plan.join.empty()) {
     const fs::path script = m_directory / "join.sh";
     writeTextAtomically(script, joinScript());

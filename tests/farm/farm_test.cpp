@@ -129,12 +129,18 @@ TEST(FarmSlurm, CutShardsMergeToTheSameBytesAsOneLocalRun) {
   ASSERT_EQ(runGlint("-q cut " + in + " -o " + q(d / "local.glb") + " -o " + q(d / "local.ply") + kLights).status, 0);
 
   const std::string command = "farm cut " + in + " -o " + q(d / "farm.glb") + " -o " + q(d / "farm.ply") + kLights +
-                              " --shards 3 --wait --work-dir " + q(d / "work");
-  const auto r = runGlint(command);
+                              " --shards 3 --work-dir " + q(d / "work");
+  // Without --wait: the job ids, and how to follow them.
+  const auto submitted = runGlint(command);
+  ASSERT_EQ(submitted.status, 0) << submitted.output;
+  EXPECT_NE(submitted.output.find("submitted 3 pieces"), std::string::npos) << submitted.output;
+  EXPECT_NE(submitted.output.find("follow it: squeue -j "), std::string::npos) << submitted.output;
+  // The same command with --wait follows that job: nothing is submitted twice.
+  const auto r = runGlint(command + " --wait");
   ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("submitted 0 pieces (3 of 3 already done or still running"), std::string::npos) << r.output;
   EXPECT_EQ(readBytes(d / "farm.glb"), readBytes(d / "local.glb"));
   EXPECT_EQ(readBytes(d / "farm.ply"), readBytes(d / "local.ply"));
-  EXPECT_NE(r.output.find("submitted 3 pieces"), std::string::npos) << r.output;
   // The intermediates went after the join; the scripts and logs stay.
   EXPECT_EQ(countFiles(d / "work", ".shard"), 0);
   EXPECT_EQ(countFiles(d / "work", ".log"), 4);
