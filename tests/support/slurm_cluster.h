@@ -89,6 +89,10 @@ public:
   }
 
   ~SlurmCluster() {
+    // Jobs still running (a test that failed half-way) end first, so no job step outlives
+    // the daemons.
+    shell("scancel --user=$(id -un)");
+    for (int i = 0; i < 100 && !shell("squeue -h").empty(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
     for (auto it = m_pids.rbegin(); it != m_pids.rend(); ++it) kill(*it, SIGTERM);
     for (pid_t pid : m_pids) {
       int status = 0;
