@@ -29,7 +29,7 @@ ASAN_EXCLUDE := Viewer|Install\.AConsumer|farm_test
 # Tests of the multi-threaded tools that TSan runs: the baker's and the cutter's parallel
 # loops (oneTBB) and post's three-thread decode/process/encode pipeline (video/transcode).
 # Library tests only, so the TSan build skips the GL layers and the glint command.
-TSAN_TESTS := tests/bake/bake_maps_test tests/cut/cut_test tests/post/post_video_test
+TSAN_TESTS := tests/bake/bake_maps_test tests/bake/bake_extra_maps_test tests/cut/cut_test tests/post/post_video_test
 
 .PHONY: all setup setup-test configure build gallery test sanitize fuzz view accept-golden clean
 

@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <utility>
 
 namespace glint::bake {
 namespace {
@@ -142,6 +143,34 @@ struct Pending {
   bool conservative;
 };
 
+/// The maps beyond normal, AO, height and miss mask for one texel (see baker.h, "Maps"):
+/// bent normals averaged and normalized, thickness and position averaged over the hits.
+void storeExtraMaps(const Context& ctx, const Pending& p, std::span<const detail::SampleResult> results,
+                    std::size_t hits, float* out) {
+  vec3 bent(0.0f), position(0.0f), positionAll(0.0f);
+  float thickness = 0.0f;
+  for (std::size_t i = p.first; i < p.first + p.count; ++i) {
+    const detail::SampleResult& r = results[i];
+    bent += r.bent;
+    positionAll += r.position;
+    if (r.hit) {
+      position += r.position;
+      thickness += r.thickness;
+    }
+  }
+  if (ctx.bentChannel >= 0) {
+    const float len = glm::length(bent);
+    const vec3 b = len > 0.0f ? bent * (1.0f / len) : vec3(0.0f, 0.0f, 1.0f);
+    for (int k = 0; k < 3; ++k) out[ctx.bentChannel + k] = b[k];
+  }
+  if (ctx.thicknessChannel >= 0) out[ctx.thicknessChannel] = hits ? thickness / float(hits) : 0.0f;
+  if (ctx.positionChannel >= 0) {
+    const vec3 q = hits ? position / float(hits) : positionAll / float(p.count);
+    for (int k = 0; k < 3; ++k) out[ctx.positionChannel + k] = q[k];
+  }
+  if (ctx.opacityChannel >= 0) out[ctx.opacityChannel] = float(hits) / float(ctx.root * ctx.root);
+}
+
 /// The texel's samples averaged into ctx.texels (the normal normalized), and counted.
 void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleResult> results, Counters& counters) {
   vec3 sum(0.0f);
@@ -155,8 +184,9 @@ void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleRe
     missed += r.hit ? 0 : 1;
     counters.inward += r.inward ? 1 : 0;
   }
+  const std::size_t hits = p.count - missed;
   counters.samples += p.count;
-  counters.hits += p.count - missed;
+  counters.hits += hits;
   counters.misses += missed;
   ++counters.covered;
   counters.conservative += p.conservative ? 1 : 0;
@@ -170,6 +200,7 @@ void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleRe
   if (ctx.aoChannel >= 0) out[ctx.aoChannel] = ao / count;
   if (ctx.heightChannel >= 0) out[ctx.heightChannel] = height / count;
   if (ctx.missChannel >= 0) out[ctx.missChannel] = float(missed) / count;
+  if (ctx.hitWork || ctx.opacityChannel >= 0) storeExtraMaps(ctx, p, results, hits, out);
   ctx.covered[p.texel] = 1;
 }
 
@@ -270,6 +301,7 @@ void setUpContext(Context& ctx, BakeStats& stats) {
   ctx.front = options.maxFront.resolve(in.diagonal);
   ctx.rear = options.maxRear.resolve(in.diagonal);
   ctx.aoDistance = options.aoDistance.resolve(in.diagonal);
+  ctx.thicknessDistance = options.thicknessDistance.resolve(in.diagonal);
   ctx.epsilon = 1e-5f * std::max(in.diagonal, ctx.scene.bounds().diagonal());
   ctx.worldNormalMatrix = glm::transpose(glm::inverse(mat3(options.objectToWorld)));
   const std::vector<std::uint32_t>& highIndices = in.high->indices;
@@ -295,10 +327,18 @@ void setUpContext(Context& ctx, BakeStats& stats) {
   }
   stats.frontDistance = ctx.front;
   stats.rearDistance = ctx.rear;
-  stats.aoDistance = options.ambientOcclusion ? ctx.aoDistance : 0.0f;
+  ctx.hemisphere = options.ambientOcclusion || options.bentNormals;
+  stats.aoDistance = ctx.hemisphere ? ctx.aoDistance : 0.0f;
+  stats.thicknessDistance = options.thickness ? ctx.thicknessDistance : 0.0f;
+  if (options.positionMap) stats.positionBounds = ctx.scene.bounds();
   if (options.ambientOcclusion) ctx.aoChannel = ctx.channels++;
   if (options.heightMap) ctx.heightChannel = ctx.channels++;
   if (options.missMask) ctx.missChannel = ctx.channels++;
+  if (options.bentNormals) ctx.bentChannel = std::exchange(ctx.channels, ctx.channels + 3);
+  if (options.thickness) ctx.thicknessChannel = ctx.channels++;
+  if (options.positionMap) ctx.positionChannel = std::exchange(ctx.channels, ctx.channels + 3);
+  if (options.opacity) ctx.opacityChannel = ctx.channels++;
+  ctx.hitWork = ctx.hemisphere || options.thickness || options.positionMap;
   stats.texels = std::uint64_t(options.width) * std::uint64_t(options.height);
   const std::size_t texelValues = std::size_t(stats.texels) * std::size_t(ctx.channels);
   ctx.texelStorage = std::make_unique_for_overwrite<float[]>(texelValues);
@@ -366,6 +406,7 @@ void bakeTiles(Context& ctx, BakeStats& stats) {
     stats.misses += c.misses;
     stats.rays += c.rays;
     stats.aoRays += c.aoRays;
+    stats.thicknessRays += c.thicknessRays;
     stats.overlappingSamples += c.overlaps;
   }
   if (options.rayLog) {
@@ -422,9 +463,31 @@ void makeImages(Context& ctx, const std::vector<std::uint8_t>& filled, BakeResul
   if (ctx.heightChannel >= 0) {
     result.height = channelImage(ctx, ctx.heightChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
   }
-  ctx.covered = islands;  // the miss mask is not dilated
+  if (ctx.bentChannel >= 0) {  // dilation averaged the vectors: normalized again here
+    result.bentNormal = channelImage(ctx, ctx.bentChannel, 3, true, PixelType::F32, [&](const float* in, float* out, bool has) {
+      const vec3 b(in[0], in[1], in[2]);
+      const float len = has ? glm::length(b) : 0.0f;
+      const vec3 rgb = len > 0.0f ? encodeNormal(b * (1.0f / len), options.directX) : background * 0.5f + 0.5f;
+      out[0] = rgb.x;
+      out[1] = rgb.y;
+      out[2] = rgb.z;
+    });
+  }
+  if (ctx.thicknessChannel >= 0) {
+    result.thickness = channelImage(ctx, ctx.thicknessChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
+  }
+  if (ctx.positionChannel >= 0) {  // the background is the bounds' minimum: 0 in 8/16-bit files
+    const vec3 lowest = result.stats.positionBounds ? result.stats.positionBounds->min : vec3(0.0f);
+    result.position = channelImage(ctx, ctx.positionChannel, 3, true, PixelType::F32, [&](const float* in, float* out, bool has) {
+      for (int k = 0; k < 3; ++k) out[k] = has ? in[k] : lowest[k];
+    });
+  }
+  ctx.covered = islands;  // the miss mask and opacity are not dilated
   if (ctx.missChannel >= 0) {
     result.missMask = channelImage(ctx, ctx.missChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
+  }
+  if (ctx.opacityChannel >= 0) {
+    result.opacity = channelImage(ctx, ctx.opacityChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
   }
   result.coverage = Image(W, H, 1, PixelType::U8);
   auto cov = result.coverage.pixels<std::uint8_t>();
@@ -457,8 +520,9 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   // 1 M: 0.15 s against 0.30–0.45 s) and its rays cost the same up to tens of rays per
   // triangle; at 150 (2048², 36 per texel, 1 M triangles) they took 4–8 % longer, more
   // than the build saves: medium from 64 rays per triangle on.
-  const double expectedRays = double(options.width) * double(options.height) * double(options.samples) *
-                              (options.ambientOcclusion ? 1.0 + double(options.aoSamples) : 1.0);
+  const double raysPerSample = 1.0 + (options.ambientOcclusion || options.bentNormals ? double(options.aoSamples) : 0.0) +
+                               (options.thickness ? double(options.aoSamples) : 0.0);
+  const double expectedRays = double(options.width) * double(options.height) * double(options.samples) * raysPerSample;
   const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
   // The high poly is read in place (it outlives the scene): no copy of its vertices.
   const raytrace::Scene scene(*in.high, {.quality = fewRays ? raytrace::SceneOptions::Quality::Fast

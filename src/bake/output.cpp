@@ -42,4 +42,18 @@ Image heightForOutput(const Image& height, PixelType type, float range) {
   return scaled.converted(type);
 }
 
+Image positionForOutput(const Image& position, PixelType type, const Bounds& bounds) {
+  if (type == PixelType::F32) return position;
+  Image scaled = position;
+  const std::span<float> values = scaled.pixels<float>();
+  const int channels = scaled.channels();
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const int axis = int(i % std::size_t(channels));
+    if (axis > 2) continue;
+    const float extent = bounds.max[axis] - bounds.min[axis];
+    values[i] = extent > 0.0f ? std::clamp((values[i] - bounds.min[axis]) / extent, 0.0f, 1.0f) : 0.0f;
+  }
+  return scaled.converted(type);
+}
+
 }  // namespace glint::bake

@@ -28,8 +28,10 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
     if (!in.empty()) inputBytes += double(std::filesystem::file_size(in, ec)) * (ec ? 0.0 : 1.0);
   }
   const double texels = double(options.width) * double(options.height);
-  const int extraMaps = int(options.ambientOcclusion) + int(options.heightMap) + int(options.missMask);
-  return 64.0 + (2.0 * inputBytes + texels * (19.5 + 5.0 * extraMaps)) / (1 << 20);
+  const int extraChannels = int(options.ambientOcclusion) + int(options.heightMap) + int(options.missMask) +
+                            3 * int(options.bentNormals) + int(options.thickness) + 3 * int(options.positionMap) +
+                            int(options.opacity);
+  return 64.0 + (2.0 * inputBytes + texels * (19.5 + 5.0 * extraChannels)) / (1 << 20);
 }
 
 nlohmann::ordered_json toJson(const BakeOptions& options) {
@@ -53,13 +55,20 @@ nlohmann::ordered_json toJson(const BakeStats& s) {
   report["samples"] = s.samples;
   report["rays"] = s.rays;
   report["ao_rays"] = s.aoRays;
+  report["thickness_rays"] = s.thicknessRays;
   report["hits"] = s.hits;
   report["inward_hits"] = s.inwardHits;
   report["misses"] = s.misses;
   report["hit_ratio"] = s.hitRatio();
   report["max_front"] = s.frontDistance;
   report["max_rear"] = s.rearDistance;
-  report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays) / s.traceSeconds : 0.0;
+  if (s.thicknessDistance > 0) report["thickness_distance"] = s.thicknessDistance;
+  if (s.positionBounds) {
+    const vec3 &lo = s.positionBounds->min, &hi = s.positionBounds->max;
+    report["position_min"] = {lo.x, lo.y, lo.z};
+    report["position_max"] = {hi.x, hi.y, hi.z};
+  }
+  report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays + s.thicknessRays) / s.traceSeconds : 0.0;
   report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
   report["bvh_quality"] = s.lowQualityBvh ? "low" : "medium";
   return report;

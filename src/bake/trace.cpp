@@ -150,31 +150,88 @@ private:
   std::vector<raytrace::Ray>* m_log;
 };
 
-/// Ambient occlusion at a high-poly hit: cosine-weighted hemisphere rays, a Hammersley set
-/// rotated by a per-sample random offset (stratified, deterministic).
-float ambientOcclusion(const Context& ctx, const Found& f, const vec3& normal, std::uint64_t seed, Counters& counters) {
+/// A stratified set of `count` cosine-weighted directions around `axis`: a Hammersley set
+/// rotated by the random offsets (r1, r2) of one sample's stream (deterministic).
+class CosineSet {
+public:
+  CosineSet(const vec3& axis, std::uint64_t stream, int count) : m_n(axis), m_k(count) {
+    const vec3 a = std::fabs(axis.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0);
+    m_t = glm::normalize(glm::cross(a, axis));
+    m_b = glm::cross(axis, m_t);
+    m_r1 = toUnit(mix(stream * 2 + 1));
+    m_r2 = toUnit(mix(stream * 2 + 2));
+  }
+  int size() const { return m_k; }
+  vec3 operator[](int i) const {
+    const float u1 = std::fmod((float(i) + 0.5f) / float(m_k) + m_r1, 1.0f);
+    const float u2 = std::fmod(radicalInverse(std::uint32_t(i)) + m_r2, 1.0f);
+    const float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
+    return r * std::cos(phi) * m_t + r * std::sin(phi) * m_b + std::sqrt(std::max(0.0f, 1.0f - u1)) * m_n;
+  }
+
+private:
+  vec3 m_t, m_b, m_n;
+  int m_k;
+  float m_r1 = 0, m_r2 = 0;
+};
+
+/// The facet normal at a hit, turned to the side of the (smooth) `normal`.
+vec3 outwardFacet(const raytrace::Hit& hit, const vec3& normal) {
+  const vec3 g = hit.geometricNormal;
+  return glm::dot(g, normal) < 0.0f ? -g : g;
+}
+
+struct Occlusion {
+  float open = 1.0f;        ///< fraction of the rays that escaped
+  vec3 bent{0.0f, 0.0f, 1.0f};  ///< unit mean of their directions; the normal if none did
+};
+
+/// Ambient occlusion and the bent normal at a high-poly hit: cosine-weighted hemisphere
+/// rays, a Hammersley set rotated by a per-sample random offset (stratified, deterministic).
+Occlusion ambientOcclusion(const Context& ctx, const Found& f, const vec3& normal, std::uint64_t seed, Counters& counters) {
   // The facet, not the smooth normal, decides what is above the surface: start just above
   // the facet and mirror rays that would dive under it (they would report the surface
   // itself as an occluder, speckling convex shapes).
-  const vec3 g = f.hit->geometricNormal;
-  const vec3 facet = glm::dot(g, normal) < 0.0f ? -g : g;
+  const vec3 facet = outwardFacet(*f.hit, normal);
   const vec3 p = f.ray.at(f.hit->t) + ctx.epsilon * facet;
-  const vec3 a = std::fabs(normal.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0);
-  const vec3 t = glm::normalize(glm::cross(a, normal)), b = glm::cross(normal, t);
-  const float r1 = toUnit(mix(seed * 2 + 1)), r2 = toUnit(mix(seed * 2 + 2));
-  const int k = ctx.options.aoSamples;
+  const CosineSet set(normal, seed, ctx.options.aoSamples);
+  const int k = set.size();
   int open = 0;
+  vec3 sum(0.0f);
   for (int i = 0; i < k; ++i) {
-    const float u1 = std::fmod((float(i) + 0.5f) / float(k) + r1, 1.0f);
-    const float u2 = std::fmod(radicalInverse(std::uint32_t(i)) + r2, 1.0f);
-    const float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
-    vec3 d = r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0f, 1.0f - u1)) * normal;
+    vec3 d = set[i];
     const float below = glm::dot(d, facet);
     if (below < 0.0f) d -= 2.0f * below * facet;
-    if (!ctx.scene.occluded({p, d, 0.0f, ctx.aoDistance})) ++open;
+    if (!ctx.scene.occluded({p, d, 0.0f, ctx.aoDistance})) {
+      ++open;
+      sum += d;
+    }
   }
   counters.aoRays += std::uint64_t(k);
-  return float(open) / float(k);
+  const float len = glm::length(sum);
+  return {float(open) / float(k), open > 0 && len > 0.0f ? sum * (1.0f / len) : normal};
+}
+
+/// Thickness at a high-poly hit: rays into the surface (cosine-weighted around −normal, the
+/// AO set with a stream of its own), each the distance to the first surface it meets,
+/// capped at thicknessDistance; their mean over that distance, 0..1.
+float thicknessAt(const Context& ctx, const Found& f, const vec3& normal, std::uint64_t seed, Counters& counters) {
+  // Just under the facet, and rays that would leave through it mirrored back inside.
+  const vec3 inward = -outwardFacet(*f.hit, normal);
+  const vec3 p = f.ray.at(f.hit->t) + ctx.epsilon * inward;
+  const CosineSet set(-normal, mix(seed ^ 0x7468696E6B6E6573ull), ctx.options.aoSamples);
+  const int k = set.size();
+  const float cap = ctx.thicknessDistance;
+  float sum = 0.0f;
+  for (int i = 0; i < k; ++i) {
+    vec3 d = set[i];
+    const float outside = glm::dot(d, inward);
+    if (outside < 0.0f) d -= 2.0f * outside * inward;
+    const auto hit = ctx.scene.intersect({p, d, 0.0f, cap});
+    sum += hit ? std::min(hit->t, cap) : cap;
+  }
+  counters.thicknessRays += std::uint64_t(k);
+  return sum / (float(k) * cap);
 }
 
 /// The high poly's interpolated normal at a hit, not normalized; its facet normal where the
@@ -205,6 +262,16 @@ void store(const Context& ctx, const Geometry& g, vec3 objectNormal, const Sampl
     case NormalSpace::Object: result.value = objectNormal; break;
     case NormalSpace::World: result.value = glm::normalize(ctx.worldNormalMatrix * objectNormal); break;
   }
+}
+
+/// An object-space unit vector in the output space (no painted detail).
+vec3 inSpace(const Context& ctx, const Geometry& g, const vec3& v) {
+  switch (ctx.options.space) {
+    case NormalSpace::Tangent: return TangentFrame::fromInterpolated(g.normal, g.tangent).encode(v);
+    case NormalSpace::Object: return v;
+    case NormalSpace::World: return glm::normalize(ctx.worldNormalMatrix * v);
+  }
+  return v;
 }
 
 /// Many samples' tangent-space values at once, as structure of arrays: the arithmetic of
@@ -245,14 +312,24 @@ void encodeLanes(EncodeLanes& l, std::size_t count) {
 SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const SampleInput& in, Counters& counters) {
   SampleResult result;
   vec3 objectNormal = g.dir;  // a miss keeps the low poly's own normal
+  vec3 bent = g.dir;
   if (f.hit) {
     result.hit = true;
     result.height = f.signedT;
     objectNormal = highNormal(ctx, *f.hit);
     result.inward = glm::dot(objectNormal, g.normal) < 0.0f;
-    if (ctx.aoChannel >= 0) result.ao = ambientOcclusion(ctx, f, objectNormal, in.seed, counters);
+    if (ctx.hemisphere) {
+      const Occlusion o = ambientOcclusion(ctx, f, objectNormal, in.seed, counters);
+      result.ao = o.open;
+      bent = o.bent;
+    }
+    if (ctx.thicknessChannel >= 0) result.thickness = thicknessAt(ctx, f, objectNormal, in.seed, counters);
+    if (ctx.positionChannel >= 0) result.position = f.ray.at(f.hit->t);
+  } else if (ctx.positionChannel >= 0) {
+    result.position = g.position;
   }
   store(ctx, g, objectNormal, in, result);
+  if (ctx.bentChannel >= 0) result.bent = inSpace(ctx, g, bent);
   return result;
 }
 
@@ -343,7 +420,7 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
   // The usual case, kept lean: the sweep's first hit is at or beyond P, so it is the
   // closest either way and this one ray decides (Caster::resolve does the rest). For plain
   // tangent-space maps its samples are gathered into lanes and encoded together.
-  const bool lean = ctx.aoChannel < 0;
+  const bool lean = !ctx.hitWork;
   const bool lanes = ctx.options.space == NormalSpace::Tangent && !ctx.options.detail;
   std::array<std::uint8_t, kMaxGroup> laneOf;  // sample i → lane, for the samples in lanes
   std::size_t laneCount = 0;

@@ -24,6 +24,31 @@
 //   triangle, so island borders are never empty. Finally the map is dilated into unused
 //   texels so bilinear fetches and mipmaps do not pull in the background.
 //
+// Maps (each only when asked: a plain normal bake does no extra work; all in the same pass,
+// sharing the BVH and the normal-pass rays; texel values average the texel's samples)
+//   normal       the hit's high-poly normal in `space` (above)
+//   ao           open fraction of aoSamples cosine-weighted hemisphere rays, aoDistance long,
+//                around the high-poly normal at the hit (1 = unoccluded)
+//   height       signed distance along the low poly's normal to the hit (+ in front)
+//   missMask     fraction of the texel's samples whose rays found nothing (not dilated)
+//   bentNormal   normalize(sum of the AO rays that escaped): the direction light mostly
+//                comes from; the high-poly normal where every ray is blocked, the low
+//                poly's where the sample missed. Same space and encoding as `normal`
+//                (painted detail is not applied). Casts the AO rays even without `ao`.
+//   thickness    from the hit, aoSamples rays into the surface (cosine-distributed around
+//                the negated normal, the AO sequence with its own per-sample rotation):
+//                mean of min(distance to the first surface, D) / D, D = thicknessDistance;
+//                1 = thick (nothing within D), 0 = a paper-thin wall. Averaged over the
+//                texel's samples that hit; 0 where none did. For subsurface scattering and
+//                translucency (a sphere of radius r reads 4r / 3D: the mean cosine-weighted
+//                chord).
+//   position     the hit point in object space (the low poly's position where a sample
+//                missed), averaged over the texel's hits; float files keep coordinates,
+//                8/16-bit files map stats.positionBounds (the high poly's box) to 0..1.
+//   opacity      hits / samples per texel (samples outside the UV islands count as
+//                misses, so island borders are antialiased), 0 outside the islands; not
+//                dilated. A texel filled by the closest-point rule counts its one sample.
+//
 // Notes for artists (from the original tool's authors)
 //   - Shared normals. Rays follow the interpolated low-poly normals. Where the low poly has
 //     a hard edge (two normals at one position) the rays fan apart and a wedge of the high
@@ -125,6 +150,17 @@ struct BakeOptions {
   Distance aoDistance{0.1f, true};///< AO ray length
   bool heightMap = false;         ///< also bake the signed ray distance (+ outside the low poly)
   bool missMask = false;          ///< also output the fraction of samples whose rays missed
+  /// Also bake bent normals: the mean unoccluded direction of the AO hemisphere rays, in the
+  /// normal map's space. Casts the AO rays (aoSamples, aoDistance) whether or not
+  /// ambientOcclusion is set.
+  bool bentNormals = false;
+  /// Also bake thickness (for subsurface scattering and translucency): aoSamples rays from
+  /// the high-poly hit into the surface, cosine-distributed around the negated normal; the
+  /// mean distance to where they leave it, each capped at thicknessDistance, divided by it.
+  bool thickness = false;
+  Distance thicknessDistance{0.1f, true};  ///< thickness ray length, and the distance that reads 1
+  bool positionMap = false;       ///< also bake the high-poly hit point (object space)
+  bool opacity = false;           ///< also bake the fraction of each texel's samples that hit the high poly
   /// Pixel type of BakeResult::normal: F32, or U8/U16 quantized as Image::converted does —
   /// what an integer file holds, without a float copy of the map on the way.
   PixelType normalType = PixelType::F32;
@@ -150,13 +186,18 @@ struct BakeStats {
   std::uint64_t misses = 0;             ///< samples whose rays found nothing
   std::uint64_t inwardHits = 0;         ///< hits where the high poly's normal faces against the low poly's
   std::uint64_t rays = 0;               ///< normal-pass rays (front + rear)
-  std::uint64_t aoRays = 0;
+  std::uint64_t aoRays = 0;             ///< hemisphere rays (AO and bent normals share them)
+  std::uint64_t thicknessRays = 0;      ///< rays into the surface (thickness)
   std::uint64_t overlappingSamples = 0; ///< samples inside more than one UV triangle
   std::size_t mirroredTriangles = 0;    ///< low-poly triangles with mirrored UVs
   std::size_t degenerateUvTriangles = 0;///< low-poly triangles with zero UV area (skipped)
   std::size_t hardEdgeVertices = 0;     ///< low-poly positions with more than one normal
   std::size_t addedVertices = 0;        ///< vertices split by tangent generation
   float frontDistance = 0, rearDistance = 0, aoDistance = 0;  ///< resolved, scene units
+  float thicknessDistance = 0;          ///< resolved, scene units (0 without a thickness map)
+  /// With a position map: the box its 8/16-bit files are normalized to, the high poly's
+  /// bounding box (every hit point lies inside it). p = min + value · (max − min).
+  std::optional<Bounds> positionBounds;
   std::size_t bvhBytes = 0;             ///< Embree memory for the high poly
   bool lowQualityBvh = false;           ///< BVH built at Embree's low quality (few rays per triangle), else medium
   // The three phases add up to the whole of bake():
@@ -173,6 +214,11 @@ struct BakeResult {
   Image ao;         ///< R F32 0..1 (1 = unoccluded), when asked
   Image height;     ///< R F32 signed distance in scene units, when asked
   Image missMask;   ///< R F32 0..1 fraction of missed samples, when asked (not dilated)
+  Image bentNormal; ///< RGB encoded 0..1 like `normal` (same space, directX flip), F32, when asked
+  Image thickness;  ///< R F32 0..1 (1 = no exit within thicknessDistance), when asked
+  Image position;   ///< RGB F32 object-space hit points (raw coordinates), when asked; see
+                    ///< output.h's positionForOutput for 8/16-bit files
+  Image opacity;    ///< R F32 0..1 hits / samples per texel, 0 outside islands (not dilated), when asked
   Image coverage;   ///< R U8: 255 inside UV islands, 128 padding, 0 unused
   Mesh low;         ///< the low poly as baked: MikkTSpace tangents, split vertices — render this
   BakeStats stats;
@@ -186,14 +232,15 @@ struct BakeResult {
 /// baked anyway. Throws Error(Interrupted) when options.cancel becomes true.
 BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options = {});
 
-/// Error(Usage) naming the first bad option (size, samples, AO samples, distances,
-/// padding). bake() calls it too; front ends call it before loading anything.
+/// Error(Usage) naming the first bad option (size, samples, AO samples when AO, bent
+/// normals or thickness are asked, distances, a zero thickness distance, padding). bake() calls it too; front ends call it before loading anything.
 void validateOptions(const BakeOptions& options);
 
 /// The peak memory (MiB) of a bake with these options, from the sizes of its mesh files
 /// (`inputs`: low, high and cage; a missing file counts as empty): ~64 MiB of process,
 /// about twice the input files (meshes and BVH), ~19.5 bytes per texel for the normal map
-/// and its buffers and ~5 for each extra map (AO, height, miss mask). Measured on the
+/// and its buffers and ~5 for each extra map channel (AO, height, miss mask, thickness,
+/// opacity: one; bent normals, position: three). Measured on the
 /// studded-torus pair (1024² → 16384², 262k triangles; 16384²: 4,959 MiB).
 double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::filesystem::path>& inputs);
 
@@ -201,9 +248,10 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
 /// or "world"), directx.
 nlohmann::ordered_json toJson(const BakeOptions& options);
 /// The report of a bake, key by key: low_triangles, high_triangles, texels, covered_texels,
-/// conservative_texels, padded_texels, samples, rays, ao_rays, hits, misses, hit_ratio,
-/// max_front, max_rear (scene units), rays_per_second, bvh_mib, bvh_quality ("low" or
-/// "medium").
+/// conservative_texels, padded_texels, samples, rays, ao_rays, thickness_rays, hits,
+/// inward_hits, misses, hit_ratio, max_front, max_rear (scene units), rays_per_second,
+/// bvh_mib, bvh_quality ("low" or "medium"); with a thickness map thickness_distance, with
+/// a position map position_min and position_max ([x, y, z]: positionBounds).
 nlohmann::ordered_json toJson(const BakeStats& stats);
 
 }  // namespace glint::bake

@@ -15,6 +15,7 @@
 // decoder reads them all.
 
 #include "glint/image/image.h"
+#include "glint/mesh/mesh.h"
 
 #include <filesystem>
 
@@ -30,5 +31,11 @@ Image forOutput(const Image& image, PixelType type);
 /// A signed-distance height map for an integer file: 0.5 is the low-poly surface, 0 and 1
 /// are `range` behind and in front of it. Float files keep the distances as they are.
 Image heightForOutput(const Image& height, PixelType type, float range);
+
+/// A position map (BakeResult::position, object-space coordinates) for a file: float files
+/// keep the coordinates; integer files hold (p − bounds.min) / (bounds.max − bounds.min)
+/// per axis, clamped to 0..1 (an axis without extent reads 0). Decode with
+/// p = min + value · (max − min), the bounds from the report (position_min, position_max).
+Image positionForOutput(const Image& position, PixelType type, const Bounds& bounds);
 
 }  // namespace glint::bake

@@ -1,0 +1,371 @@
+// The maps baked beside the normal map (issue 23): bent normals, thickness, position and
+// opacity, each against an analytic answer computed here (nothing shared with the baker
+// but the meshes), plus what they must not change: the normal map, determinism, the cost
+// of a plain bake.
+#include "bake_test_util.h"
+
+#include "glint/bake/baker.h"
+#include "glint/bake/output.h"
+#include "glint/core/error.h"
+#include "glint/core/log.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+using namespace glint;
+using namespace bake_test;
+
+namespace {
+
+constexpr double kPiD = 3.14159265358979323846;
+
+Mesh flipped(Mesh m) {
+  for (std::size_t i = 0; i < m.indices.size(); i += 3) std::swap(m.indices[i + 1], m.indices[i + 2]);
+  for (vec3& n : m.normals) n = -n;
+  return m;
+}
+
+vec3 decoded(const Image& image, int x, int row) { return texel(image, x, row) * 2.0f - 1.0f; }
+
+bool inIsland(const bake::BakeResult& r, int x, int row) { return r.coverage.at(x, row, 0) > 0.99f; }
+
+}  // namespace
+
+// On a convex shape nothing occludes the hemisphere: the bent normal is the normal, up to
+// the Monte Carlo error of the mean of k cosine-weighted directions. It is noise, not bias:
+// with the stratified set it falls as 1/k (measured here, mean / worst: 16 rays 2.77° /
+// 5.42°, 64 rays 0.72° / 1.42°, 256 rays 0.19° / 0.35°, 1024 rays 0.05° / 0.09°), so the
+// bounds are those of 64 rays with some room: mean 1°, worst 2°.
+TEST(BakeExtraMaps, BentNormalOnAConvexSphereIsTheNormal) {
+  log::setLevel(log::Level::Error);
+  const Mesh high = makeUvSphere(1.0f, 128, 64);
+  const Mesh low = makeUvSphere(1.0f, 16, 8);
+  bake::BakeOptions options;
+  options.width = options.height = 48;
+  options.bentNormals = true;  // without ambientOcclusion: the AO rays are cast anyway
+  options.aoSamples = 64;
+  options.aoDistance = {10.0f, false};
+  const auto r = bake::bake(low, high, options);
+  ASSERT_FALSE(r.bentNormal.empty());
+  EXPECT_TRUE(r.ao.empty());
+  EXPECT_EQ(r.bentNormal.channels(), 3);
+  EXPECT_EQ(r.stats.aoRays, r.stats.hits * 64u);
+  double sum = 0, worst = 0;
+  int n = 0;
+  for (int row = 0; row < 48; ++row)
+    for (int x = 0; x < 48; ++x) {
+      if (!inIsland(r, x, row)) continue;
+      const double a = angleDeg(glm::dvec3(decoded(r.normal, x, row)), glm::dvec3(decoded(r.bentNormal, x, row)));
+      sum += a;
+      worst = std::max(worst, a);
+      ++n;
+    }
+  std::printf("bent vs normal on a sphere: mean %.3f°, worst %.3f° (%d texels, 64 rays)\n", sum / n, worst, n);
+  EXPECT_GT(n, 1500);
+  EXPECT_LT(sum / n, 1.0);
+  EXPECT_LT(worst, 2.0);
+
+  // The same rays as an AO bake's: asking for AO too changes nothing in the bent map.
+  options.ambientOcclusion = true;
+  const auto both = bake::bake(low, high, options);
+  EXPECT_TRUE(both.bentNormal == r.bentNormal);
+  EXPECT_EQ(both.stats.aoRays, r.stats.aoRays);
+}
+
+// A floor next to a tall wall: the wall hides every direction towards it (d.x < 0), so the
+// unoccluded set is the half hemisphere facing away. The mean of cosine-weighted directions
+// over that half is (2/(3π), 1/3, 0) (Malley: a uniform disk lifted onto the hemisphere),
+// a tilt of atan(2/π) = 32.48° away from the wall, whatever the distance to it.
+TEST(BakeExtraMaps, BentNormalTiltsAwayFromAWall) {
+  log::setLevel(log::Level::Error);
+  const Mesh low = makePlane(2.0f);  // [-1, 1]² at y = 0, normal +Y
+  Mesh high = makePlane(2.0f);
+  Mesh wall = makePlane(400.0f);  // rotated to face +X, at x = -1.5, from y = -1 to 399
+  wall.transform(glm::translate(mat4(1.0f), vec3(-1.5f, 199.0f, 0.0f)) *
+                 glm::rotate(mat4(1.0f), -0.5f * float(kPiD), vec3(0.0f, 0.0f, 1.0f)));
+  high.append(wall);
+  bake::BakeOptions options;
+  options.width = options.height = 16;
+  options.space = NormalSpace::Object;
+  options.bentNormals = true;
+  options.ambientOcclusion = true;
+  options.aoSamples = 256;
+  options.aoDistance = {10000.0f, false};
+  options.maxFront = options.maxRear = {0.01f, false};
+  const auto r = bake::bake(low, high, options);
+  const glm::dvec3 expected = glm::normalize(glm::dvec3(2.0 / kPiD, 1.0, 0.0));
+  double sum = 0, worst = 0, aoWorst = 0;
+  for (int row = 0; row < 16; ++row)
+    for (int x = 0; x < 16; ++x) {
+      const double a = angleDeg(glm::dvec3(decoded(r.bentNormal, x, row)), expected);
+      sum += a;
+      worst = std::max(worst, a);
+      aoWorst = std::max(aoWorst, std::abs(r.ao.at(x, row, 0) - 0.5));  // half the cosine-weighted hemisphere
+    }
+  std::printf("bent normal beside a wall: tilt %.2f° expected, mean error %.3f°, worst %.3f°; AO worst |ao - 0.5| %.4f\n",
+              glm::degrees(std::atan(2.0 / kPiD)), sum / 256, worst, aoWorst);
+  EXPECT_LT(sum / 256, 0.5);
+  EXPECT_LT(worst, 1.5);
+  EXPECT_LT(aoWorst, 0.02);
+}
+
+// In world space the bent normal goes through the same transform as the normal map: the
+// object-space bent normal rotated by objectToWorld (exact to float rounding). The normal
+// map's own world-space check is BakeMaps.ObjectWorldAndDirectXEncodings.
+TEST(BakeExtraMaps, WorldSpaceIsTheRotatedObjectSpace) {
+  log::setLevel(log::Level::Error);
+  const Mesh high = makeTorus(1.0f, 0.35f, 96, 48);
+  const Mesh low = makeTorus(1.0f, 0.35f, 12, 6);
+  bake::BakeOptions options;
+  options.width = options.height = 40;
+  options.bentNormals = true;
+  options.aoSamples = 8;
+  options.space = NormalSpace::Object;
+  const auto object = bake::bake(low, high, options);
+  options.space = NormalSpace::World;
+  const mat4 rotation = glm::rotate(mat4(1.0f), 0.7f, vec3(0.3f, 1.0f, 0.2f));
+  options.objectToWorld = glm::translate(mat4(1.0f), vec3(5.0f, -2.0f, 1.0f)) * glm::scale(rotation, vec3(2.0f));
+  const auto world = bake::bake(low, high, options);
+  double worstNormal = 0, worstBent = 0;
+  for (int row = 0; row < 40; ++row)
+    for (int x = 0; x < 40; ++x) {
+      const auto rotated = [&](const Image& image) { return vec3(rotation * vec4(decoded(image, x, row), 0.0f)); };
+      worstNormal = std::max(worstNormal, double(glm::length(rotated(object.normal) - decoded(world.normal, x, row))));
+      worstBent = std::max(worstBent, double(glm::length(rotated(object.bentNormal) - decoded(world.bentNormal, x, row))));
+    }
+  std::printf("world vs rotated object space: normal %.2g, bent %.2g\n", worstNormal, worstBent);
+  EXPECT_LT(worstNormal, 1e-5);
+  EXPECT_LT(worstBent, 1e-5);
+}
+
+// A ray entering a sphere of radius r at angle θ to the inward normal travels 2r·cosθ;
+// cosine-weighted (pdf 2·cosθ in cosθ), the mean chord is 2r·E[cosθ] = 4r/3.
+TEST(BakeExtraMaps, ThicknessOfASphereIsTheMeanChord) {
+  log::setLevel(log::Level::Error);
+  const Mesh high = makeUvSphere(1.0f, 128, 64);
+  const Mesh low = makeUvSphere(1.0f, 16, 8);
+  bake::BakeOptions options;
+  options.width = options.height = 32;
+  options.thickness = true;
+  options.aoSamples = 64;
+  options.thicknessDistance = {2.5f, false};  // longer than the longest chord: no ray is capped
+  const auto r = bake::bake(low, high, options);
+  ASSERT_FALSE(r.thickness.empty());
+  EXPECT_EQ(r.stats.thicknessRays, r.stats.hits * 64u);
+  EXPECT_EQ(r.stats.aoRays, 0u);
+  const double expected = 4.0 / 3.0 / 2.5;
+  double sum = 0, worst = 0;
+  int n = 0;
+  for (int row = 0; row < 32; ++row)
+    for (int x = 0; x < 32; ++x) {
+      if (!inIsland(r, x, row)) continue;
+      const double e = r.thickness.at(x, row, 0) - expected;
+      sum += e;
+      worst = std::max(worst, std::abs(e));
+      ++n;
+    }
+  std::printf("sphere thickness: expected %.4f, mean error %+.5f, worst %.4f (%d texels, 64 rays)\n", expected, sum / n,
+              worst, n);
+  EXPECT_LT(std::abs(sum / n), 0.005);  // the faceted sphere's chords are a hair shorter
+  EXPECT_LT(worst, 0.02);               // 64 stratified rays per texel
+}
+
+// A slab of thickness t under the low poly's plane: a ray at angle θ to the inward normal
+// leaves through the bottom after t / cosθ, capped at D. Cosine-weighted:
+// E[min(t/c, D)] = ∫ min(t/c, D) 2c dc = 2t − t²/D, so the map reads 2t/D − t²/D².
+TEST(BakeExtraMaps, ThicknessOfASlab) {
+  log::setLevel(log::Level::Error);
+  const Mesh low = makePlane(2.0f);
+  Mesh high = makePlane(6.0f);  // top at y = 0; the bottom faces down at y = -t
+  const float t = 0.2f;
+  Mesh bottom = flipped(makePlane(6.0f));
+  bottom.transform(glm::translate(mat4(1.0f), vec3(0.0f, -t, 0.0f)));
+  high.append(bottom);
+  bake::BakeOptions options;
+  options.width = options.height = 16;
+  options.thickness = true;
+  options.aoSamples = 256;
+  options.maxFront = options.maxRear = {0.01f, false};
+  for (const float D : {1.0f, 0.5f, 0.15f}) {
+    options.thicknessDistance = {D, false};
+    const auto r = bake::bake(low, high, options);
+    const double expected = D <= t ? 1.0 : 2.0 * t / D - double(t) * t / (double(D) * D);
+    double worst = 0;
+    for (int row = 0; row < 16; ++row)
+      for (int x = 0; x < 16; ++x) worst = std::max(worst, std::abs(r.thickness.at(x, row, 0) - expected));
+    std::printf("slab t = %.2f, D = %.2f: expected %.4f, worst error %.5f\n", t, D, expected, worst);
+    EXPECT_LT(worst, D <= t ? 1e-6 : 0.01) << "D = " << D;
+  }
+}
+
+// Position: the hit point. With one sample per texel the sample is the texel centre, so
+// the only errors are the high poly's faceting (the analytic sphere is up to ~6e-4 from
+// the 128×64 mesh) and, in a 16-bit file, half a step of the bounds (2 / 65535 / 2).
+TEST(BakeExtraMaps, PositionIsTheHitPoint) {
+  log::setLevel(log::Level::Error);
+  const Mesh high = makeUvSphere(1.0f, 128, 64);
+  for (const float radius : {0.95f, 1.05f}) {
+    const Mesh low = makeUvSphere(radius, 16, 8);
+    bake::BakeOptions options;
+    options.width = options.height = 48;
+    options.positionMap = true;
+    options.maxFront = options.maxRear = {0.1f, false};
+    const auto r = bake::bake(low, high, options);
+    ASSERT_TRUE(r.stats.positionBounds);
+    const Bounds b = *r.stats.positionBounds;
+    EXPECT_EQ(b.min, high.bounds().min);
+    EXPECT_EQ(b.max, high.bounds().max);
+    const Image u16 = bake::positionForOutput(r.position, PixelType::U16, b);
+    ASSERT_EQ(u16.type(), PixelType::U16);
+    double worstRaw = 0, worstDecoded = 0, worstRadius = 0;
+    int n = 0;
+    for (int row = 0; row < 48; ++row)
+      for (int x = 0; x < 48; ++x) {
+        if (!inIsland(r, x, row)) continue;
+        const vec3 raw = texel(r.position, x, row);
+        worstRadius = std::max(worstRadius, std::abs(double(glm::length(raw)) - 1.0));
+        const auto s = surfaceAt(r.low, texelCentre(x, row, 48, 48));
+        if (!s) continue;  // a texel filled by the closest-point rule: its sample is not the centre
+        const glm::dvec3 dir = glm::normalize(glm::dvec3(s->normal));
+        const auto t = rayRoot(sphereSdf, glm::dvec3(s->position), dir, 0.1, 0.1);
+        ASSERT_TRUE(t);
+        const glm::dvec3 expected = glm::dvec3(s->position) + *t * dir;
+        const glm::dvec3 decodedPosition = glm::dvec3(b.min) + glm::dvec3(texel(u16, x, row)) * glm::dvec3(b.max - b.min);
+        worstRaw = std::max(worstRaw, glm::length(glm::dvec3(raw) - expected));
+        worstDecoded = std::max(worstDecoded, glm::length(decodedPosition - expected));
+        ++n;
+      }
+    std::printf("position (low radius %.2f): raw %.2e, 16-bit decoded %.2e from the analytic point; |p| - 1 %.2e (%d texels)\n",
+                radius, worstRaw, worstDecoded, worstRadius, n);
+    EXPECT_GT(n, 1500);
+    EXPECT_LT(worstRaw, 1e-3);
+    EXPECT_LT(worstDecoded, 1e-3 + std::sqrt(3.0) * 2.0 / 65535.0 / 2.0);
+    EXPECT_LT(worstRadius, 1e-3);
+  }
+}
+
+// Opacity: a plane over a high-poly plane with a rectangular hole, 16 samples per texel.
+// Each texel's expected value counts its own sample points (the stratified 4×4 grid) that
+// lie on the low poly's island and outside the hole: exact, including the fractions at
+// the hole's border; 0 outside the island, which is not dilated.
+TEST(BakeExtraMaps, OpacityCountsTheSamplesThatHit) {
+  log::setLevel(log::Level::Error);
+  Mesh low = makePlane(2.0f);
+  shrinkUvs(low, 0.125f);  // the island is texels 4..27 of 32, its border on texel edges
+  const Mesh grid = makeGrid(30, 30, 3.0f);  // 0.1 cells over [-1.5, 1.5]²
+  const auto inHole = [](double x, double z) { return x > -0.3 && x < 0.3 && z > -0.2 && z < 0.4; };
+  Mesh high = grid;
+  high.indices.clear();
+  for (std::size_t i = 0; i < grid.indices.size(); i += 3) {
+    const vec3 c = (grid.positions[grid.indices[i]] + grid.positions[grid.indices[i + 1]] + grid.positions[grid.indices[i + 2]]) / 3.0f;
+    if (!inHole(c.x, c.z)) high.indices.insert(high.indices.end(), {grid.indices[i], grid.indices[i + 1], grid.indices[i + 2]});
+  }
+  bake::BakeOptions options;
+  options.width = options.height = 32;
+  options.samples = 16;
+  options.opacity = true;
+  options.maxFront = options.maxRear = {0.05f, false};
+  const auto r = bake::bake(low, high, options);
+  ASSERT_FALSE(r.opacity.empty());
+  int mismatches = 0, fractional = 0, ones = 0, zeros = 0;
+  for (int row = 0; row < 32; ++row)
+    for (int x = 0; x < 32; ++x) {
+      const int y = 31 - row;  // texel rows count up from v = 0
+      int hits = 0;
+      for (int s = 0; s < 16; ++s) {
+        const vec2 uv((float(x) + (float(s % 4) + 0.5f) / 4.0f) / 32.0f, (float(y) + (float(s / 4) + 0.5f) / 4.0f) / 32.0f);
+        const auto p = surfaceAt(r.low, uv);
+        if (p && !inHole(p->position.x, p->position.z)) ++hits;
+      }
+      const float expected = float(hits) / 16.0f, got = r.opacity.at(x, row, 0);
+      if (got != expected) {
+        ++mismatches;
+        ADD_FAILURE() << "texel " << x << "," << row << ": opacity " << got << ", expected " << expected;
+      }
+      fractional += got > 0.0f && got < 1.0f;
+      ones += got == 1.0f;
+      zeros += got == 0.0f;
+    }
+  std::printf("opacity: %d texels 1, %d fractional, %d zero; %d mismatches\n", ones, fractional, zeros, mismatches);
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(fractional, 20);  // the hole's border
+  EXPECT_EQ(zeros, 32 * 32 - 24 * 24 + 6 * 6);  // outside the island, and the hole's whole texels
+}
+
+// The new maps, together, do not change the normal map, do not depend on the thread count,
+// and cost nothing when not asked for (the same rays).
+TEST(BakeExtraMaps, NormalMapUnchangedAndDeterministic) {
+  log::setLevel(log::Level::Error);
+  const Mesh high = makeTorus(1.0f, 0.35f, 96, 48);
+  const Mesh low = makeTorus(1.0f, 0.35f, 12, 6);
+  bake::BakeOptions plain;
+  plain.width = plain.height = 64;
+  plain.samples = 4;
+  const auto reference = bake::bake(low, high, plain);
+  bake::BakeOptions options = plain;
+  options.opacity = true;  // needs only the hit counts: the normal pass's rays, nothing more
+  const auto withOpacity = bake::bake(low, high, options);
+  EXPECT_TRUE(withOpacity.normal == reference.normal);
+  EXPECT_EQ(withOpacity.stats.rays, reference.stats.rays);
+  options.bentNormals = options.thickness = options.positionMap = true;
+  options.aoSamples = 8;
+  bake::BakeResult one;
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = bake::bake(low, high, options);
+  }
+  const auto many = bake::bake(low, high, options);
+  EXPECT_TRUE(one.bentNormal == many.bentNormal);
+  EXPECT_TRUE(one.thickness == many.thickness);
+  EXPECT_TRUE(one.position == many.position);
+  EXPECT_TRUE(one.opacity == many.opacity);
+  EXPECT_TRUE(one.normal == many.normal);
+  EXPECT_EQ(many.stats.rays, reference.stats.rays);  // the normal pass casts the same rays
+  // The normal map through the per-sample path instead of the vectorized lanes: the same
+  // vectors to float rounding.
+  const ImageDifference diff = compareImages(many.normal, reference.normal);
+  EXPECT_LT(diff.maxAbs, 1e-5);
+}
+
+TEST(BakeExtraMaps, OptionChecksReportAndMemory) {
+  log::setLevel(log::Level::Off);
+  bake::BakeOptions o;
+  o.thickness = true;
+  o.thicknessDistance = {0.0f, true};
+  EXPECT_THROW(bake::validateOptions(o), Error);
+  o.thicknessDistance = {0.1f, true};
+  o.aoSamples = 0;
+  EXPECT_THROW(bake::validateOptions(o), Error);
+  o.thickness = false;
+  o.bentNormals = true;
+  EXPECT_THROW(bake::validateOptions(o), Error);
+  o.bentNormals = false;
+  EXPECT_NO_THROW(bake::validateOptions(o));  // AO samples only matter when they are cast
+
+  bake::BakeOptions big;
+  big.width = big.height = 1024;
+  big.bentNormals = big.positionMap = true;  // three channels each
+  big.thickness = big.opacity = true;        // one each
+  EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5 + 5.0 * 8);
+
+  const Mesh low = makeUvSphere(1.0f, 16, 8), high = makeUvSphere(1.0f, 32, 16);
+  bake::BakeOptions options;
+  options.width = options.height = 16;
+  options.thickness = options.positionMap = true;
+  options.thicknessDistance = {0.5f, false};
+  const auto r = bake::bake(low, high, options);
+  const nlohmann::ordered_json s = bake::toJson(r.stats);
+  EXPECT_EQ(s["thickness_rays"], r.stats.thicknessRays);
+  EXPECT_FLOAT_EQ(s["thickness_distance"].get<float>(), 0.5f);
+  const Bounds b = high.bounds();
+  EXPECT_EQ(s["position_min"], nlohmann::ordered_json({b.min.x, b.min.y, b.min.z}));
+  EXPECT_EQ(s["position_max"], nlohmann::ordered_json({b.max.x, b.max.y, b.max.z}));
+  const auto plain = bake::toJson(bake::bake(low, high, {.width = 16, .height = 16}).stats);
+  EXPECT_FALSE(plain.contains("thickness_distance"));
+  EXPECT_FALSE(plain.contains("position_min"));
+}
