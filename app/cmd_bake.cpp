@@ -45,8 +45,8 @@ constexpr const char* kFile = "FILE";
 
 struct BakeArgs {
   std::string low, high, output, size = "1024x1024", space = "tangent", worldMatrix;
-  std::string maxFront = "5%", maxRear = "5%", aoDistance = "10%";
-  std::string cage, detail, ao, height, missMask;
+  std::string maxFront = "5%", maxRear = "5%", aoDistance = "10%", thicknessDistance = "10%";
+  std::string cage, detail, ao, height, missMask, bentNormal, thickness, position, opacity;
   int samples = 1, padding = 16, bits = 0, aoSamples = 16;
   float detailScale = 8.0f;
   bool directX = false, frontFirst = false, fillAll = false;
@@ -89,6 +89,8 @@ constexpr const char* kFooter = R"(Examples:
   glint bake car_low.obj car_high.ply -o car_normal.png
   glint bake head_low.fbx head_high.fbx -o head.png --size 2048x2048 --samples 36 \
         --height-detail pores.png --detail-scale 4 --ao head_ao.png --json report.json
+  glint bake rock_low.obj rock_high.ply -o n.png --ao ao.png --bent-normal bent.png \
+        --thickness thick.png --position pos.exr --opacity alpha.png   # every map, one pass
   glint bake --batch jobs.json          # every job of a batch file, one after another
   glint bake --batch jobs.json --job 3  # job 3 only (0-based), as a render-farm task runs it
   glint bake --batch jobs.json --list   # the jobs as `glint bake ...` command lines
@@ -104,6 +106,16 @@ Batch files (JSON; relative paths are relative to the file; docs/bake.md, "Batch
   line with --batch (e.g. --threads, -q, --samples) override both, for every job. Every job
   is checked before the first one runs; a failed job does not stop the others (the exit
   status is the first failure's); --json writes one report listing every job's.
+
+Maps (each its own file, baked in the same pass as the normal map; docs/bake.md, "Maps"):
+  -o             high-poly normal in --space, encoded (n + 1) / 2
+  --ao           open fraction of --ao-samples hemisphere rays (1 = unoccluded)
+  --height       signed distance along the low poly's normal (+ in front)
+  --bent-normal  mean unoccluded direction of the AO rays, encoded like -o
+  --thickness    mean distance through the surface / --thickness-distance (1 = thick)
+  --position     hit point, object space: EXR raw, 8/16-bit over the high poly's box
+  --opacity      fraction of a texel's samples that hit, 0 outside islands
+  --miss-mask    fraction of samples whose rays found nothing (debug)
 
 How it works: for every texel, rays start on the low poly (interpolated position) and
 follow its interpolated normal forwards (--max-front) and backwards (--max-rear): the
@@ -164,13 +176,24 @@ void addBakeOptions(CLI::App& cmd, BakeArgs& a, bool required) {
                  "texel widths (8: a black-to-white ramp over 8 texels is 45°; negative engraves)")->capture_default_str();
   cmd.add_option("--ao", a.ao, "Also bake ambient occlusion (hemisphere rays against the high poly) to this file")
       ->type_name(kFile);
-  cmd.add_option("--ao-samples", a.aoSamples, "AO rays per sample")->capture_default_str();
+  cmd.add_option("--ao-samples", a.aoSamples, "AO rays per sample (bent normals share them; thickness casts as many "
+                 "into the surface)")->capture_default_str();
   cmd.add_option("--ao-distance", a.aoDistance, "AO ray length: scene units or % of the low poly's diagonal")
       ->capture_default_str();
   cmd.add_option("--height", a.height, "Also bake height/displacement (signed ray distance) to this file; 8/16-bit "
                  "files map ±max(--max-front, --max-rear) to 0..1, EXR keeps distances")->type_name(kFile);
   cmd.add_option("--miss-mask", a.missMask, "Also write the fraction of each texel's rays that found nothing (debug)")
       ->type_name(kFile);
+  cmd.add_option("--bent-normal", a.bentNormal, "Also bake bent normals (the mean unoccluded direction of the AO rays; "
+                 "casts them without --ao too), in --space, encoded like the normal map")->type_name(kFile);
+  cmd.add_option("--thickness", a.thickness, "Also bake thickness for subsurface/translucency: --ao-samples rays into "
+                 "the surface, mean distance to where they leave it / --thickness-distance (1 = thick)")->type_name(kFile);
+  cmd.add_option("--thickness-distance", a.thicknessDistance, "Thickness ray length, the distance that reads 1: scene "
+                 "units or % of the low poly's diagonal")->capture_default_str();
+  cmd.add_option("--position", a.position, "Also bake the high-poly hit point (object space): EXR keeps coordinates, "
+                 "8/16-bit maps the high poly's bounding box to 0..1 (position_min/max in the report)")->type_name(kFile);
+  cmd.add_option("--opacity", a.opacity, "Also bake coverage/opacity: the fraction of each texel's samples that hit the "
+                 "high poly, 0 outside UV islands (not dilated)")->type_name(kFile);
   addToolOptions(cmd, a.tool, "texels, rays, hit ratio, misses, BVH size");
   cmd.get_option("--json")->type_name(kFile);
 }
@@ -183,7 +206,8 @@ struct BakeFiles {
 BakeFiles bakeFiles(const BakeArgs& a) {
   return {{{a.low, "the low poly"}, {a.high, "the high poly"}, {a.cage, "--cage"}, {a.detail, "--height-detail"}},
           {{a.output, "-o"}, {a.ao, "--ao"}, {a.height, "--height"}, {a.missMask, "--miss-mask"},
-           {a.tool.json, "--json"}}};
+           {a.bentNormal, "--bent-normal"}, {a.thickness, "--thickness"}, {a.position, "--position"},
+           {a.opacity, "--opacity"}, {a.tool.json, "--json"}}};
 }
 
 /// What checkBake worked out for runBake.
@@ -220,10 +244,15 @@ BakePlan checkBake(const BakeArgs& a, ToolRun& run) {
   options.aoDistance = parseDistance(a.aoDistance, "--ao-distance");
   options.heightMap = !a.height.empty();
   options.missMask = !a.missMask.empty();
+  options.bentNormals = !a.bentNormal.empty();
+  options.thickness = !a.thickness.empty();
+  options.thicknessDistance = parseDistance(a.thicknessDistance, "--thickness-distance");
+  options.positionMap = !a.position.empty();
+  options.opacity = !a.opacity.empty();
   bake::validateOptions(options);
   options.normalType = bake::outputType(a.output, a.bits);  // quantized by the baker: no float copy of the map
   std::vector<std::string> outputs{a.output};
-  for (const std::string* extra : {&a.ao, &a.height, &a.missMask}) {
+  for (const std::string* extra : {&a.ao, &a.height, &a.missMask, &a.bentNormal, &a.thickness, &a.position, &a.opacity}) {
     if (extra->empty()) continue;
     bake::outputType(*extra, a.bits);  // --bits applies to every map: check them all now
     outputs.push_back(*extra);
@@ -288,6 +317,12 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
     saveImage(bake::heightForOutput(result.height, bake::outputType(a.height, a.bits), range), a.height);
   }
   if (!a.missMask.empty()) saveImage(bake::forOutput(result.missMask, bake::outputType(a.missMask, a.bits)), a.missMask);
+  if (!a.bentNormal.empty())
+    saveImage(bake::forOutput(result.bentNormal, bake::outputType(a.bentNormal, a.bits)), a.bentNormal);
+  if (!a.thickness.empty()) saveImage(bake::forOutput(result.thickness, bake::outputType(a.thickness, a.bits)), a.thickness);
+  if (!a.position.empty())
+    saveImage(bake::positionForOutput(result.position, bake::outputType(a.position, a.bits), *s.positionBounds), a.position);
+  if (!a.opacity.empty()) saveImage(bake::forOutput(result.opacity, bake::outputType(a.opacity, a.bits)), a.opacity);
   writing.reset();
   log::info("bake: {} ({} triangles) → {} ({}x{}, {} per texel): {} texels baked, {} padded; {} rays, hit ratio "
             "{:.4f}; {:.2f} s", a.high, high->triangleCount(), a.output, options.width, options.height,
@@ -297,6 +332,13 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
   report["low"] = a.low;
   report["high"] = a.high;
   report["output"] = a.output;
+  Json maps = Json::object();  // every map written, by kind
+  const std::pair<const char*, const std::string*> kinds[] = {
+      {"normal", &a.output},         {"ao", &a.ao},          {"height", &a.height},     {"miss_mask", &a.missMask},
+      {"bent_normal", &a.bentNormal}, {"thickness", &a.thickness}, {"position", &a.position}, {"opacity", &a.opacity}};
+  for (const auto& [kind, path] : kinds)
+    if (!path->empty()) maps[kind] = *path;
+  report["maps"] = std::move(maps);
   report.update(bake::toJson(options));
   report.update(bake::toJson(s));
   for (const auto& w : result.warnings) run.recordWarning(w);
@@ -674,6 +716,10 @@ std::vector<BatchBake> batchBakes(const std::string& file) {
     options.aoSamples = job.args.aoSamples;
     options.heightMap = !job.args.height.empty();
     options.missMask = !job.args.missMask.empty();
+    options.bentNormals = !job.args.bentNormal.empty();
+    options.thickness = !job.args.thickness.empty();
+    options.positionMap = !job.args.position.empty();
+    options.opacity = !job.args.opacity.empty();
     b.memoryMiB = bake::estimatePeakMemoryMiB(options, {job.args.low, job.args.high, job.args.cage});
     bakes.push_back(std::move(b));
   }
