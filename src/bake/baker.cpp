@@ -200,7 +200,7 @@ void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleRe
   if (ctx.aoChannel >= 0) out[ctx.aoChannel] = ao / count;
   if (ctx.heightChannel >= 0) out[ctx.heightChannel] = height / count;
   if (ctx.missChannel >= 0) out[ctx.missChannel] = float(missed) / count;
-  if (ctx.hitWork || ctx.opacityChannel >= 0) storeExtraMaps(ctx, p, results, hits, out);
+  if (ctx.extraMaps) storeExtraMaps(ctx, p, results, hits, out);
   ctx.covered[p.texel] = 1;
 }
 
@@ -338,7 +338,8 @@ void setUpContext(Context& ctx, BakeStats& stats) {
   if (options.thickness) ctx.thicknessChannel = ctx.channels++;
   if (options.positionMap) ctx.positionChannel = std::exchange(ctx.channels, ctx.channels + 3);
   if (options.opacity) ctx.opacityChannel = ctx.channels++;
-  ctx.hitWork = ctx.hemisphere || options.thickness || options.positionMap;
+  ctx.hitWork = ctx.hemisphere || options.thickness;
+  ctx.extraMaps = options.bentNormals || options.thickness || options.positionMap || options.opacity;
   stats.texels = std::uint64_t(options.width) * std::uint64_t(options.height);
   const std::size_t texelValues = std::size_t(stats.texels) * std::size_t(ctx.channels);
   ctx.texelStorage = std::make_unique_for_overwrite<float[]>(texelValues);

@@ -435,6 +435,7 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
     r.ao = 1.0f;
     r.hit = true;
     r.height = side * (hit->t - before);
+    if (ctx.positionChannel >= 0) r.position = sweeps[i].at(hit->t);
     (r.height >= 0.0f ? front : rear) += 1;
     if (!lanes) {
       const vec3 high = highNormal(ctx, *hit);

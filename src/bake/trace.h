@@ -48,9 +48,10 @@ struct Context {
   int aoChannel = -1, heightChannel = -1, missChannel = -1;
   int bentChannel = -1, thicknessChannel = -1, positionChannel = -1, opacityChannel = -1;
   bool hemisphere = false;  ///< AO rays are cast (for AO or bent normals)
-  /// Some map needs more than the normal at a hit (AO, bent normals, thickness, position):
-  /// the sweep's lean path (traceGroup) is not taken.
+  /// Some map casts rays from the hit (AO, bent normals, thickness): the sweep's lean path
+  /// (traceGroup) is not taken.
   bool hitWork = false;
+  bool extraMaps = false;  ///< bent normals, thickness, position or opacity (storeExtraMaps)
   /// width × height × channels, row 0 = bottom (v = 0). Left uninitialized: a texel is only
   /// read once covered is set for it (the bake or the dilation wrote it), and zeroing 12 MB
   /// on one thread before the bake cost more than the workers touching the pages themselves.

@@ -75,8 +75,9 @@ protected:
          {"new.shard", "r.json"}},
         {"cut --merge", "cut {room.obj} --light 0,3,0 --merge {s1.shard} {s2.shard} -o {0} --json {1}",
          {"room.obj", "s1.shard", "s2.shard"}, {"merged.glb", "r.json"}},
-        {"bake", "bake {low.obj} {high.obj} --size 32x32 -o {0} --ao {1} --height {2} --miss-mask {3} --json {4}",
-         {"low.obj", "high.obj"}, {"n.png", "ao.png", "h.png", "miss.png", "r.json"}},
+        {"bake", "bake {low.obj} {high.obj} --size 32x32 -o {0} --ao {1} --height {2} --miss-mask {3} --bent-normal {4} "
+                 "--thickness {5} --position {6} --opacity {7} --ao-samples 2 --json {8}",
+         {"low.obj", "high.obj"}, {"n.png", "ao.png", "h.png", "miss.png", "bent.png", "thick.png", "pos.png", "alpha.png", "r.json"}},
         {"normalmap", "normalmap {photo.png} -o {0}", {"photo.png"}, {"nm.png"}},
     };
   }
