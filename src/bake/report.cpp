@@ -31,7 +31,7 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
   const int extraChannels = int(options.ambientOcclusion) + int(options.heightMap) + int(options.missMask) +
                             3 * int(options.bentNormals) + int(options.thickness) + 3 * int(options.positionMap) +
                             int(options.opacity);
-  return 64.0 + (2.0 * inputBytes + texels * (19.5 + 5.0 * extraChannels)) / (1 << 20);
+  return 64.0 + (2.0 * inputBytes + texels * (19.5 + 8.0 * extraChannels)) / (1 << 20);
 }
 
 nlohmann::ordered_json toJson(const BakeOptions& options) {

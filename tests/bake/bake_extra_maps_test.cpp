@@ -352,7 +352,7 @@ TEST(BakeExtraMaps, OptionChecksReportAndMemory) {
   big.width = big.height = 1024;
   big.bentNormals = big.positionMap = true;  // three channels each
   big.thickness = big.opacity = true;        // one each
-  EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5 + 5.0 * 8);
+  EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5 + 8.0 * 8);
 
   const Mesh low = makeUvSphere(1.0f, 16, 8), high = makeUvSphere(1.0f, 32, 16);
   bake::BakeOptions options;

@@ -239,9 +239,10 @@ void validateOptions(const BakeOptions& options);
 /// The peak memory (MiB) of a bake with these options, from the sizes of its mesh files
 /// (`inputs`: low, high and cage; a missing file counts as empty): ~64 MiB of process,
 /// about twice the input files (meshes and BVH), ~19.5 bytes per texel for the normal map
-/// and its buffers and ~5 for each extra map channel (AO, height, miss mask, thickness,
-/// opacity: one; bent normals, position: three). Measured on the
-/// studded-torus pair (1024² → 16384², 262k triangles; 16384²: 4,959 MiB).
+/// and its buffers and ~8 for each extra map channel (AO, height, miss mask, thickness,
+/// opacity: one; bent normals, position: three: a float in the texel buffer and one in the
+/// result image). Measured on the studded-torus pair (1024² → 16384², 262k triangles;
+/// 16384²: 4,959 MiB; the extra channels at 2048²: 8.0 bytes each, PNG outputs).
 double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::filesystem::path>& inputs);
 
 /// The options in a report: width, height, samples_per_texel, space ("tangent", "object"
