@@ -483,17 +483,6 @@ BakeArgs parseJob(const std::vector<std::string>& arguments) {
   return args;
 }
 
-/// `word` as one POSIX shell word: unchanged when it is safe, else in single quotes.
-std::string shellWord(const std::string& word) {
-  const bool safe = !word.empty() && std::all_of(word.begin(), word.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("@%+=:,./_-").find(c) != std::string_view::npos;
-  });
-  if (safe) return word;
-  std::string out = "'";
-  for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 struct BatchRequest {
   std::string file;  ///< --batch, as typed
   int job = -1;      ///< --job; -1: every job

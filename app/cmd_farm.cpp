@@ -19,9 +19,7 @@
 #endif
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
-#include <climits>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -260,16 +258,9 @@ farm::Plan cutPlan(CLI::App& cmd, const std::vector<Given>& given, int shards, s
 #endif
 }
 
-/// "a:b" of --frames → [a, b) (b −1: to the end).
-std::pair<std::int64_t, std::int64_t> frameRange(const Given* frames) {
-  if (!frames) return {0, -1};
-  const std::string& text = frames->values.front();
-  const auto colon = text.find(':');
-  if (colon == std::string::npos) fail(ErrorKind::Usage, "--frames must be FIRST:END, got '{}'", text);
-  const auto number = [&](const std::string& s, std::int64_t empty) -> std::int64_t {
-    return s.empty() ? empty : parseInt(s, "--frames (FIRST:END)", 0, INT_MAX);
-  };
-  return {number(text.substr(0, colon), 0), number(text.substr(colon + 1), -1)};
+/// --frames as given (every frame when absent).
+FrameRange frameRange(const Given* frames) {
+  return frames ? parseFrameRange(frames->values.front(), "--frames") : FrameRange{};
 }
 
 farm::Plan postPlan(CLI::App& cmd, const std::vector<Given>& given, int chunks, std::int64_t& mib, const FarmArgs& a) {

@@ -142,4 +142,13 @@ vec3 parseVec3(std::string_view text, std::string_view what) {
   return {parseFloat(fields[0], what), parseFloat(fields[1], what), parseFloat(fields[2], what)};
 }
 
+std::string shellWord(std::string_view word) {
+  const bool safe = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                            "0123456789@%+=:,./_-") == std::string_view::npos;
+  if (safe) return std::string(word);
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
 }  // namespace glint

@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/hash.h"
+#include "glint/core/text.h"
 #include "process.h"
 
 #include <fmt/format.h>
@@ -12,7 +13,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <climits>
 #include <fstream>
 #include <map>
 #include <set>
@@ -24,7 +24,6 @@ namespace fs = std::filesystem;
 namespace glint::farm {
 
 using detail::runProcess;
-using detail::shellQuote;
 
 namespace {
 
@@ -60,7 +59,7 @@ fs::path selfExecutable() {
 
 std::string quoteCommand(const std::vector<std::string>& argv) {
   std::string line;
-  for (const auto& a : argv) line += (line.empty() ? "" : " ") + shellQuote(a);
+  for (const auto& a : argv) line += (line.empty() ? "" : " ") + shellWord(a);
   return line;
 }
 
@@ -256,7 +255,7 @@ std::vector<std::string> Farm::joinCommand() const {
 namespace {
 std::string directives(const Resources& r, const std::string& name, const fs::path& log) {
   std::string text = fmt::format("#SBATCH --job-name={}\n#SBATCH --output={}\n#SBATCH --chdir={}\n", name,
-                                 shellQuote(log.string()), shellQuote(fs::current_path().string()));
+                                 shellWord(log.string()), shellWord(fs::current_path().string()));
   if (!r.partition.empty()) text += fmt::format("#SBATCH --partition={}\n", r.partition);
   if (!r.time.empty()) text += fmt::format("#SBATCH --time={}\n", r.time);
   if (r.memoryMiB > 0) text += fmt::format("#SBATCH --mem={}M\n", r.memoryMiB);
@@ -271,7 +270,7 @@ std::string Farm::pieceScript(const std::vector<int>& indices) const {
                       m_plan.title, m_plan.pieces.size());
   text += "# Each piece is a plain glint call; the marker <key>.done says it finished (exit 0).\n";
   text += directives(m_resources, "glint-" + m_plan.tool, m_directory / "logs" / "piece-%a.log");
-  text += fmt::format("set -u\ndir={}\n", shellQuote(m_directory.string()));
+  text += fmt::format("set -u\ndir={}\n", shellWord(m_directory.string()));
   text += "case \"${SLURM_ARRAY_TASK_ID:?this script runs as a task of sbatch --array}\" in\n";
   for (int i : indices) {
     const Piece& piece = m_plan.pieces[std::size_t(i)];
@@ -299,7 +298,7 @@ std::string Farm::joinScript() const {
   text += fmt::format("# glint farm {}: {} — the join, after every piece succeeded (afterok).\n", m_plan.tool, m_plan.title);
   text += "# The intermediates are removed only after the join command succeeded.\n";
   text += directives(m_resources, "glint-" + m_plan.tool + "-join", joinLog());
-  text += fmt::format("set -u\ndir={}\n", shellQuote(m_directory.string()));
+  text += fmt::format("set -u\ndir={}\n", shellWord(m_directory.string()));
   std::vector<std::string> outputs, pieces;
   for (const auto& o : m_plan.outputs) outputs.push_back(fs::absolute(o).lexically_normal().string());
   for (int i = 0; i < int(m_plan.pieces.size()); ++i) {

@@ -67,16 +67,4 @@ bool onPath(const std::string& program) {
   return false;
 }
 
-std::string shellQuote(const std::string& text) {
-  if (!text.empty() && text.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
-                                              "@%+=:,./_-") == std::string::npos)
-    return text;
-  std::string quoted = "'";
-  for (char c : text) {
-    if (c == '\'') quoted += "'\\''";
-    else quoted += c;
-  }
-  return quoted + "'";
-}
-
 }  // namespace glint::farm::detail

@@ -17,7 +17,4 @@ ProcessResult runProcess(const std::vector<std::string>& argv);
 /// Whether `program` is an executable file on PATH.
 bool onPath(const std::string& program);
 
-/// `text` quoted for a POSIX shell: 'it'\''s'.
-std::string shellQuote(const std::string& text);
-
 }  // namespace glint::farm::detail

@@ -4,6 +4,7 @@
 // bake and FFV1 video; frame count and the decoded frames for lossless H.264. Faults: a
 // cancelled task and a failing one stop the join, are reported with their exit code and log,
 // and a rerun redoes only them.
+#include "glint/bake/samples.h"
 #include "glint/farm/farm.h"
 #include "glint/mesh/machine_room.h"
 #include <algorithm>
@@ -62,24 +63,6 @@ const auto* const registered = ::testing::AddGlobalTestEnvironment(new ClusterEn
 
 fs::path dir(const char* name) { return glint::testing::freshDir("farm", name); }
 
-/// OBJ with normals, and with texture coordinates when `uvs`.
-void writeObj(const Mesh& m, const fs::path& path, bool uvs = false) {
-  std::ofstream out(path);
-  out.precision(9);
-  for (const vec3& p : m.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-  if (uvs)
-    for (const vec2& t : m.uvs) out << "vt " << t.x << ' ' << t.y << '\n';
-  for (const vec3& n : m.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
-  for (std::size_t i = 0; i < m.indices.size(); i += 3) {
-    out << 'f';
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::uint32_t v = m.indices[i + k] + 1;
-      out << ' ' << v << '/' << (uvs ? std::to_string(v) : "") << '/' << v;
-    }
-    out << '\n';
-  }
-}
-
 constexpr const char* kLights = " --light -1.1,10.9,2.2,key --light 2.4,7.1,0.6,fill";
 
 /// A 4-second 320×240 H.264 clip with a keyframe every second and AAC audio (made by ffmpeg).
@@ -124,7 +107,7 @@ std::vector<std::string> frameHashes(const fs::path& video) {
 TEST(FarmSlurm, CutShardsMergeToTheSameBytesAsOneLocalRun) {
   NEED_CLUSTER();
   const fs::path d = dir("cut");
-  writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
+  bake::writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
   const std::string in = q(d / "stage.obj");
   ASSERT_EQ(runGlint("-q cut " + in + " -o " + q(d / "local.glb") + " -o " + q(d / "local.ply") + kLights).status, 0);
 
@@ -226,7 +209,7 @@ TEST(FarmSlurm, ACancelledTaskStopsTheJoinAndARerunRedoesOnlyIt) {
 TEST(FarmSlurm, AFailingTaskIsNamedWithItsExitCodeAndLog) {
   NEED_CLUSTER();
   const fs::path d = dir("fail");
-  writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
+  bake::writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
   // 1 MiB is far below the cut's estimate: every piece refuses (exit 2) before it starts.
   const auto r = runGlint("farm cut " + q(d / "stage.obj") + " -o " + q(d / "out.glb") + kLights +
                           " --shards 2 --mem 1 --wait");
@@ -262,8 +245,8 @@ TEST(FarmSlurm, RenderChunksJoinToTheVideoOfOneLocalRun) {
 TEST(FarmSlurm, BakeRunsOneTaskPerBakeWithTheBytesOfLocalBakes) {
   NEED_CLUSTER();
   const fs::path d = dir("bake");
-  writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj", true);
-  writeObj(makeUvSphere(1.0f, 64, 32), d / "high.obj", true);
+  bake::writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
+  bake::writeObj(makeUvSphere(1.0f, 64, 32), d / "high.obj");
   // Relative paths: from the batch file's folder, wherever the tasks run.
   std::ofstream(d / "jobs.json") << R"({
   "defaults": {"size": "32x32", "padding": 2, "quiet": true},
@@ -295,7 +278,7 @@ TEST(FarmSlurm, BakeRunsOneTaskPerBakeWithTheBytesOfLocalBakes) {
 
 TEST(Farm, WithoutSlurmItSaysWhatToInstall) {
   const fs::path d = dir("no-slurm");
-  writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
+  bake::writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
   const auto r = runGlint("farm cut " + q(d / "stage.obj") + " -o " + q(d / "out.glb") + kLights + " --shards 2",
                           "PATH=/nonexistent");
   EXPECT_EQ(r.status, 3) << r.output;
@@ -362,7 +345,7 @@ TEST(FarmMeasure, DISABLED_Cut550kTwoShards) {
   const fs::path d = dir("measure-cut");
   const MachineRoomOptions options{.modules = machineRoomModulesFor(550000)};
   const Mesh stage = makeMachineRoom(options);
-  writeObj(stage, d / "stage.obj");
+  bake::writeObj(stage, d / "stage.obj");
   std::string lights;
   for (const auto& l : machineRoomLights(options))
     lights += fmt::format(" --light {},{},{}", l.x, l.y, l.z);

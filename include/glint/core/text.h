@@ -71,6 +71,11 @@ struct FrameRange {
 /// the caller's to check (glint render needs an END after FIRST).
 FrameRange parseFrameRange(std::string_view text, std::string_view what);
 
+/// `word` as one POSIX shell word: unchanged when it is made of safe characters (letters,
+/// digits, @%+=:,./_-), else in single quotes ("it's" → 'it'\''s'). For printed command
+/// lines (`glint bake --batch --list`) and generated scripts (`glint farm`).
+std::string shellWord(std::string_view word);
+
 /// "x,y,z": three finite numbers.
 vec3 parseVec3(std::string_view text, std::string_view what);
 

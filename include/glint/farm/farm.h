@@ -155,7 +155,6 @@ public:
   std::vector<PieceStatus> status();
 
 private:
-  struct Record;
   void keyPieces();
   void loadRecord();
   void saveRecord() const;
