@@ -9,6 +9,7 @@
 
 #include "glint/bake/baker.h"
 #include "glint/bake/output.h"
+#include "glint/bake/udim.h"
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
@@ -303,45 +304,98 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
   if (highError) std::rethrow_exception(highError);
   loading.reset();
   run.throwIfInterrupted();
-  const bake::BakeResult result = bake::bake(low, *high, options);
-  const bake::BakeStats& s = result.stats;
-  run.addSeconds("prepare", s.prepareSeconds);
-  run.addSeconds("trace", s.traceSeconds);
-  run.addSeconds("dilate", s.dilateSeconds);
+  // Every map this bake writes: (kind for the report, the path as given).
+  const std::pair<const char*, const std::string*> kinds[] = {
+      {"normal", &a.output},         {"ao", &a.ao},          {"height", &a.height},     {"miss_mask", &a.missMask},
+      {"bent_normal", &a.bentNormal}, {"thickness", &a.thickness}, {"position", &a.position}, {"opacity", &a.opacity}};
 
-  std::optional<ToolRun::Phase> writing(std::in_place, run, "write");
-  saveImage(result.normal, a.output);
-  if (!a.ao.empty()) saveImage(bake::forOutput(result.ao, bake::outputType(a.ao, a.bits)), a.ao);
-  if (!a.height.empty()) {
-    const float range = std::max(result.stats.frontDistance, result.stats.rearDistance);
-    saveImage(bake::heightForOutput(result.height, bake::outputType(a.height, a.bits), range), a.height);
+  // UDIM: UVs beyond the unit square, or outputs named with <UDIM>, bake one image per tile.
+  bool named = false, unnamed = false;
+  for (const auto& [kind, path] : kinds) {
+    if (path->empty()) continue;
+    (bake::hasUdimToken(*path) ? named : unnamed) = true;
   }
-  if (!a.missMask.empty()) saveImage(bake::forOutput(result.missMask, bake::outputType(a.missMask, a.bits)), a.missMask);
-  if (!a.bentNormal.empty())
-    saveImage(bake::forOutput(result.bentNormal, bake::outputType(a.bentNormal, a.bits)), a.bentNormal);
-  if (!a.thickness.empty()) saveImage(bake::forOutput(result.thickness, bake::outputType(a.thickness, a.bits)), a.thickness);
-  if (!a.position.empty())
-    saveImage(bake::positionForOutput(result.position, bake::outputType(a.position, a.bits), *s.positionBounds), a.position);
-  if (!a.opacity.empty()) saveImage(bake::forOutput(result.opacity, bake::outputType(a.opacity, a.bits)), a.opacity);
-  writing.reset();
-  log::info("bake: {} ({} triangles) → {} ({}x{}, {} per texel): {} texels baked, {} padded; {} rays, hit ratio "
-            "{:.4f}; {:.2f} s", a.high, high->triangleCount(), a.output, options.width, options.height,
-            options.samples, s.coveredTexels, s.paddedTexels, s.rays, s.hitRatio(), run.elapsed());
+  std::vector<bake::UdimTile> tiles;
+  if (named || bake::spansUdimTiles(low)) {
+    if (unnamed) {
+      fail(ErrorKind::Usage, "bake: the low poly's UVs span UDIM tiles (or an output names <UDIM>): name every map with "
+           "<UDIM> where the tile number goes, e.g. -o normal.<UDIM>.png");
+    }
+    if (options.cage)
+      fail(ErrorKind::Usage, "bake: --cage with UDIM tiles is not supported yet: bake each tile's part on its own");
+    bake::UdimSplit split = bake::splitUdimTiles(low);
+    if (split.outOfRangeTriangles)
+      run.warn(fmt::format("{} low-poly triangle{} with UVs outside the UDIM range (u in [0, 10), v >= 0) left out",
+                           split.outOfRangeTriangles, split.outOfRangeTriangles == 1 ? "" : "s"));
+    if (split.spanningTriangles)
+      run.warn(fmt::format("{} low-poly triangle{} reach past their UDIM tile's edge: baked in the tile of their "
+                           "centre, clipped at its edge",
+                           split.spanningTriangles, split.spanningTriangles == 1 ? "" : "s"));
+    if (split.tiles.empty()) fail(ErrorKind::Input, "bake: no low-poly triangle lies in the UDIM range");
+    tiles = std::move(split.tiles);
+  }
+  const bool udim = !tiles.empty();
+  if (udim) {
+    // Distances given as a share of the model are the whole low poly's, in every tile.
+    const float diagonal = low.bounds().diagonal();
+    for (bake::Distance* d : {&options.maxFront, &options.maxRear, &options.aoDistance, &options.thicknessDistance})
+      *d = bake::Distance{d->resolve(diagonal), false};
+  }
+  if (!udim) tiles.push_back({.number = 0, .low = low, .triangles = low.triangleCount()});
 
   auto& report = run.report();
   report["low"] = a.low;
   report["high"] = a.high;
   report["output"] = a.output;
   Json maps = Json::object();  // every map written, by kind
-  const std::pair<const char*, const std::string*> kinds[] = {
-      {"normal", &a.output},         {"ao", &a.ao},          {"height", &a.height},     {"miss_mask", &a.missMask},
-      {"bent_normal", &a.bentNormal}, {"thickness", &a.thickness}, {"position", &a.position}, {"opacity", &a.opacity}};
   for (const auto& [kind, path] : kinds)
     if (!path->empty()) maps[kind] = *path;
   report["maps"] = std::move(maps);
   report.update(bake::toJson(options));
-  report.update(bake::toJson(s));
-  for (const auto& w : result.warnings) run.recordWarning(w);
+  Json tileReports = Json::array();
+  const std::string label = options.progressLabel;
+  for (const bake::UdimTile& tile : tiles) {
+    const auto file = [&](const std::string& path) { return udim ? bake::udimPath(path, tile.number) : path; };
+    if (udim) options.progressLabel = fmt::format("{} tile {}", label, tile.number);
+    const bake::BakeResult result = bake::bake(tile.low, *high, options);
+    const bake::BakeStats& s = result.stats;
+    run.addSeconds("prepare", s.prepareSeconds);
+    run.addSeconds("trace", s.traceSeconds);
+    run.addSeconds("dilate", s.dilateSeconds);
+
+    std::optional<ToolRun::Phase> writing(std::in_place, run, "write");
+    saveImage(result.normal, file(a.output));
+    if (!a.ao.empty()) saveImage(bake::forOutput(result.ao, bake::outputType(a.ao, a.bits)), file(a.ao));
+    if (!a.height.empty()) {
+      const float range = std::max(result.stats.frontDistance, result.stats.rearDistance);
+      saveImage(bake::heightForOutput(result.height, bake::outputType(a.height, a.bits), range), file(a.height));
+    }
+    if (!a.missMask.empty())
+      saveImage(bake::forOutput(result.missMask, bake::outputType(a.missMask, a.bits)), file(a.missMask));
+    if (!a.bentNormal.empty())
+      saveImage(bake::forOutput(result.bentNormal, bake::outputType(a.bentNormal, a.bits)), file(a.bentNormal));
+    if (!a.thickness.empty())
+      saveImage(bake::forOutput(result.thickness, bake::outputType(a.thickness, a.bits)), file(a.thickness));
+    if (!a.position.empty())
+      saveImage(bake::positionForOutput(result.position, bake::outputType(a.position, a.bits), *s.positionBounds),
+                file(a.position));
+    if (!a.opacity.empty())
+      saveImage(bake::forOutput(result.opacity, bake::outputType(a.opacity, a.bits)), file(a.opacity));
+    writing.reset();
+    log::info("bake: {} ({} triangles) → {} ({}x{}, {} per texel): {} texels baked, {} padded; {} rays, hit ratio "
+              "{:.4f}; {:.2f} s", a.high, high->triangleCount(), file(a.output), options.width, options.height,
+              options.samples, s.coveredTexels, s.paddedTexels, s.rays, s.hitRatio(), run.elapsed());
+    for (const auto& w : result.warnings) run.recordWarning(w);
+    if (!udim) {
+      report.update(bake::toJson(s));
+    } else {
+      Json entry = {{"tile", tile.number}, {"low_triangles_in_tile", tile.triangles}, {"output", file(a.output)}};
+      entry.update(bake::toJson(s));
+      tileReports.push_back(std::move(entry));
+    }
+    run.throwIfInterrupted();
+  }
+  if (udim) report["udim_tiles"] = std::move(tileReports);
 }
 
 // ---------------------------------------------------------------------------- batches

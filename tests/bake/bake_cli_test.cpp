@@ -4,6 +4,8 @@
 #include "glint/image/image.h"
 #include "glint/mesh/mesh.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "support/cli.h"
 
 #include <gtest/gtest.h>
@@ -528,4 +530,52 @@ TEST(BakeCli, EveryMapInOneCommandAndInABatchJob) {
   const auto help = runGlint("bake --help");
   for (const char* text : {"--bent-normal", "--thickness", "--thickness-distance", "--position", "--opacity", "Maps"})
     EXPECT_NE(help.output.find(text), std::string::npos) << text;
+}
+
+// UDIM (issue 23): a low poly whose UVs span two tiles bakes one image per tile, named by
+// <UDIM>; each tile's image is byte for byte the bake of the same triangles with their UVs
+// in the unit square (relative distances are the whole low poly's: given absolute here).
+TEST(BakeCli, UdimTilesAreTheBakesOfTheirTrianglesInTheUnitSquare) {
+  const auto d = dir("udim");
+  Mesh lowA = makeUvSphere(1.0f, 16, 8), highA = makeUvSphere(1.0f, 64, 32);
+  Mesh lowB = lowA, highB = makeUvSphere(1.0f, 8, 4);  // faceted: tile 1002 differs from 1001
+  const mat4 apart = glm::translate(mat4(1.0f), vec3(3.0f, 0.0f, 0.0f));
+  lowB.transform(apart);
+  highB.transform(apart);
+  writeObj(lowA, d / "a_low.obj");
+  writeObj(lowB, d / "b_low.obj");  // its UVs in [0, 1], as tile 1002 holds them
+  Mesh low = lowA, shifted = lowB, high = highA;
+  for (vec2& uv : shifted.uvs) uv.x += 1.0f;  // tile 1002
+  low.append(shifted);
+  high.append(highB);
+  writeObj(low, d / "low.obj");
+  writeObj(high, d / "high.obj");
+  const std::string options = " --size 32x32 --samples 4 --max-front 0.2 --max-rear 0.2 --padding 2 -q";
+  const auto r = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "n.<UDIM>.png") +
+                          " --ao " + q(d / "ao.<UDIM>.png") + " --ao-distance 0.5 --json " + q(d / "r.json") + options);
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* part : {"a", "b"}) {
+    const std::string tile = part == std::string("a") ? "1001" : "1002";
+    const auto ref = runGlint("bake " + q(d / (std::string(part) + "_low.obj")) + " " + q(d / "high.obj") + " -o " +
+                              q(d / (std::string("ref_") + part + ".png")) + " --ao " +
+                              q(d / (std::string("refao_") + part + ".png")) + " --ao-distance 0.5" + options);
+    ASSERT_EQ(ref.status, 0) << ref.output;
+    EXPECT_FALSE(bytes(d / ("n." + tile + ".png")).empty()) << tile;
+    EXPECT_TRUE(bytes(d / ("n." + tile + ".png")) == bytes(d / (std::string("ref_") + part + ".png"))) << tile;
+    EXPECT_TRUE(bytes(d / ("ao." + tile + ".png")) == bytes(d / (std::string("refao_") + part + ".png"))) << tile;
+  }
+  EXPECT_FALSE(fs::exists(d / "n.1011.png"));
+  EXPECT_FALSE(bytes(d / "n.1001.png") == bytes(d / "n.1002.png")) << "the tiles hold different parts";
+  std::ifstream in(d / "r.json");
+  const auto report = nlohmann::json::parse(in);
+  ASSERT_EQ(report["udim_tiles"].size(), 2u);
+  EXPECT_EQ(report["udim_tiles"][1]["tile"], 1002);
+  EXPECT_EQ(report["udim_tiles"][1]["low_triangles_in_tile"], lowB.triangleCount());
+
+  // UVs beyond the unit square need <UDIM> in every output's name.
+  const auto unnamed = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "x.png") + options);
+  EXPECT_EQ(unnamed.status, 2) << unnamed.output;
+  EXPECT_TRUE(oneLine(unnamed.output)) << unnamed.output;
+  EXPECT_NE(unnamed.output.find("<UDIM>"), std::string::npos) << unnamed.output;
+  EXPECT_FALSE(fs::exists(d / "x.png"));
 }
