@@ -217,8 +217,7 @@ BakeFiles bakeFiles(const BakeArgs& a) {
   return {{{a.low, "the low poly"}, {a.high, "the high poly"}, {a.cage, "--cage"}, {a.detail, "--height-detail"}},
           {{a.output, "-o"}, {a.ao, "--ao"}, {a.height, "--height"}, {a.missMask, "--miss-mask"},
            {a.bentNormal, "--bent-normal"}, {a.thickness, "--thickness"}, {a.curvature, "--curvature"},
-           {a.position, "--position"},
-           {a.opacity, "--opacity"}, {a.tool.json, "--json"}}};
+           {a.position, "--position"}, {a.opacity, "--opacity"}, {a.tool.json, "--json"}}};
 }
 
 /// What checkBake worked out for runBake.
