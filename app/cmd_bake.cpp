@@ -46,8 +46,8 @@ constexpr const char* kFile = "FILE";
 
 struct BakeArgs {
   std::string low, high, output, size = "1024x1024", space = "tangent", worldMatrix;
-  std::string maxFront = "5%", maxRear = "5%", aoDistance = "10%", thicknessDistance = "10%";
-  std::string cage, detail, ao, height, missMask, bentNormal, thickness, position, opacity;
+  std::string maxFront = "5%", maxRear = "5%", aoDistance = "10%", thicknessDistance = "10%", curvatureRadius = "1%";
+  std::string cage, detail, ao, height, missMask, bentNormal, thickness, curvature, position, opacity;
   int samples = 1, padding = 16, bits = 0, aoSamples = 16;
   float detailScale = 8.0f;
   bool directX = false, frontFirst = false, fillAll = false;
@@ -91,7 +91,8 @@ constexpr const char* kFooter = R"(Examples:
   glint bake head_low.fbx head_high.fbx -o head.png --size 2048x2048 --samples 36 \
         --height-detail pores.png --detail-scale 4 --ao head_ao.png --json report.json
   glint bake rock_low.obj rock_high.ply -o n.png --ao ao.png --bent-normal bent.png \
-        --thickness thick.png --position pos.exr --opacity alpha.png   # every map, one pass
+        --thickness thick.png --curvature curv.png --position pos.exr \
+        --opacity alpha.png                                            # every map, one pass
   glint bake --batch jobs.json          # every job of a batch file, one after another
   glint bake --batch jobs.json --job 3  # job 3 only (0-based), as a render-farm task runs it
   glint bake --batch jobs.json --list   # the jobs as `glint bake ...` command lines
@@ -114,6 +115,8 @@ Maps (each its own file, baked in the same pass as the normal map; docs/bake.md,
   --height       signed distance along the low poly's normal (+ in front)
   --bent-normal  mean unoccluded direction of the AO rays, encoded like -o
   --thickness    mean distance through the surface / --thickness-distance (1 = thick)
+  --curvature    mean curvature at --curvature-radius: mid-grey flat, bright convex
+                 (ridges), dark concave (creases); EXR: signed, 1 / scene units
   --position     hit point, object space: EXR raw, 8/16-bit over the high poly's box
   --opacity      fraction of a texel's samples that hit, 0 outside islands
   --miss-mask    fraction of samples whose rays found nothing (debug)
@@ -191,6 +194,12 @@ void addBakeOptions(CLI::App& cmd, BakeArgs& a, bool required) {
                  "the surface, mean distance to where they leave it / --thickness-distance (1 = thick)")->type_name(kFile);
   cmd.add_option("--thickness-distance", a.thicknessDistance, "Thickness ray length, the distance that reads 1: scene "
                  "units or % of the low poly's diagonal")->capture_default_str();
+  cmd.add_option("--curvature", a.curvature, "Also bake curvature (convex bright, concave dark, mid-grey flat; EXR: "
+                 "signed mean curvature in 1/scene units), from the high poly's normals at --curvature-radius")
+      ->type_name(kFile);
+  cmd.add_option("--curvature-radius", a.curvatureRadius, "The scale curvature is measured at (detail smaller is "
+                 "averaged away; a bend this tight reads white/black in 8/16-bit): scene units or % of the low poly's "
+                 "diagonal")->capture_default_str();
   cmd.add_option("--position", a.position, "Also bake the high-poly hit point (object space): EXR keeps coordinates, "
                  "8/16-bit maps the high poly's bounding box to 0..1 (position_min/max in the report)")->type_name(kFile);
   cmd.add_option("--opacity", a.opacity, "Also bake coverage/opacity: the fraction of each texel's samples that hit the "
@@ -207,8 +216,8 @@ struct BakeFiles {
 BakeFiles bakeFiles(const BakeArgs& a) {
   return {{{a.low, "the low poly"}, {a.high, "the high poly"}, {a.cage, "--cage"}, {a.detail, "--height-detail"}},
           {{a.output, "-o"}, {a.ao, "--ao"}, {a.height, "--height"}, {a.missMask, "--miss-mask"},
-           {a.bentNormal, "--bent-normal"}, {a.thickness, "--thickness"}, {a.position, "--position"},
-           {a.opacity, "--opacity"}, {a.tool.json, "--json"}}};
+           {a.bentNormal, "--bent-normal"}, {a.thickness, "--thickness"}, {a.curvature, "--curvature"},
+           {a.position, "--position"}, {a.opacity, "--opacity"}, {a.tool.json, "--json"}}};
 }
 
 /// What checkBake worked out for runBake.
@@ -248,12 +257,15 @@ BakePlan checkBake(const BakeArgs& a, ToolRun& run) {
   options.bentNormals = !a.bentNormal.empty();
   options.thickness = !a.thickness.empty();
   options.thicknessDistance = parseDistance(a.thicknessDistance, "--thickness-distance");
+  options.curvature = !a.curvature.empty();
+  options.curvatureRadius = parseDistance(a.curvatureRadius, "--curvature-radius");
   options.positionMap = !a.position.empty();
   options.opacity = !a.opacity.empty();
   bake::validateOptions(options);
   options.normalType = bake::outputType(a.output, a.bits);  // quantized by the baker: no float copy of the map
   std::vector<std::string> outputs{a.output};
-  for (const std::string* extra : {&a.ao, &a.height, &a.missMask, &a.bentNormal, &a.thickness, &a.position, &a.opacity}) {
+  for (const std::string* extra :
+       {&a.ao, &a.height, &a.missMask, &a.bentNormal, &a.thickness, &a.curvature, &a.position, &a.opacity}) {
     if (extra->empty()) continue;
     bake::outputType(*extra, a.bits);  // --bits applies to every map: check them all now
     outputs.push_back(*extra);
@@ -307,7 +319,8 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
   // Every map this bake writes: (kind for the report, the path as given).
   const std::pair<const char*, const std::string*> kinds[] = {
       {"normal", &a.output},         {"ao", &a.ao},          {"height", &a.height},     {"miss_mask", &a.missMask},
-      {"bent_normal", &a.bentNormal}, {"thickness", &a.thickness}, {"position", &a.position}, {"opacity", &a.opacity}};
+      {"bent_normal", &a.bentNormal}, {"thickness", &a.thickness}, {"curvature", &a.curvature},
+      {"position", &a.position},     {"opacity", &a.opacity}};
 
   // UDIM: UVs beyond the unit square, or outputs named with <UDIM>, bake one image per tile.
   bool named = false, unnamed = false;
@@ -338,7 +351,8 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
   if (udim) {
     // Distances given as a share of the model are the whole low poly's, in every tile.
     const float diagonal = low.bounds().diagonal();
-    for (bake::Distance* d : {&options.maxFront, &options.maxRear, &options.aoDistance, &options.thicknessDistance})
+    for (bake::Distance* d : {&options.maxFront, &options.maxRear, &options.aoDistance, &options.thicknessDistance,
+                              &options.curvatureRadius})
       *d = bake::Distance{d->resolve(diagonal), false};
   }
   if (!udim) tiles.push_back({.number = 0, .low = low, .triangles = low.triangleCount()});
@@ -376,6 +390,9 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
       saveImage(bake::forOutput(result.bentNormal, bake::outputType(a.bentNormal, a.bits)), file(a.bentNormal));
     if (!a.thickness.empty())
       saveImage(bake::forOutput(result.thickness, bake::outputType(a.thickness, a.bits)), file(a.thickness));
+    if (!a.curvature.empty())
+      saveImage(bake::curvatureForOutput(result.curvature, bake::outputType(a.curvature, a.bits), s.curvatureRadius),
+                file(a.curvature));
     if (!a.position.empty())
       saveImage(bake::positionForOutput(result.position, bake::outputType(a.position, a.bits), *s.positionBounds),
                 file(a.position));
@@ -761,6 +778,7 @@ std::vector<BatchBake> batchBakes(const std::string& file) {
     options.missMask = !job.args.missMask.empty();
     options.bentNormals = !job.args.bentNormal.empty();
     options.thickness = !job.args.thickness.empty();
+    options.curvature = !job.args.curvature.empty();
     options.positionMap = !job.args.position.empty();
     options.opacity = !job.args.opacity.empty();
     b.memoryMiB = bake::estimatePeakMemoryMiB(options, {job.args.low, job.args.high, job.args.cage});

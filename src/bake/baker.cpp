@@ -144,11 +144,11 @@ struct Pending {
 };
 
 /// The maps beyond normal, AO, height and miss mask for one texel (see baker.h, "Maps"):
-/// bent normals averaged and normalized, thickness and position averaged over the hits.
+/// bent normals averaged and normalized, thickness, curvature and position averaged over the hits.
 void storeExtraMaps(const Context& ctx, const Pending& p, std::span<const detail::SampleResult> results,
                     std::size_t hits, float* out) {
   vec3 bent(0.0f), position(0.0f), positionAll(0.0f);
-  float thickness = 0.0f;
+  float thickness = 0.0f, curvature = 0.0f;
   for (std::size_t i = p.first; i < p.first + p.count; ++i) {
     const detail::SampleResult& r = results[i];
     bent += r.bent;
@@ -156,6 +156,7 @@ void storeExtraMaps(const Context& ctx, const Pending& p, std::span<const detail
     if (r.hit) {
       position += r.position;
       thickness += r.thickness;
+      curvature += r.curvature;
     }
   }
   if (ctx.bentChannel >= 0) {
@@ -164,6 +165,7 @@ void storeExtraMaps(const Context& ctx, const Pending& p, std::span<const detail
     for (int k = 0; k < 3; ++k) out[ctx.bentChannel + k] = b[k];
   }
   if (ctx.thicknessChannel >= 0) out[ctx.thicknessChannel] = hits ? thickness / float(hits) : 0.0f;
+  if (ctx.curvatureChannel >= 0) out[ctx.curvatureChannel] = hits ? curvature / float(hits) : 0.0f;
   if (ctx.positionChannel >= 0) {
     const vec3 q = hits ? position / float(hits) : positionAll / float(p.count);
     for (int k = 0; k < 3; ++k) out[ctx.positionChannel + k] = q[k];
@@ -302,6 +304,7 @@ void setUpContext(Context& ctx, BakeStats& stats) {
   ctx.rear = options.maxRear.resolve(in.diagonal);
   ctx.aoDistance = options.aoDistance.resolve(in.diagonal);
   ctx.thicknessDistance = options.thicknessDistance.resolve(in.diagonal);
+  ctx.curvatureRadius = options.curvatureRadius.resolve(in.diagonal);
   ctx.epsilon = 1e-5f * std::max(in.diagonal, ctx.scene.bounds().diagonal());
   ctx.worldNormalMatrix = glm::transpose(glm::inverse(mat3(options.objectToWorld)));
   const std::vector<std::uint32_t>& highIndices = in.high->indices;
@@ -330,16 +333,18 @@ void setUpContext(Context& ctx, BakeStats& stats) {
   ctx.hemisphere = options.ambientOcclusion || options.bentNormals;
   stats.aoDistance = ctx.hemisphere ? ctx.aoDistance : 0.0f;
   stats.thicknessDistance = options.thickness ? ctx.thicknessDistance : 0.0f;
+  stats.curvatureRadius = options.curvature ? ctx.curvatureRadius : 0.0f;
   if (options.positionMap) stats.positionBounds = ctx.scene.bounds();
   if (options.ambientOcclusion) ctx.aoChannel = ctx.channels++;
   if (options.heightMap) ctx.heightChannel = ctx.channels++;
   if (options.missMask) ctx.missChannel = ctx.channels++;
   if (options.bentNormals) ctx.bentChannel = std::exchange(ctx.channels, ctx.channels + 3);
   if (options.thickness) ctx.thicknessChannel = ctx.channels++;
+  if (options.curvature) ctx.curvatureChannel = ctx.channels++;
   if (options.positionMap) ctx.positionChannel = std::exchange(ctx.channels, ctx.channels + 3);
   if (options.opacity) ctx.opacityChannel = ctx.channels++;
-  ctx.hitWork = ctx.hemisphere || options.thickness;
-  ctx.extraMaps = options.bentNormals || options.thickness || options.positionMap || options.opacity;
+  ctx.hitWork = ctx.hemisphere || options.thickness || options.curvature;
+  ctx.extraMaps = options.bentNormals || options.thickness || options.curvature || options.positionMap || options.opacity;
   stats.texels = std::uint64_t(options.width) * std::uint64_t(options.height);
   const std::size_t texelValues = std::size_t(stats.texels) * std::size_t(ctx.channels);
   ctx.texelStorage = std::make_unique_for_overwrite<float[]>(texelValues);
@@ -408,6 +413,7 @@ void bakeTiles(Context& ctx, BakeStats& stats) {
     stats.rays += c.rays;
     stats.aoRays += c.aoRays;
     stats.thicknessRays += c.thicknessRays;
+    stats.curvatureRays += c.curvatureRays;
     stats.overlappingSamples += c.overlaps;
   }
   if (options.rayLog) {
@@ -477,6 +483,9 @@ void makeImages(Context& ctx, const std::vector<std::uint8_t>& filled, BakeResul
   if (ctx.thicknessChannel >= 0) {
     result.thickness = channelImage(ctx, ctx.thicknessChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
   }
+  if (ctx.curvatureChannel >= 0) {
+    result.curvature = channelImage(ctx, ctx.curvatureChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
+  }
   if (ctx.positionChannel >= 0) {  // the background is the bounds' minimum: 0 in 8/16-bit files
     const vec3 lowest = result.stats.positionBounds ? result.stats.positionBounds->min : vec3(0.0f);
     result.position = channelImage(ctx, ctx.positionChannel, 3, true, PixelType::F32, [&](const float* in, float* out, bool has) {
@@ -522,7 +531,7 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   // triangle; at 150 (2048², 36 per texel, 1 M triangles) they took 4–8 % longer, more
   // than the build saves: medium from 64 rays per triangle on.
   const double raysPerSample = 1.0 + (options.ambientOcclusion || options.bentNormals ? double(options.aoSamples) : 0.0) +
-                               (options.thickness ? double(options.aoSamples) : 0.0);
+                               (options.thickness ? double(options.aoSamples) : 0.0) + (options.curvature ? 8.0 : 0.0);
   const double expectedRays = double(options.width) * double(options.height) * double(options.samples) * raysPerSample;
   const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
   // The high poly is read in place (it outlives the scene): no copy of its vertices.

@@ -42,6 +42,14 @@ Image heightForOutput(const Image& height, PixelType type, float range) {
   return scaled.converted(type);
 }
 
+Image curvatureForOutput(const Image& curvature, PixelType type, float radius) {
+  if (type == PixelType::F32) return curvature;
+  Image scaled = curvature;
+  const float r = radius > 0.0f ? radius : 1.0f;
+  for (float& v : scaled.pixels<float>()) v = 0.5f + 0.5f * std::clamp(v * r, -1.0f, 1.0f);
+  return scaled.converted(type);
+}
+
 Image positionForOutput(const Image& position, PixelType type, const Bounds& bounds) {
   if (type == PixelType::F32) return position;
   Image scaled = position;

@@ -184,11 +184,14 @@ void validateOptions(const BakeOptions& options) {
     fail(ErrorKind::Usage, "AO samples must be 1..4096, got {}", options.aoSamples);
   }
   if (options.maxFront.value < 0.0f || options.maxRear.value < 0.0f || options.aoDistance.value < 0.0f ||
-      options.thicknessDistance.value < 0.0f) {
+      options.thicknessDistance.value < 0.0f || options.curvatureRadius.value < 0.0f) {
     fail(ErrorKind::Usage, "ray distances must not be negative");
   }
   if (options.thickness && !(options.thicknessDistance.value > 0.0f)) {
     fail(ErrorKind::Usage, "--thickness-distance must be more than 0 (it is the distance that reads 1)");
+  }
+  if (options.curvature && !(options.curvatureRadius.value > 0.0f)) {
+    fail(ErrorKind::Usage, "--curvature-radius must be more than 0 (it is the scale curvature is measured at)");
   }
   if (options.padding < 0) fail(ErrorKind::Usage, "--padding must not be negative, got {}", options.padding);
 }

@@ -29,8 +29,8 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
   }
   const double texels = double(options.width) * double(options.height);
   const int extraChannels = int(options.ambientOcclusion) + int(options.heightMap) + int(options.missMask) +
-                            3 * int(options.bentNormals) + int(options.thickness) + 3 * int(options.positionMap) +
-                            int(options.opacity);
+                            3 * int(options.bentNormals) + int(options.thickness) + int(options.curvature) +
+                            3 * int(options.positionMap) + int(options.opacity);
   return 64.0 + (2.0 * inputBytes + texels * (19.5 + 8.0 * extraChannels)) / (1 << 20);
 }
 
@@ -56,6 +56,7 @@ nlohmann::ordered_json toJson(const BakeStats& s) {
   report["rays"] = s.rays;
   report["ao_rays"] = s.aoRays;
   report["thickness_rays"] = s.thicknessRays;
+  report["curvature_rays"] = s.curvatureRays;
   report["hits"] = s.hits;
   report["inward_hits"] = s.inwardHits;
   report["misses"] = s.misses;
@@ -63,12 +64,13 @@ nlohmann::ordered_json toJson(const BakeStats& s) {
   report["max_front"] = s.frontDistance;
   report["max_rear"] = s.rearDistance;
   if (s.thicknessDistance > 0) report["thickness_distance"] = s.thicknessDistance;
+  if (s.curvatureRadius > 0) report["curvature_radius"] = s.curvatureRadius;
   if (s.positionBounds) {
     const vec3 &lo = s.positionBounds->min, &hi = s.positionBounds->max;
     report["position_min"] = {lo.x, lo.y, lo.z};
     report["position_max"] = {hi.x, hi.y, hi.z};
   }
-  report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays + s.thicknessRays) / s.traceSeconds : 0.0;
+  report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays + s.thicknessRays + s.curvatureRays) / s.traceSeconds : 0.0;
   report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
   report["bvh_quality"] = s.lowQualityBvh ? "low" : "medium";
   return report;

@@ -249,6 +249,57 @@ vec3 highNormal(const Context& ctx, const raytrace::Hit& hit) {
   return len > 0.0f ? n * (1.0f / len) : n;
 }
 
+/// Points curvatureAt measures around a hit: evenly spaced, so opposite pairs cancel the
+/// first-order error and the mean of the normal curvatures κ1 cos²θ + κ2 sin²θ is exactly
+/// (κ1 + κ2) / 2 whatever the turn.
+constexpr int kCurvaturePoints = 8;
+
+/// Signed mean curvature at a high-poly hit, at the scale ctx.curvatureRadius (baker.h,
+/// "Maps"): points around the hit in its tangent plane dropped onto the high poly, each
+/// giving the normal curvature towards it from the normals at both ends.
+float curvatureAt(const Context& ctx, const Found& f, const vec3& normal, std::uint64_t seed, Counters& counters) {
+  const vec3 p = f.ray.at(f.hit->t);
+  const vec3 a = std::fabs(normal.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0);
+  const vec3 t = glm::normalize(glm::cross(a, normal)), b = glm::cross(normal, t);
+  // A random turn per sample (its own stream): detail finer than the radius averages out
+  // instead of printing the same 8 directions' pattern into every texel.
+  const float step = 2.0f * kPi / float(kCurvaturePoints);
+  const float turn = toUnit(mix(seed ^ 0x6375727661747572ull)) * step;
+  float sum = 0.0f;
+  int found = 0;
+  std::uint64_t rays = 0;
+  for (int i = 0; i < kCurvaturePoints; ++i) {
+    const float angle = turn + step * float(i);
+    const vec3 dir = std::cos(angle) * t + std::sin(angle) * b;
+    // Where nothing is found (the surface falls away more steeply than 45° within r: a
+    // silhouette, a tight bend or the end of an open mesh) the point moves in, up to 3 times.
+    float r = ctx.curvatureRadius;
+    for (int attempt = 0; attempt < 4; ++attempt, r *= 0.5f) {
+      // From r above the tangent plane to r below it; the first surface that faces the
+      // hit's way (a wall crossed from behind, e.g. a thin part's far side, is skipped).
+      raytrace::Ray ray{p + r * dir + r * normal, -normal, 0.0f, 2.0f * r};
+      std::optional<raytrace::Hit> hit;
+      for (int crossing = 0; crossing < 3; ++crossing) {
+        ++rays;
+        hit = ctx.scene.intersect(ray);
+        if (!hit || glm::dot(interpolatedHighNormal(ctx, *hit), normal) > 0.0f) break;
+        ray.tnear = hit->t + ctx.epsilon;
+        hit.reset();
+      }
+      if (!hit) continue;
+      const vec3 e = ray.at(hit->t) - p;
+      const float length2 = glm::dot(e, e);
+      if (length2 > 0.0f) {
+        sum += glm::dot(highNormal(ctx, *hit) - normal, e) / length2;
+        ++found;
+      }
+      break;
+    }
+  }
+  counters.curvatureRays += rays;
+  return found ? sum / float(found) : 0.0f;
+}
+
 /// A sample's value in the output space, painted detail applied in tangent space.
 void store(const Context& ctx, const Geometry& g, vec3 objectNormal, const SampleInput& in, SampleResult& result) {
   const TangentFrame frame = TangentFrame::fromInterpolated(g.normal, g.tangent);
@@ -324,6 +375,7 @@ SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const 
       bent = o.bent;
     }
     if (ctx.thicknessChannel >= 0) result.thickness = thicknessAt(ctx, f, objectNormal, in.seed, counters);
+    if (ctx.curvatureChannel >= 0) result.curvature = curvatureAt(ctx, f, objectNormal, in.seed, counters);
     if (ctx.positionChannel >= 0) result.position = f.ray.at(f.hit->t);
   } else if (ctx.positionChannel >= 0) {
     result.position = g.position;

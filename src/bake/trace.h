@@ -30,7 +30,7 @@ struct Slot {
 /// Per-tile counters, summed at the end (integers: exact in any order).
 struct Counters {
   std::uint64_t covered = 0, conservative = 0, samples = 0, hits = 0, misses = 0, rays = 0, aoRays = 0, overlaps = 0,
-                inward = 0, thicknessRays = 0;
+                inward = 0, thicknessRays = 0, curvatureRays = 0;
 };
 
 struct Context {
@@ -41,17 +41,17 @@ struct Context {
   std::vector<std::vector<int>> bins;  ///< triangles per tile, ascending
   int tilesX = 0, tilesY = 0, root = 1;
   std::vector<vec2> sampleOffsets;  ///< root² sample positions within a texel
-  float front = 0, rear = 0, aoDistance = 0, thicknessDistance = 0;
+  float front = 0, rear = 0, aoDistance = 0, thicknessDistance = 0, curvatureRadius = 0;
   float epsilon = 0;  ///< offsets off a surface, and the nudge of a retried ray (scene units)
   mat3 worldNormalMatrix{1.0f};
-  int channels = 3;  ///< normal (3) [+ ao] [+ height] [+ miss] [+ bent (3)] [+ thickness] [+ position (3)] [+ opacity]
+  int channels = 3;  ///< normal (3) [+ ao] [+ height] [+ miss] [+ bent (3)] [+ thickness] [+ curvature] [+ position (3)] [+ opacity]
   int aoChannel = -1, heightChannel = -1, missChannel = -1;
-  int bentChannel = -1, thicknessChannel = -1, positionChannel = -1, opacityChannel = -1;
+  int bentChannel = -1, thicknessChannel = -1, curvatureChannel = -1, positionChannel = -1, opacityChannel = -1;
   bool hemisphere = false;  ///< AO rays are cast (for AO or bent normals)
-  /// Some map casts rays from the hit (AO, bent normals, thickness): the sweep's lean path
+  /// Some map casts rays from the hit (AO, bent normals, thickness, curvature): the sweep's lean path
   /// (traceGroup) is not taken.
   bool hitWork = false;
-  bool extraMaps = false;  ///< bent normals, thickness, position or opacity (storeExtraMaps)
+  bool extraMaps = false;  ///< bent normals, thickness, curvature, position or opacity (storeExtraMaps)
   /// width × height × channels, row 0 = bottom (v = 0). Left uninitialized: a texel is only
   /// read once covered is set for it (the bake or the dilation wrote it), and zeroing 12 MB
   /// on one thread before the bake cost more than the workers touching the pages themselves.
@@ -88,6 +88,7 @@ struct SampleResult {
   float height = 0.0f;
   vec3 bent{0.0f};      ///< unit bent normal in the output space (when asked)
   float thickness = 0.0f;
+  float curvature = 0.0f;  ///< signed mean curvature at the hit (when asked)
   vec3 position{0.0f};  ///< the hit point, or the low poly's position on a miss (when asked)
   bool hit = false;
   bool inward = false;  ///< the high poly's normal at the hit faces against the low poly's

@@ -486,7 +486,8 @@ TEST(BakeCli, EveryMapInOneCommandAndInABatchJob) {
   const auto r = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(out / "n.png") +
                           " --size 64x32 --samples 4 --ao-samples 4 --bent-normal " + q(out / "bent.png") +
                           " --thickness " + q(out / "thick.tif") + " --thickness-distance 1.5 --position " +
-                          q(out / "pos.exr") + " --opacity " + q(out / "alpha.png") + " --json " + q(out / "report.json"));
+                          q(out / "pos.exr") + " --opacity " + q(out / "alpha.png") + " --curvature " + q(out / "curv.png") +
+                          " --curvature-radius 0.2 --json " + q(out / "report.json"));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(loadImage(out / "bent.png").channels(), 3);
   EXPECT_EQ(loadImage(out / "bent.png").type(), PixelType::U8);
@@ -495,7 +496,9 @@ TEST(BakeCli, EveryMapInOneCommandAndInABatchJob) {
   EXPECT_EQ(position.type(), PixelType::F32);  // raw coordinates: on the unit sphere (within its facets)
   EXPECT_NEAR(glm::length(vec3(position.at(32, 16, 0), position.at(32, 16, 1), position.at(32, 16, 2))), 1.0f, 0.01f);
   EXPECT_EQ(loadImage(out / "alpha.png").at(32, 16, 0), 1.0f);
-  EXPECT_EQ(fileCount(out), 6u);
+  // A unit sphere at radius 0.2: 0.5 + 0.5 · 0.2 / 1 = 0.6 (153 / 255), to a step.
+  EXPECT_NEAR(loadImage(out / "curv.png").at(32, 16, 0), 0.6f, 1.5f / 255.0f);
+  EXPECT_EQ(fileCount(out), 7u);
   std::ifstream in(out / "report.json");
   const auto report = nlohmann::json::parse(in);
   EXPECT_EQ(report["maps"]["normal"], (out / "n.png").string());
@@ -503,6 +506,9 @@ TEST(BakeCli, EveryMapInOneCommandAndInABatchJob) {
   EXPECT_EQ(report["maps"]["thickness"], (out / "thick.tif").string());
   EXPECT_EQ(report["maps"]["position"], (out / "pos.exr").string());
   EXPECT_EQ(report["maps"]["opacity"], (out / "alpha.png").string());
+  EXPECT_EQ(report["maps"]["curvature"], (out / "curv.png").string());
+  EXPECT_FLOAT_EQ(report["curvature_radius"].get<float>(), 0.2f);
+  EXPECT_GT(report["curvature_rays"].get<double>(), 0.0);
   EXPECT_FALSE(report["maps"].contains("ao"));
   EXPECT_GT(report["ao_rays"].get<double>(), 0.0);  // bent normals cast the AO rays without --ao
   EXPECT_EQ(report["thickness_rays"], report["ao_rays"]);
@@ -511,12 +517,15 @@ TEST(BakeCli, EveryMapInOneCommandAndInABatchJob) {
   EXPECT_LT(report["position_min"][0].get<double>(), -0.99);
   EXPECT_GT(report["position_max"][1].get<double>(), 0.99);
 
-  // The same map from a batch job: the generic option mapping knows "bent-normal".
+  // The same maps from a batch job: the generic option mapping knows "bent-normal" and
+  // "curvature-radius".
   std::ofstream(d / "jobs.json") << R"({"bakes": [{"low": "low.obj", "high": "high.obj", "output": "b_n.png",
-    "size": "64x32", "samples": 4, "ao-samples": 4, "bent-normal": "b_bent.png"}]})";
+    "size": "64x32", "samples": 4, "ao-samples": 4, "bent-normal": "b_bent.png", "curvature": "b_curv.png",
+    "curvature-radius": "0.2"}]})";
   const auto b = runGlint("bake --batch " + q(d / "jobs.json") + " -q");
   ASSERT_EQ(b.status, 0) << b.output;
   EXPECT_TRUE(bytes(d / "b_bent.png") == bytes(out / "bent.png"));
+  EXPECT_TRUE(bytes(d / "b_curv.png") == bytes(out / "curv.png"));
   EXPECT_TRUE(bytes(d / "b_n.png") == bytes(out / "n.png"));
 
   // Their options are checked before any work: a zero thickness distance, two maps to one file.
@@ -524,11 +533,15 @@ TEST(BakeCli, EveryMapInOneCommandAndInABatchJob) {
   auto bad = runGlint("bake " + meshes + " --thickness " + q(d / "t.png") + " --thickness-distance 0");
   EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find("--thickness-distance"), std::string::npos) << bad.output;
+  bad = runGlint("bake " + meshes + " --curvature " + q(d / "c.png") + " --curvature-radius 0");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--curvature-radius"), std::string::npos) << bad.output;
   bad = runGlint("bake " + meshes + " --position " + q(d / "same.png") + " --opacity " + q(d / "same.png"));
   EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_FALSE(fs::exists(d / "x.png"));
   const auto help = runGlint("bake --help");
-  for (const char* text : {"--bent-normal", "--thickness", "--thickness-distance", "--position", "--opacity", "Maps"})
+  for (const char* text : {"--bent-normal", "--thickness", "--thickness-distance", "--curvature", "--curvature-radius",
+                           "--position", "--opacity", "Maps"})
     EXPECT_NE(help.output.find(text), std::string::npos) << text;
 }
 

@@ -45,6 +45,20 @@
 //   position     the hit point in object space (the low poly's position where a sample
 //                missed), averaged over the texel's hits; float files keep coordinates,
 //                8/16-bit files map stats.positionBounds (the high poly's box) to 0..1.
+//   curvature    signed mean curvature H = (κ1 + κ2) / 2 of the high poly at the hit, in
+//                1 / scene units, measured at the scale r = curvatureRadius: 8 points at
+//                distance r around the hit in its tangent plane (evenly spaced, turned by
+//                the sample's random angle) are dropped onto the high poly along −normal
+//                (a ray from 1 r above to 1 r below; the first hit facing the same way;
+//                halving r up to 3 times where none is found), and each gives the normal
+//                curvature (n(q) − n(p))·(q − p) / |q − p|² from the interpolated normals;
+//                H is their mean (exact on a sphere at any r; on a smooth surface the
+//                error falls as r², opposite points cancelling the first-order term).
+//                Convex (bending away from the normal, a sphere's outside) is positive:
+//                a sphere of radius R reads 1/R. Detail smaller than r is averaged away.
+//                0 where no sample hit. 8/16-bit files hold 0.5 + 0.5·clamp(H·r, −1, 1)
+//                (output.h's curvatureForOutput): mid-grey flat, white for a convex
+//                bend of radius r or tighter, black for a concave one.
 //   opacity      hits / samples per texel (samples outside the UV islands count as
 //                misses, so island borders are antialiased), 0 outside the islands; not
 //                dilated. A texel filled by the closest-point rule counts its one sample.
@@ -159,6 +173,10 @@ struct BakeOptions {
   /// mean distance to where they leave it, each capped at thicknessDistance, divided by it.
   bool thickness = false;
   Distance thicknessDistance{0.1f, true};  ///< thickness ray length, and the distance that reads 1
+  /// Also bake the high poly's signed mean curvature (convex positive), measured by the
+  /// normals at curvatureRadius around the hit (8 closest-hit rays per sample hit).
+  bool curvature = false;
+  Distance curvatureRadius{0.01f, true};   ///< the scale curvature is measured at; also the radius that reads white/black in 8/16-bit files
   bool positionMap = false;       ///< also bake the high-poly hit point (object space)
   bool opacity = false;           ///< also bake the fraction of each texel's samples that hit the high poly
   /// Pixel type of BakeResult::normal: F32, or U8/U16 quantized as Image::converted does —
@@ -188,6 +206,7 @@ struct BakeStats {
   std::uint64_t rays = 0;               ///< normal-pass rays (front + rear)
   std::uint64_t aoRays = 0;             ///< hemisphere rays (AO and bent normals share them)
   std::uint64_t thicknessRays = 0;      ///< rays into the surface (thickness)
+  std::uint64_t curvatureRays = 0;      ///< rays dropping points onto the high poly (curvature)
   std::uint64_t overlappingSamples = 0; ///< samples inside more than one UV triangle
   std::size_t mirroredTriangles = 0;    ///< low-poly triangles with mirrored UVs
   std::size_t degenerateUvTriangles = 0;///< low-poly triangles with zero UV area (skipped)
@@ -195,6 +214,7 @@ struct BakeStats {
   std::size_t addedVertices = 0;        ///< vertices split by tangent generation
   float frontDistance = 0, rearDistance = 0, aoDistance = 0;  ///< resolved, scene units
   float thicknessDistance = 0;          ///< resolved, scene units (0 without a thickness map)
+  float curvatureRadius = 0;            ///< resolved, scene units (0 without a curvature map)
   /// With a position map: the box its 8/16-bit files are normalized to, the high poly's
   /// bounding box (every hit point lies inside it). p = min + value · (max − min).
   std::optional<Bounds> positionBounds;
@@ -216,6 +236,8 @@ struct BakeResult {
   Image missMask;   ///< R F32 0..1 fraction of missed samples, when asked (not dilated)
   Image bentNormal; ///< RGB encoded 0..1 like `normal` (same space, directX flip), F32, when asked
   Image thickness;  ///< R F32 0..1 (1 = no exit within thicknessDistance), when asked
+  Image curvature;  ///< R F32 signed mean curvature, 1 / scene units (convex +), when asked; see
+                    ///< output.h's curvatureForOutput for 8/16-bit files
   Image position;   ///< RGB F32 object-space hit points (raw coordinates), when asked; see
                     ///< output.h's positionForOutput for 8/16-bit files
   Image opacity;    ///< R F32 0..1 hits / samples per texel, 0 outside islands (not dilated), when asked
@@ -233,14 +255,14 @@ struct BakeResult {
 BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options = {});
 
 /// Error(Usage) naming the first bad option (size, samples, AO samples when AO, bent
-/// normals or thickness are asked, distances, a zero thickness distance, padding). bake() calls it too; front ends call it before loading anything.
+/// normals or thickness are asked, distances, a zero thickness distance or curvature radius, padding). bake() calls it too; front ends call it before loading anything.
 void validateOptions(const BakeOptions& options);
 
 /// The peak memory (MiB) of a bake with these options, from the sizes of its mesh files
 /// (`inputs`: low, high and cage; a missing file counts as empty): ~64 MiB of process,
 /// about twice the input files (meshes and BVH), ~19.5 bytes per texel for the normal map
 /// and its buffers and ~8 for each extra map channel (AO, height, miss mask, thickness,
-/// opacity: one; bent normals, position: three: a float in the texel buffer and one in the
+/// curvature, opacity: one; bent normals, position: three: a float in the texel buffer and one in the
 /// result image). Measured on the studded-torus pair (1024² → 16384², 262k triangles;
 /// 16384²: 4,959 MiB; the extra channels at 2048²: 8.0 bytes each, PNG outputs).
 double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::filesystem::path>& inputs);
@@ -249,10 +271,11 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
 /// or "world"), directx.
 nlohmann::ordered_json toJson(const BakeOptions& options);
 /// The report of a bake, key by key: low_triangles, high_triangles, texels, covered_texels,
-/// conservative_texels, padded_texels, samples, rays, ao_rays, thickness_rays, hits,
-/// inward_hits, misses, hit_ratio, max_front, max_rear (scene units), rays_per_second,
-/// bvh_mib, bvh_quality ("low" or "medium"); with a thickness map thickness_distance, with
-/// a position map position_min and position_max ([x, y, z]: positionBounds).
+/// conservative_texels, padded_texels, samples, rays, ao_rays, thickness_rays,
+/// curvature_rays, hits, inward_hits, misses, hit_ratio, max_front, max_rear (scene units),
+/// rays_per_second, bvh_mib, bvh_quality ("low" or "medium"); with a thickness map
+/// thickness_distance, with a curvature map curvature_radius (scene units), with a
+/// position map position_min and position_max ([x, y, z]: positionBounds).
 nlohmann::ordered_json toJson(const BakeStats& stats);
 
 }  // namespace glint::bake

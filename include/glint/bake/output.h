@@ -1,6 +1,6 @@
 #pragma once
 // glint/bake/output.h — turning baked maps into files: pixel depth per format, and the
-// height map's scaling into integer formats.
+// height, curvature and position maps' scaling into integer formats.
 //
 /// ```cpp
 /// const glint::Image normal(64, 64, 3, glint::PixelType::F32);  // e.g. bake::BakeResult::normal
@@ -31,6 +31,12 @@ Image forOutput(const Image& image, PixelType type);
 /// A signed-distance height map for an integer file: 0.5 is the low-poly surface, 0 and 1
 /// are `range` behind and in front of it. Float files keep the distances as they are.
 Image heightForOutput(const Image& height, PixelType type, float range);
+
+/// A curvature map (BakeResult::curvature, signed mean curvature) for a file: float files
+/// keep the curvature (1 / scene units, convex positive); integer files hold
+/// 0.5 + 0.5 · clamp(H · radius, −1, 1): 0.5 flat, 1 a convex bend of `radius` or tighter,
+/// 0 a concave one (`radius`: BakeStats::curvatureRadius, the scale it was measured at).
+Image curvatureForOutput(const Image& curvature, PixelType type, float radius);
 
 /// A position map (BakeResult::position, object-space coordinates) for a file: float files
 /// keep the coordinates; integer files hold (p − bounds.min) / (bounds.max − bounds.min)
