@@ -30,7 +30,7 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
   const double texels = double(options.width) * double(options.height);
   const int extraChannels = int(options.ambientOcclusion) + int(options.heightMap) + int(options.missMask) +
                             3 * int(options.bentNormals) + int(options.thickness) + 3 * int(options.positionMap) +
-                            int(options.opacity);
+                            int(options.opacity) + 3 * int(options.vertexColor) + 2 * int(options.materialId);
   return 64.0 + (2.0 * inputBytes + texels * (19.5 + 8.0 * extraChannels)) / (1 << 20);
 }
 

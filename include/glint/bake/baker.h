@@ -48,6 +48,9 @@
 //   opacity      hits / samples per texel (samples outside the UV islands count as
 //                misses, so island borders are antialiased), 0 outside the islands; not
 //                dilated. A texel filled by the closest-point rule counts its one sample.
+//   materialId   a flat colour per high-poly material (majority of the texel's hits; dilation
+//                copies, never blends), vertexColor the high poly's interpolated vertex
+//                colour: both need the high poly's parts, see bake/groups.h (bake groups too)
 //
 // Notes for artists (from the original tool's authors)
 //   - Shared normals. Rays follow the interpolated low-poly normals. Where the low poly has
@@ -161,6 +164,10 @@ struct BakeOptions {
   Distance thicknessDistance{0.1f, true};  ///< thickness ray length, and the distance that reads 1
   bool positionMap = false;       ///< also bake the high-poly hit point (object space)
   bool opacity = false;           ///< also bake the fraction of each texel's samples that hit the high poly
+  /// Also bake material ID / vertex colour (bake/groups.h: they need the high poly read as
+  /// parts; bake() of plain meshes gives one material colour, and no vertex colours: Error(Input)).
+  bool materialId = false;
+  bool vertexColor = false;
   /// Pixel type of BakeResult::normal: F32, or U8/U16 quantized as Image::converted does —
   /// what an integer file holds, without a float copy of the map on the way.
   PixelType normalType = PixelType::F32;
@@ -219,6 +226,8 @@ struct BakeResult {
   Image position;   ///< RGB F32 object-space hit points (raw coordinates), when asked; see
                     ///< output.h's positionForOutput for 8/16-bit files
   Image opacity;    ///< R F32 0..1 hits / samples per texel, 0 outside islands (not dilated), when asked
+  Image materialId; ///< RGB F32, each channel k/255 (bake/groups.h's materialColor), when asked
+  Image vertexColor;///< RGB F32 the high poly's interpolated vertex colour, when asked
   Image coverage;   ///< R U8: 255 inside UV islands, 128 padding, 0 unused
   Mesh low;         ///< the low poly as baked: MikkTSpace tangents, split vertices — render this
   BakeStats stats;
@@ -240,8 +249,8 @@ void validateOptions(const BakeOptions& options);
 /// (`inputs`: low, high and cage; a missing file counts as empty): ~64 MiB of process,
 /// about twice the input files (meshes and BVH), ~19.5 bytes per texel for the normal map
 /// and its buffers and ~8 for each extra map channel (AO, height, miss mask, thickness,
-/// opacity: one; bent normals, position: three: a float in the texel buffer and one in the
-/// result image). Measured on the studded-torus pair (1024² → 16384², 262k triangles;
+/// opacity: one; bent normals, position, vertex colour: three; material ID: two, its 4-byte
+/// index per texel and its RGB image: a float in the texel buffer and one in the result image). Measured on the studded-torus pair (1024² → 16384², 262k triangles;
 /// 16384²: 4,959 MiB; the extra channels at 2048²: 8.0 bytes each, PNG outputs).
 double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::filesystem::path>& inputs);
 
