@@ -10,6 +10,7 @@
 #include "glint/bake/baker.h"
 #include "glint/bake/groups.h"
 #include "glint/bake/output.h"
+#include "glint/bake/scene_cache.h"
 #include "glint/bake/udim.h"
 #include "glint/core/error.h"
 #include "glint/core/file.h"
@@ -32,6 +33,7 @@
 #include <fstream>
 #include <future>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -307,9 +309,51 @@ BakePlan checkBake(const BakeArgs& a, ToolRun& run) {
   return plan;
 }
 
+/// Within one `--batch` run: the high meshes read so far, by path and modification time,
+/// and their BVHs, so that jobs sharing a high poly read it and build its BVH once.
+struct HighCache {
+  struct Entry {
+    fs::path path;
+    fs::file_time_type modified;
+    std::shared_ptr<const Mesh> mesh;        ///< read with loadMesh
+    std::shared_ptr<const MeshParts> parts;  ///< read with loadMeshParts
+  };
+  std::vector<Entry> entries;
+  bake::SceneCache scenes;  // after `entries`: destroyed first (its BVHs read their meshes)
+  /// Jobs still to run per high-mesh path as given: a mesh is kept only while one will use it.
+  std::map<std::string, int> usesLeft;
+
+  /// After a job: forget its high mesh (and BVH) when no later job reads the same path.
+  void done(const std::string& path) {
+    if (--usesLeft[path] > 0) return;
+    std::erase_if(entries, [&](const Entry& e) {
+      std::error_code ec;
+      if (!fs::equivalent(e.path, path, ec)) return false;
+      scenes.release(e.parts ? e.parts->mesh : *e.mesh);
+      return true;
+    });
+  }
+
+  Entry* find(const std::string& path, bool parts) {
+    std::error_code ec;
+    const fs::file_time_type modified = fs::last_write_time(path, ec);
+    if (ec) return nullptr;
+    for (Entry& e : entries) {
+      std::error_code same;
+      if (e.modified == modified && fs::equivalent(e.path, path, same) && (parts ? bool(e.parts) : bool(e.mesh))) return &e;
+    }
+    return nullptr;
+  }
+  void add(const std::string& path, std::shared_ptr<const Mesh> mesh, std::shared_ptr<const MeshParts> parts) {
+    std::error_code ec;
+    const fs::file_time_type modified = fs::last_write_time(path, ec);
+    if (!ec) entries.push_back({path, modified, std::move(mesh), std::move(parts)});
+  }
+};
+
 /// Loads the meshes, bakes, writes the maps and fills the run's report (finish() is the
-/// caller's).
-void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
+/// caller's). `cache`: a batch's high meshes and BVHs, shared between its jobs.
+void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run, HighCache* cache = nullptr) {
   bake::BakeOptions& options = plan.options;
   options.progress = run.showProgress();
   options.cancel = &run.cancelFlag();
@@ -337,12 +381,20 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
     return low;
   });
   // Rays need no shared vertices: skipping Assimp's vertex joining halves the load.
-  std::optional<Mesh> high;
-  std::optional<MeshParts> highParts;
+  std::shared_ptr<const Mesh> high;
+  std::shared_ptr<const MeshParts> highParts;
   std::exception_ptr highError;
+  bool highReused = false;
   try {
-    if (highAsParts) highParts = loadMeshParts(a.high, {.joinVertices = false});
-    else high = loadMesh(a.high, {.joinVertices = false});
+    if (HighCache::Entry* e = cache ? cache->find(a.high, highAsParts) : nullptr) {
+      high = e->mesh;
+      highParts = e->parts;
+      highReused = true;
+    } else {
+      if (highAsParts) highParts = std::make_shared<const MeshParts>(loadMeshParts(a.high, {.joinVertices = false}));
+      else high = std::make_shared<const Mesh>(loadMesh(a.high, {.joinVertices = false}));
+      if (cache && cache->usesLeft[a.high] > 1) cache->add(a.high, high, highParts);
+    }
   } catch (...) {
     highError = std::current_exception();
   }
@@ -350,14 +402,12 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
   if (highError) std::rethrow_exception(highError);
   loading.reset();
   const Mesh& highMesh = highParts ? highParts->mesh : *high;
+  if (highReused) log::info("bake: {}: high mesh reused from an earlier job of the batch (read once)", a.high);
+  if (cache && (highReused || cache->usesLeft[a.high] > 1)) options.sceneCache = &cache->scenes;
   bake::GroupMatch match;
   if (lowParts) {
     match = bake::matchGroups(*lowParts, *highParts, naming);
-    for (const std::string& name : match.unmatchedLow)
-      run.warn(fmt::format("bake groups: low part '{}' has no high part ('{}{}'): its texels are not baked", name,
-                           bake::groupName(name, naming.lowSuffix, false), naming.highSuffix));
-    for (const std::string& name : match.unmatchedHigh)
-      run.warn(fmt::format("bake groups: high part '{}' matches no low part: ignored", name));
+    // (unmatched parts are warned about by the bake, by name)
     log::info("bake: {} bake group{} matched by name", match.groups.size(), match.groups.size() == 1 ? "" : "s");
   }
   run.throwIfInterrupted();
@@ -406,6 +456,7 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
   auto& report = run.report();
   report["low"] = a.low;
   report["high"] = a.high;
+  if (cache) report["high_mesh_reused"] = highReused;
   report["output"] = a.output;
   Json maps = Json::object();  // every map written, by kind
   for (const auto& [kind, path] : kinds)
@@ -425,6 +476,7 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
     run.addSeconds("prepare", s.prepareSeconds);
     run.addSeconds("trace", s.traceSeconds);
     run.addSeconds("dilate", s.dilateSeconds);
+    if (s.bvhReused) log::info("bake: {}: BVH reused from an earlier job of the batch", a.high);
 
     std::optional<ToolRun::Phase> writing(std::in_place, run, "write");
     saveImage(result.normal, file(a.output));
@@ -726,6 +778,8 @@ int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& req
   };
   std::vector<Outcome> outcomes;
   Json reports = Json::array();
+  HighCache highCache;  // jobs sharing a high poly read it and build its BVH once
+  for (int i : selected) ++highCache.usesLeft[jobs[std::size_t(i)].args.high];
   std::optional<ErrorKind> firstFailure;
   for (std::size_t k = 0; k < selected.size(); ++k) {
     const int i = selected[k];
@@ -739,7 +793,7 @@ int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& req
     try {
       BakePlan plan = checkBake(job.args, run);
       plan.options.progressLabel = "bake " + step;
-      runBake(job.args, std::move(plan), run);
+      runBake(job.args, std::move(plan), run, &highCache);
       entry["status"] = "ok";
       entry.update(run.finish());
     } catch (const Error& e) {
@@ -756,6 +810,7 @@ int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& req
       entry["error"] = outcome.error;
       entry.update(run.completedReport());
     }
+    highCache.done(job.args.high);
     outcome.seconds = run.elapsed();
     outcomes.push_back(outcome);
     reports.push_back(std::move(entry));

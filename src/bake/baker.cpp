@@ -12,6 +12,7 @@
 #include "glint/raytrace/raytracer.h"
 #include "internal.h"
 #include "parts_internal.h"
+#include "scene_cache_internal.h"
 #include "trace.h"
 
 #include <tbb/blocked_range.h>
@@ -23,6 +24,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <ctime>
 #include <utility>
 
@@ -553,7 +556,16 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
   Mesh groupMesh;
   std::vector<std::uint32_t> groupIds;
   if (match) groupMesh = detail::groupHighMesh(*in.high, match->highTriangleGroup, 0, groupIds);
-  raytrace::Scene scene(match ? groupMesh : *in.high, sceneOptions(match ? groupMesh.triangleCount() : in.high->triangleCount()));
+  // A cached BVH (a batch's shared high poly) only for the input mesh itself: a copy with
+  // generated normals, or a group's triangles, is this bake's own.
+  std::shared_ptr<raytrace::Scene> cachedScene;
+  std::optional<raytrace::Scene> ownScene;
+  if (!match && options.sceneCache && in.high == &high) {
+    cachedScene = options.sceneCache->impl().get(high, sceneOptions(high.triangleCount()), stats.bvhReused);
+  } else {
+    ownScene.emplace(match ? groupMesh : *in.high, sceneOptions(match ? groupMesh.triangleCount() : in.high->triangleCount()));
+  }
+  raytrace::Scene& scene = cachedScene ? *cachedScene : *ownScene;
   stats.bvhBytes = scene.memoryBytes();
   stats.lowQualityBvh = fewRays;
   const double bvhSeconds = secondsSince(start) - checkSeconds;

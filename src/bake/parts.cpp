@@ -83,8 +83,9 @@ GroupMatch matchGroups(const MeshParts& low, const MeshParts& high, const GroupN
 vec3 materialColor(std::string_view name) {
   std::uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a 64
   for (const char c : name) hash = (hash ^ std::uint8_t(c)) * 0x100000001b3ull;
-  // The golden ratio spreads even neighbouring hashes around the hue circle.
-  const double hue = std::fmod(double(hash >> 11) * 0.6180339887498949, 1.0);
+  // The golden ratio spreads even neighbouring hashes around the hue circle. (32 bits of the
+  // hash: a double keeps the fraction of their product to 1e-6.)
+  const double hue = std::fmod(double(std::uint32_t(hash >> 32)) * 0.6180339887498949, 1.0);
   const double s = 0.7, v = 0.95;
   const double h6 = hue * 6.0;
   const int sector = int(h6) % 6;

@@ -71,6 +71,7 @@ nlohmann::ordered_json toJson(const BakeStats& s) {
   report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays + s.thicknessRays) / s.traceSeconds : 0.0;
   report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
   report["bvh_quality"] = s.lowQualityBvh ? "low" : "medium";
+  if (s.bvhReused) report["bvh_reused"] = true;
   return report;
 }
 

@@ -183,6 +183,14 @@ TEST(BakeMaterialId, EveryTexelIsExactlyItsMaterialsColour) {
   const vec3 red = bake::materialColor("red_paint"), steel = bake::materialColor("steel");
   EXPECT_NE(red, steel);
   EXPECT_EQ(bake::materialColor("steel"), steel);  // a function of the name
+  // Hues from a hash are not spread by construction: only check that common names differ.
+  const std::vector<std::string> names{"red", "blue", "", "steel", "red_paint", "rubber", "glass", "wood", "metal"};
+  double closest = 1e9;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    for (std::size_t j = i + 1; j < names.size(); ++j)
+      closest = std::min(closest, double(glm::length(255.0f * (bake::materialColor(names[i]) - bake::materialColor(names[j])))));
+  std::printf("material ID: the closest two of %zu common names' colours are %.1f apart (8-bit RGB)\n", names.size(), closest);
+  EXPECT_GT(closest, 0.0);
   const auto bytes = [](const vec3& c) { return glm::ivec3(glm::round(c * 255.0f)); };
   int exact = 0, sided = 0;
   for (int row = 0; row < 64; ++row) {
@@ -262,4 +270,22 @@ TEST(MeshParts, ObjObjectsMaterialsAndColours) {
   for (int k = 0; k < 3; ++k) sum += vec3(parts.colors[parts.mesh.indices[std::size_t(k)]]);
   EXPECT_EQ(sum, vec3(1.0f));
   std::remove(path.c_str());
+}
+
+TEST(MeshParts, ObjMaterialsFromAnMtlLibrary) {
+  const std::string dir = ::testing::TempDir();
+  {
+    std::ofstream(dir + "parts_lib.mtl") << "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n";
+    std::ofstream out(dir + "parts_lib.obj");
+    out << "mtllib parts_lib.mtl\no a_high\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n"
+           "o b_high\nusemtl blue\nv 2 0 0\nv 3 0 0\nv 2 1 0\nvn 0 0 1\nf 4//2 5//2 6//2\n";
+  }
+  const MeshParts parts = loadMeshParts(dir + "parts_lib.obj", {.joinVertices = false});
+  for (std::size_t t = 0; t < parts.trianglePart.size(); ++t)
+    std::printf("triangle %zu: part %s, material %s\n", t, parts.partNames[parts.trianglePart[t]].c_str(),
+                parts.hasMaterials() && parts.triangleMaterial[t] != MeshParts::kNoMaterial
+                    ? parts.materialNames[parts.triangleMaterial[t]].c_str() : "-");
+  ASSERT_TRUE(parts.hasMaterials());
+  EXPECT_EQ(parts.materialNames[parts.triangleMaterial[0]], "red");
+  EXPECT_EQ(parts.materialNames[parts.triangleMaterial[1]], "blue");
 }

@@ -176,6 +176,9 @@ struct BakeOptions {
   std::string progressLabel = "bake";  ///< the bar's label (`glint bake --batch`: "bake 2/3")
   /// Polled between tiles; when it becomes true bake() throws Error(Interrupted).
   const std::atomic<bool>* cancel = nullptr;
+  /// BVHs kept between bakes (bake/scene_cache.h): a bake of a high poly the cache has seen
+  /// (same arrays, same BVH quality) reuses its BVH. Null: built for this bake only.
+  class SceneCache* sceneCache = nullptr;
   /// Benchmarks only: receives every ray the normal pass casts, in a deterministic order
   /// (32 bytes per ray; keep bakes small).
   std::vector<raytrace::Ray>* rayLog = nullptr;
@@ -206,6 +209,7 @@ struct BakeStats {
   /// bounding box (every hit point lies inside it). p = min + value · (max − min).
   std::optional<Bounds> positionBounds;
   std::size_t bvhBytes = 0;             ///< Embree memory for the high poly
+  bool bvhReused = false;               ///< the BVH came from BakeOptions::sceneCache
   bool lowQualityBvh = false;           ///< BVH built at Embree's low quality (few rays per triangle), else medium
   // The three phases add up to the whole of bake():
   double prepareSeconds = 0;            ///< checks, tangents, BVH build, per-triangle tables

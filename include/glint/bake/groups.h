@@ -31,7 +31,7 @@
 //   texel's hitting samples landed on (ties: the earliest sample), so every texel holds
 //   exactly one material's colour — no averaging across materials, and dilation copies
 //   the nearest texel's colour instead of averaging. materialColor() is a stable function
-//   of the name: FNV-1a 64 of its bytes times the golden ratio (mod 1) is the hue, with
+//   of the name: the top 32 bits of FNV-1a 64 of its bytes times the golden ratio (mod 1) is the hue, with
 //   saturation 0.7 and value 0.95, rounded to 8 bits per channel (the float image holds
 //   exactly k/255). A high poly without materials bakes one colour (the colour of ""),
 //   with a warning. Texels none of whose samples hit are black.
