@@ -289,3 +289,24 @@ TEST(MeshParts, ObjMaterialsFromAnMtlLibrary) {
   EXPECT_EQ(parts.materialNames[parts.triangleMaterial[0]], "red");
   EXPECT_EQ(parts.materialNames[parts.triangleMaterial[1]], "blue");
 }
+
+TEST(MeshParts, PlyVertexColours) {
+  const std::string path = ::testing::TempDir() + "parts_colours.ply";
+  {
+    std::ofstream out(path);
+    out << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+           "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
+           "property list uchar int vertex_indices\nend_header\n"
+           "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 51\n3 0 1 2\n";
+  }
+  const MeshParts parts = loadMeshParts(path, {.joinVertices = false});
+  ASSERT_TRUE(parts.hasColors());
+  ASSERT_EQ(parts.mesh.triangleCount(), 1u);
+  vec3 sum(0.0f);
+  for (int k = 0; k < 3; ++k) sum += vec3(parts.colors[parts.mesh.indices[std::size_t(k)]]);
+  EXPECT_NEAR(sum.r, 1.0f, 1e-6f);
+  EXPECT_NEAR(sum.g, 1.0f, 1e-6f);
+  EXPECT_NEAR(sum.b, 0.2f, 1e-6f);
+  EXPECT_FALSE(parts.hasMaterials());
+  std::remove(path.c_str());
+}
