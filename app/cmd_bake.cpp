@@ -8,13 +8,16 @@
 #include "common.h"
 
 #include "glint/bake/baker.h"
+#include "glint/bake/groups.h"
 #include "glint/bake/output.h"
+#include "glint/bake/scene_cache.h"
 #include "glint/bake/udim.h"
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
 #include "glint/image/image.h"
 #include "glint/mesh/mesh.h"
+#include "glint/mesh/parts.h"
 
 #include <fmt/format.h>
 
@@ -27,7 +30,10 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <future>
+#include <iterator>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -47,12 +53,22 @@ constexpr const char* kFile = "FILE";
 struct BakeArgs {
   std::string low, high, output, size = "1024x1024", space = "tangent", worldMatrix;
   std::string maxFront = "5%", maxRear = "5%", aoDistance = "10%", thicknessDistance = "10%", curvatureRadius = "1%";
-  std::string cage, detail, ao, height, missMask, bentNormal, thickness, curvature, position, opacity;
+  std::string cage, detail, ao, height, missMask, bentNormal, thickness, curvature, position, opacity, materialId,
+      vertexColor;
+  std::string lowSuffix = "_low", highSuffix = "_high";
   int samples = 1, padding = 16, bits = 0, aoSamples = 16;
   float detailScale = 8.0f;
   bool directX = false, frontFirst = false, fillAll = false;
   ToolSettings tool;
 };
+
+/// Whether a file's bytes contain `text` (names are stored as plain strings in OBJ, PLY, FBX
+/// and glTF alike): a millisecond's check before reading a low poly as parts.
+bool mentionsText(const std::string& path, const std::string& text) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return bytes.find(text) != std::string::npos;
+}
 
 /// "5%" → 5 % of the low poly's diagonal; "0.2" → 0.2 scene units.
 bake::Distance parseDistance(const std::string& text, const char* option) {
@@ -120,6 +136,13 @@ Maps (each its own file, baked in the same pass as the normal map; docs/bake.md,
   --position     hit point, object space: EXR raw, 8/16-bit over the high poly's box
   --opacity      fraction of a texel's samples that hit, 0 outside islands
   --miss-mask    fraction of samples whose rays found nothing (debug)
+  --material-id  flat colour per high-poly material (a stable colour of its name)
+  --vertex-color the high poly's vertex colours, interpolated at the hits
+
+Bake groups (docs/bake.md, "Bake groups"): when the low file's parts are named
+<name>_low, each bakes only against the high parts <name>_high and <name>_high_*, so
+parts that touch or interpenetrate bake as if exploded. --low-suffix/--high-suffix
+change the suffixes; unmatched parts are reported by name (low ones are not baked).
 
 How it works: for every texel, rays start on the low poly (interpolated position) and
 follow its interpolated normal forwards (--max-front) and backwards (--max-rear): the
@@ -204,6 +227,13 @@ void addBakeOptions(CLI::App& cmd, BakeArgs& a, bool required) {
                  "8/16-bit maps the high poly's bounding box to 0..1 (position_min/max in the report)")->type_name(kFile);
   cmd.add_option("--opacity", a.opacity, "Also bake coverage/opacity: the fraction of each texel's samples that hit the "
                  "high poly, 0 outside UV islands (not dilated)")->type_name(kFile);
+  cmd.add_option("--material-id", a.materialId, "Also bake a material ID map: a flat colour per high-poly material "
+                 "(majority of the texel's hits, never blended), stable from the material's name")->type_name(kFile);
+  cmd.add_option("--vertex-color", a.vertexColor, "Also bake the high poly's vertex colours (OBJ 'v x y z r g b', PLY "
+                 "red/green/blue, glTF COLOR_0), averaged over each texel's hits")->type_name(kFile);
+  cmd.add_option("--low-suffix", a.lowSuffix, "Bake groups: low parts are named <group><suffix>")->capture_default_str();
+  cmd.add_option("--high-suffix", a.highSuffix, "Bake groups: high parts are named <group><suffix> or "
+                 "<group><suffix>_*")->capture_default_str();
   addToolOptions(cmd, a.tool, "texels, rays, hit ratio, misses, BVH size");
   cmd.get_option("--json")->type_name(kFile);
 }
@@ -217,7 +247,8 @@ BakeFiles bakeFiles(const BakeArgs& a) {
   return {{{a.low, "the low poly"}, {a.high, "the high poly"}, {a.cage, "--cage"}, {a.detail, "--height-detail"}},
           {{a.output, "-o"}, {a.ao, "--ao"}, {a.height, "--height"}, {a.missMask, "--miss-mask"},
            {a.bentNormal, "--bent-normal"}, {a.thickness, "--thickness"}, {a.curvature, "--curvature"},
-           {a.position, "--position"}, {a.opacity, "--opacity"}, {a.tool.json, "--json"}}};
+           {a.position, "--position"}, {a.opacity, "--opacity"}, {a.materialId, "--material-id"},
+           {a.vertexColor, "--vertex-color"}, {a.tool.json, "--json"}}};
 }
 
 /// What checkBake worked out for runBake.
@@ -261,11 +292,15 @@ BakePlan checkBake(const BakeArgs& a, ToolRun& run) {
   options.curvatureRadius = parseDistance(a.curvatureRadius, "--curvature-radius");
   options.positionMap = !a.position.empty();
   options.opacity = !a.opacity.empty();
+  options.materialId = !a.materialId.empty();
+  options.vertexColor = !a.vertexColor.empty();
+  if (a.lowSuffix.empty() || a.highSuffix.empty() || a.lowSuffix == a.highSuffix)
+    fail(ErrorKind::Usage, "--low-suffix and --high-suffix must be non-empty and differ");
   bake::validateOptions(options);
   options.normalType = bake::outputType(a.output, a.bits);  // quantized by the baker: no float copy of the map
   std::vector<std::string> outputs{a.output};
-  for (const std::string* extra :
-       {&a.ao, &a.height, &a.missMask, &a.bentNormal, &a.thickness, &a.curvature, &a.position, &a.opacity}) {
+  for (const std::string* extra : {&a.ao, &a.height, &a.missMask, &a.bentNormal, &a.thickness, &a.curvature, &a.position,
+                                   &a.opacity, &a.materialId, &a.vertexColor}) {
     if (extra->empty()) continue;
     bake::outputType(*extra, a.bits);  // --bits applies to every map: check them all now
     outputs.push_back(*extra);
@@ -286,9 +321,51 @@ BakePlan checkBake(const BakeArgs& a, ToolRun& run) {
   return plan;
 }
 
+/// Within one `--batch` run: the high meshes read so far, by path and modification time,
+/// and their BVHs, so that jobs sharing a high poly read it and build its BVH once.
+struct HighCache {
+  struct Entry {
+    fs::path path;
+    fs::file_time_type modified;
+    std::shared_ptr<const Mesh> mesh;        ///< read with loadMesh
+    std::shared_ptr<const MeshParts> parts;  ///< read with loadMeshParts
+  };
+  std::vector<Entry> entries;
+  bake::SceneCache scenes;  // after `entries`: destroyed first (its BVHs read their meshes)
+  /// Jobs still to run per high-mesh path as given: a mesh is kept only while one will use it.
+  std::map<std::string, int> usesLeft;
+
+  /// After a job: forget its high mesh (and BVH) when no later job reads the same path.
+  void done(const std::string& path) {
+    if (--usesLeft[path] > 0) return;
+    std::erase_if(entries, [&](const Entry& e) {
+      std::error_code ec;
+      if (!fs::equivalent(e.path, path, ec)) return false;
+      scenes.release(e.parts ? e.parts->mesh : *e.mesh);
+      return true;
+    });
+  }
+
+  Entry* find(const std::string& path, bool parts) {
+    std::error_code ec;
+    const fs::file_time_type modified = fs::last_write_time(path, ec);
+    if (ec) return nullptr;
+    for (Entry& e : entries) {
+      std::error_code same;
+      if (e.modified == modified && fs::equivalent(e.path, path, same) && (parts ? bool(e.parts) : bool(e.mesh))) return &e;
+    }
+    return nullptr;
+  }
+  void add(const std::string& path, std::shared_ptr<const Mesh> mesh, std::shared_ptr<const MeshParts> parts) {
+    std::error_code ec;
+    const fs::file_time_type modified = fs::last_write_time(path, ec);
+    if (!ec) entries.push_back({path, modified, std::move(mesh), std::move(parts)});
+  }
+};
+
 /// Loads the meshes, bakes, writes the maps and fills the run's report (finish() is the
-/// caller's).
-void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
+/// caller's). `cache`: a batch's high meshes and BVHs, shared between its jobs.
+void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run, HighCache* cache = nullptr) {
   bake::BakeOptions& options = plan.options;
   options.progress = run.showProgress();
   options.cancel = &run.cancelFlag();
@@ -298,29 +375,60 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
   // The high poly (the big file) is parsed here while a second thread reads the rest;
   // errors are reported in argument order: low, high, cage, detail.
   std::optional<ToolRun::Phase> loading(std::in_place, run, "load");
+  // Named parts (bake groups, material ID, vertex colour) are read through Assimp; a low
+  // file that does not even contain the low suffix is read as before, in parallel with the high.
+  const bake::GroupNaming naming{a.lowSuffix, a.highSuffix};
+  std::optional<MeshParts> lowParts;
+  if (mentionsText(a.low, naming.lowSuffix)) {
+    lowParts = loadMeshParts(a.low);
+    bool grouped = false;
+    for (const std::string& name : lowParts->partNames) grouped = grouped || !bake::groupName(name, naming.lowSuffix, false).empty();
+    if (!grouped) lowParts.reset();
+  }
+  const bool highAsParts = lowParts || options.materialId || options.vertexColor;
   auto others = std::async(std::launch::async, [&] {
-    Mesh low = loadMesh(a.low);
+    Mesh low = lowParts ? lowParts->mesh : loadMesh(a.low);
     if (!a.cage.empty()) options.cage = loadMesh(a.cage);
     if (!a.detail.empty()) options.detail = bake::HeightDetail{loadImage(a.detail), a.detailScale};
     return low;
   });
   // Rays need no shared vertices: skipping Assimp's vertex joining halves the load.
-  std::optional<Mesh> high;
+  std::shared_ptr<const Mesh> high;
+  std::shared_ptr<const MeshParts> highParts;
   std::exception_ptr highError;
+  bool highReused = false;
   try {
-    high = loadMesh(a.high, {.joinVertices = false});
+    if (HighCache::Entry* e = cache ? cache->find(a.high, highAsParts) : nullptr) {
+      high = e->mesh;
+      highParts = e->parts;
+      highReused = true;
+    } else {
+      if (highAsParts) highParts = std::make_shared<const MeshParts>(loadMeshParts(a.high, {.joinVertices = false}));
+      else high = std::make_shared<const Mesh>(loadMesh(a.high, {.joinVertices = false}));
+      if (cache && cache->usesLeft[a.high] > 1) cache->add(a.high, high, highParts);
+    }
   } catch (...) {
     highError = std::current_exception();
   }
   const Mesh low = others.get();
   if (highError) std::rethrow_exception(highError);
   loading.reset();
+  const Mesh& highMesh = highParts ? highParts->mesh : *high;
+  if (highReused) log::info("bake: {}: high mesh reused from an earlier job of the batch (read once)", a.high);
+  if (cache && (highReused || cache->usesLeft[a.high] > 1)) options.sceneCache = &cache->scenes;
+  bake::GroupMatch match;
+  if (lowParts) {
+    match = bake::matchGroups(*lowParts, *highParts, naming);
+    // (unmatched parts are warned about by the bake, by name)
+    log::info("bake: {} bake group{} matched by name", match.groups.size(), match.groups.size() == 1 ? "" : "s");
+  }
   run.throwIfInterrupted();
   // Every map this bake writes: (kind for the report, the path as given).
   const std::pair<const char*, const std::string*> kinds[] = {
       {"normal", &a.output},         {"ao", &a.ao},          {"height", &a.height},     {"miss_mask", &a.missMask},
       {"bent_normal", &a.bentNormal}, {"thickness", &a.thickness}, {"curvature", &a.curvature},
-      {"position", &a.position},     {"opacity", &a.opacity}};
+      {"position", &a.position},     {"opacity", &a.opacity},     {"material_id", &a.materialId},
+      {"vertex_color", &a.vertexColor}};
 
   // UDIM: UVs beyond the unit square, or outputs named with <UDIM>, bake one image per tile.
   bool named = false, unnamed = false;
@@ -336,6 +444,8 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
     }
     if (options.cage)
       fail(ErrorKind::Usage, "bake: --cage with UDIM tiles is not supported yet: bake each tile's part on its own");
+    if (match.grouped())
+      fail(ErrorKind::Usage, "bake: bake groups with UDIM tiles are not supported yet: bake each tile's parts on their own");
     bake::UdimSplit split = bake::splitUdimTiles(low);
     if (split.outOfRangeTriangles)
       run.warn(fmt::format("{} low-poly triangle{} with UVs outside the UDIM range (u in [0, 10), v >= 0) left out",
@@ -360,22 +470,27 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
   auto& report = run.report();
   report["low"] = a.low;
   report["high"] = a.high;
+  if (cache) report["high_mesh_reused"] = highReused;
   report["output"] = a.output;
   Json maps = Json::object();  // every map written, by kind
   for (const auto& [kind, path] : kinds)
     if (!path->empty()) maps[kind] = *path;
   report["maps"] = std::move(maps);
   report.update(bake::toJson(options));
+  if (match.grouped()) report.update(bake::toJson(match));
   Json tileReports = Json::array();
   const std::string label = options.progressLabel;
   for (const bake::UdimTile& tile : tiles) {
     const auto file = [&](const std::string& path) { return udim ? bake::udimPath(path, tile.number) : path; };
     if (udim) options.progressLabel = fmt::format("{} tile {}", label, tile.number);
-    const bake::BakeResult result = bake::bake(tile.low, *high, options);
+    const bake::BakeResult result =
+        highParts ? bake::bake(lowParts && !udim ? *lowParts : MeshParts{.mesh = tile.low}, *highParts, match, options)
+                  : bake::bake(tile.low, *high, options);
     const bake::BakeStats& s = result.stats;
     run.addSeconds("prepare", s.prepareSeconds);
     run.addSeconds("trace", s.traceSeconds);
     run.addSeconds("dilate", s.dilateSeconds);
+    if (s.bvhReused) log::info("bake: {}: BVH reused from an earlier job of the batch", a.high);
 
     std::optional<ToolRun::Phase> writing(std::in_place, run, "write");
     saveImage(result.normal, file(a.output));
@@ -398,9 +513,13 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run) {
                 file(a.position));
     if (!a.opacity.empty())
       saveImage(bake::forOutput(result.opacity, bake::outputType(a.opacity, a.bits)), file(a.opacity));
+    if (!a.materialId.empty())
+      saveImage(bake::forOutput(result.materialId, bake::outputType(a.materialId, a.bits)), file(a.materialId));
+    if (!a.vertexColor.empty())
+      saveImage(bake::forOutput(result.vertexColor, bake::outputType(a.vertexColor, a.bits)), file(a.vertexColor));
     writing.reset();
     log::info("bake: {} ({} triangles) → {} ({}x{}, {} per texel): {} texels baked, {} padded; {} rays, hit ratio "
-              "{:.4f}; {:.2f} s", a.high, high->triangleCount(), file(a.output), options.width, options.height,
+              "{:.4f}; {:.2f} s", a.high, highMesh.triangleCount(), file(a.output), options.width, options.height,
               options.samples, s.coveredTexels, s.paddedTexels, s.rays, s.hitRatio(), run.elapsed());
     for (const auto& w : result.warnings) run.recordWarning(w);
     if (!udim) {
@@ -676,6 +795,8 @@ int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& req
   };
   std::vector<Outcome> outcomes;
   Json reports = Json::array();
+  HighCache highCache;  // jobs sharing a high poly read it and build its BVH once
+  for (int i : selected) ++highCache.usesLeft[jobs[std::size_t(i)].args.high];
   std::optional<ErrorKind> firstFailure;
   for (std::size_t k = 0; k < selected.size(); ++k) {
     const int i = selected[k];
@@ -689,7 +810,7 @@ int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& req
     try {
       BakePlan plan = checkBake(job.args, run);
       plan.options.progressLabel = "bake " + step;
-      runBake(job.args, std::move(plan), run);
+      runBake(job.args, std::move(plan), run, &highCache);
       entry["status"] = "ok";
       entry.update(run.finish());
     } catch (const Error& e) {
@@ -706,6 +827,7 @@ int runBatch(const CLI::App& cmd, const BakeArgs& given, const BatchRequest& req
       entry["error"] = outcome.error;
       entry.update(run.completedReport());
     }
+    highCache.done(job.args.high);
     outcome.seconds = run.elapsed();
     outcomes.push_back(outcome);
     reports.push_back(std::move(entry));
@@ -781,6 +903,8 @@ std::vector<BatchBake> batchBakes(const std::string& file) {
     options.curvature = !job.args.curvature.empty();
     options.positionMap = !job.args.position.empty();
     options.opacity = !job.args.opacity.empty();
+    options.materialId = !job.args.materialId.empty();
+    options.vertexColor = !job.args.vertexColor.empty();
     b.memoryMiB = bake::estimatePeakMemoryMiB(options, {job.args.low, job.args.high, job.args.cage});
     bakes.push_back(std::move(b));
   }

@@ -11,6 +11,8 @@
 #include "glint/mesh/tangents.h"
 #include "glint/raytrace/raytracer.h"
 #include "internal.h"
+#include "parts_internal.h"
+#include "scene_cache_internal.h"
 #include "trace.h"
 
 #include <tbb/blocked_range.h>
@@ -21,6 +23,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
 #include <ctime>
 #include <utility>
 
@@ -203,6 +208,7 @@ void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleRe
   if (ctx.heightChannel >= 0) out[ctx.heightChannel] = height / count;
   if (ctx.missChannel >= 0) out[ctx.missChannel] = float(missed) / count;
   if (ctx.extraMaps) storeExtraMaps(ctx, p, results, hits, out);
+  if (ctx.parts) detail::storePartsMaps(ctx, p.texel, results.subspan(p.first, p.count), out);
   ctx.covered[p.texel] = 1;
 }
 
@@ -343,13 +349,16 @@ void setUpContext(Context& ctx, BakeStats& stats) {
   if (options.curvature) ctx.curvatureChannel = ctx.channels++;
   if (options.positionMap) ctx.positionChannel = std::exchange(ctx.channels, ctx.channels + 3);
   if (options.opacity) ctx.opacityChannel = ctx.channels++;
-  ctx.hitWork = ctx.hemisphere || options.thickness || options.curvature;
+  if (options.vertexColor) ctx.colorChannel = std::exchange(ctx.channels, ctx.channels + 3);
+  // The material and colour maps read the hit's triangle, which shade() records: no lean path.
+  ctx.hitWork = ctx.hemisphere || options.thickness || options.curvature || options.materialId || options.vertexColor;
   ctx.extraMaps = options.bentNormals || options.thickness || options.curvature || options.positionMap || options.opacity;
   stats.texels = std::uint64_t(options.width) * std::uint64_t(options.height);
   const std::size_t texelValues = std::size_t(stats.texels) * std::size_t(ctx.channels);
   ctx.texelStorage = std::make_unique_for_overwrite<float[]>(texelValues);
   ctx.texels = std::span<float>(ctx.texelStorage.get(), texelValues);
   ctx.covered.assign(std::size_t(stats.texels), 0);
+  if (options.materialId) ctx.texelMaterial.assign(std::size_t(stats.texels), 0);
 }
 
 /// The low poly's triangles in texel space, binned into tiles (in id order, so bins are
@@ -492,6 +501,12 @@ void makeImages(Context& ctx, const std::vector<std::uint8_t>& filled, BakeResul
       for (int k = 0; k < 3; ++k) out[k] = has ? in[k] : lowest[k];
     });
   }
+  if (ctx.colorChannel >= 0) {
+    result.vertexColor = channelImage(ctx, ctx.colorChannel, 3, true, PixelType::F32, [](const float* in, float* out, bool has) {
+      for (int k = 0; k < 3; ++k) out[k] = has ? in[k] : 0.0f;
+    });
+  }
+  if (!ctx.texelMaterial.empty()) result.materialId = detail::materialImage(ctx);
   ctx.covered = islands;  // the miss mask and opacity are not dilated
   if (ctx.missChannel >= 0) {
     result.missMask = channelImage(ctx, ctx.missChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
@@ -514,6 +529,10 @@ void makeImages(Context& ctx, const std::vector<std::uint8_t>& filled, BakeResul
 }  // namespace
 
 BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
+  return detail::bakeWith(low, high, options, nullptr);
+}
+
+BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions& options, const PartsInput* parts) {
   BakeResult result;
   BakeStats& stats = result.stats;
   stats.lowTriangles = low.triangleCount();
@@ -535,22 +554,89 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   const double expectedRays = double(options.width) * double(options.height) * double(options.samples) * raysPerSample;
   const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
   // The high poly is read in place (it outlives the scene): no copy of its vertices.
-  const raytrace::Scene scene(*in.high, {.quality = fewRays ? raytrace::SceneOptions::Quality::Fast
-                                                            : raytrace::SceneOptions::Quality::Default,
-                                         .shareMeshes = true});
+  const auto sceneOptions = [&](std::size_t triangles) {
+    return raytrace::SceneOptions{.quality = expectedRays < 64.0 * double(triangles) ? raytrace::SceneOptions::Quality::Fast
+                                                                                     : raytrace::SceneOptions::Quality::Default,
+                                  .shareMeshes = true};
+  };
+  // Bake groups (bake/groups.h): one BVH per group, built in turn; `scene` holds the current
+  // one (Context refers to it), `groupMesh` its triangles, `groupIds` their high-poly ids.
+  const GroupMatch* match = parts && parts->match && parts->match->grouped() ? parts->match : nullptr;
+  Mesh groupMesh;
+  std::vector<std::uint32_t> groupIds;
+  if (match) groupMesh = detail::groupHighMesh(*in.high, match->highTriangleGroup, 0, groupIds);
+  // A cached BVH (a batch's shared high poly) only for the input mesh itself: a copy with
+  // generated normals, or a group's triangles, is this bake's own.
+  std::shared_ptr<raytrace::Scene> cachedScene;
+  std::optional<raytrace::Scene> ownScene;
+  if (!match && options.sceneCache && in.high == &high) {
+    cachedScene = options.sceneCache->impl().get(high, sceneOptions(high.triangleCount()), stats.bvhReused);
+  } else {
+    ownScene.emplace(match ? groupMesh : *in.high, sceneOptions(match ? groupMesh.triangleCount() : in.high->triangleCount()));
+  }
+  raytrace::Scene& scene = cachedScene ? *cachedScene : *ownScene;
   stats.bvhBytes = scene.memoryBytes();
   stats.lowQualityBvh = fewRays;
   const double bvhSeconds = secondsSince(start) - checkSeconds;
   const auto setupStart = Clock::now();
   Context ctx{options, in, scene};
   setUpContext(ctx, stats);
+  detail::PartsTables partsTables;
+  if (options.materialId || options.vertexColor) {
+    partsTables = detail::makePartsTables(options, *in.high, parts ? parts->high : nullptr, result.warnings);
+    ctx.parts = &partsTables;
+  }
+  // A group's surface offsets are those of the group baked alone: its low triangles' and
+  // its BVH's sizes (BVH quality too, above), so that it bakes the same texels either way.
+  const auto groupEpsilon = [&](std::uint32_t g) {
+    Bounds b{vec3(std::numeric_limits<float>::max()), vec3(-std::numeric_limits<float>::max())};
+    for (std::size_t t = 0; t < match->lowTriangleGroup.size(); ++t) {
+      if (match->lowTriangleGroup[t] != g) continue;
+      for (int k = 0; k < 3; ++k) {
+        const vec3& p = in.low.positions[in.low.indices[3 * t + std::size_t(k)]];
+        b.min = glm::min(b.min, p);
+        b.max = glm::max(b.max, p);
+      }
+    }
+    return 1e-5f * std::max(b.diagonal(), scene.bounds().diagonal());
+  };
+  if (match) {  // position bounds are the whole high poly's, as without groups
+    if (options.positionMap) stats.positionBounds = in.high->bounds();
+    ctx.epsilon = groupEpsilon(0);
+    ctx.highCornerNormals = groupMesh.normals.data();
+    ctx.highTriangleIds = groupIds.data();
+  }
   const double setupSeconds = secondsSince(setupStart);
   stats.prepareSeconds = secondsSince(start);  // the phases cover the whole of bake()
 
   start = Clock::now();
   const double cpuStart = processCpuSeconds();
   binTriangles(ctx);
-  bakeTiles(ctx, stats);
+  if (!match) {
+    bakeTiles(ctx, stats);
+  } else {
+    // Each group's low triangles against its own high parts' BVH.
+    const std::vector<std::vector<int>> allBins = ctx.bins;
+    for (std::uint32_t g = 0; g < match->groups.size(); ++g) {
+      if (g > 0) {
+        std::vector<std::uint32_t> ids;
+        Mesh next = detail::groupHighMesh(*in.high, match->highTriangleGroup, g, ids);
+        scene = raytrace::Scene(next, sceneOptions(next.triangleCount()));  // (a moved vector keeps its buffer: the scene's view stays valid)
+        groupMesh = std::move(next);
+        groupIds = std::move(ids);
+        ctx.highCornerNormals = groupMesh.normals.data();
+        ctx.highTriangleIds = groupIds.data();
+        ctx.epsilon = groupEpsilon(g);
+        stats.bvhBytes = std::max(stats.bvhBytes, scene.memoryBytes());
+      }
+      for (std::size_t i = 0; i < allBins.size(); ++i) {
+        ctx.bins[i].clear();
+        for (int tri : allBins[i])
+          if (match->lowTriangleGroup[std::size_t(tri)] == g) ctx.bins[i].push_back(tri);
+      }
+      bakeTiles(ctx, stats);
+    }
+  }
   stats.traceSeconds = secondsSince(start);
   stats.traceCpuSeconds = processCpuSeconds() - cpuStart;
   warnAboutSamples(ctx, stats, result.warnings);
@@ -562,6 +648,8 @@ BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
     stats.paddedTexels = dilate(ctx.texels, ctx.channels, options.width, options.height, filled,
                                 {.passes = options.fillAll ? -1 : options.padding, .unitVectorChannels = 3});
   }
+  if (!ctx.texelMaterial.empty() && (options.padding > 0 || options.fillAll))
+    detail::dilateMaterials(ctx.texelMaterial, options.width, options.height, options.fillAll ? -1 : options.padding);
   const double dilationSeconds = secondsSince(start);
   const auto imagesStart = Clock::now();
   makeImages(ctx, filled, result);

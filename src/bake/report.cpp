@@ -30,7 +30,8 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
   const double texels = double(options.width) * double(options.height);
   const int extraChannels = int(options.ambientOcclusion) + int(options.heightMap) + int(options.missMask) +
                             3 * int(options.bentNormals) + int(options.thickness) + int(options.curvature) +
-                            3 * int(options.positionMap) + int(options.opacity);
+                            3 * int(options.positionMap) + int(options.opacity) + 3 * int(options.vertexColor) +
+                            2 * int(options.materialId);
   return 64.0 + (2.0 * inputBytes + texels * (19.5 + 8.0 * extraChannels)) / (1 << 20);
 }
 
@@ -73,6 +74,7 @@ nlohmann::ordered_json toJson(const BakeStats& s) {
   report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays + s.thicknessRays + s.curvatureRays) / s.traceSeconds : 0.0;
   report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
   report["bvh_quality"] = s.lowQualityBvh ? "low" : "medium";
+  if (s.bvhReused) report["bvh_reused"] = true;
   return report;
 }
 

@@ -369,6 +369,8 @@ SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const 
     result.height = f.signedT;
     objectNormal = highNormal(ctx, *f.hit);
     result.inward = glm::dot(objectNormal, g.normal) < 0.0f;
+    result.triangle = std::int32_t(f.hit->triangle);
+    result.hitUv = vec2(f.hit->u, f.hit->v);
     if (ctx.hemisphere) {
       const Occlusion o = ambientOcclusion(ctx, f, objectNormal, in.seed, counters);
       result.ao = o.open;

@@ -73,6 +73,11 @@ struct Context {
     std::array<Float4, 3> position, normal, tangent;
   };
   std::vector<LowCorners> lowCorners;
+  // Bake groups and the maps of the high poly's parts (parts.cpp, bake/groups.h).
+  const struct PartsTables* parts = nullptr;      ///< material/colour tables, when those maps are asked
+  const std::uint32_t* highTriangleIds = nullptr; ///< the scene's triangle → the high poly's (null: the same)
+  int colorChannel = -1;                          ///< vertex colour (3)
+  std::vector<std::uint32_t> texelMaterial;       ///< per texel material index + 1 (0: none), with a material ID map
 };
 
 /// One sample to trace: its slot, UV and random seed.
@@ -92,6 +97,8 @@ struct SampleResult {
   vec3 position{0.0f};  ///< the hit point, or the low poly's position on a miss (when asked)
   bool hit = false;
   bool inward = false;  ///< the high poly's normal at the hit faces against the low poly's
+  std::int32_t triangle = -1;  ///< the hit's triangle in the scene (-1: a miss)
+  vec2 hitUv{0.0f};             ///< its barycentrics (Embree's u, v)
 };
 
 /// The most samples traceGroup takes at once.

@@ -3,11 +3,13 @@
 #include "glint/core/error.h"
 #include "glint/core/log.h"
 #include "glint/mesh/mesh.h"
+#include "glint/mesh/parts.h"
 
 #include "import_steps.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
+#include <assimp/material.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
@@ -137,9 +139,10 @@ std::string lowerExtension(const std::filesystem::path& path) {
   return ext;
 }
 
-Mesh loadWithAssimp(const std::filesystem::path& path, const MeshLoadOptions& options) {
+/// The scene of a file after glint's post-processing (triangulated, normals generated,
+/// vertices joined as the options say); Error(Input) when it has no triangles.
+const aiScene& readScene(Assimp::Importer& importer, const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();
-  Assimp::Importer importer;
   // Read with validation only, then post-process in steps:
   //  - this Assimp build keeps its internal asserts, and some loaders accept
   //    corrupt files (a truncated PLY yields a face with no indices) that then
@@ -175,7 +178,13 @@ Mesh loadWithAssimp(const std::filesystem::path& path, const MeshLoadOptions& op
   if (options.joinVertices) steps |= aiProcess_JoinIdenticalVertices;
   scene = importer.ApplyPostProcessing(steps);
   if (!scene) fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, firstLine(importer.GetErrorString()));
+  return *scene;
+}
 
+Mesh loadWithAssimp(const std::filesystem::path& path, const MeshLoadOptions& options) {
+  const std::string name = path.string();
+  Assimp::Importer importer;
+  const aiScene* scene = &readScene(importer, path, options);
   Mesh result;
   flatten(*scene, *scene->mRootNode, mat4(1.0f), result);
   // Meshes that no node references would be lost by the walk; treat "nothing
@@ -184,7 +193,69 @@ Mesh loadWithAssimp(const std::filesystem::path& path, const MeshLoadOptions& op
   return result;
 }
 
+/// flatten(), keeping each instance's part name, material and colours.
+void flattenParts(const aiScene& scene, const aiNode& node, const mat4& parent, MeshParts& result,
+                  std::vector<char>& hasColors) {
+  const mat4 world = parent * toGlm(node.mTransformation);
+  for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+    const aiMesh& in = *scene.mMeshes[node.mMeshes[i]];
+    Mesh part = convert(in);
+    if (part.indices.empty()) continue;
+    part.transform(world);
+    // The node's name is the object's (OBJ `o`/`g`, glTF/FBX nodes); Assimp names nodes it
+    // makes up after the file or leaves them empty, so a named mesh is the fallback.
+    std::string name = node.mName.C_Str();
+    if ((name.empty() || &node == scene.mRootNode) && in.mName.length > 0) name = in.mName.C_Str();
+    const auto it = std::find(result.partNames.begin(), result.partNames.end(), name);
+    const auto partIndex = std::uint32_t(it - result.partNames.begin());
+    if (it == result.partNames.end()) result.partNames.push_back(name);
+    std::uint32_t material = MeshParts::kNoMaterial;
+    if (in.mMaterialIndex < scene.mNumMaterials) {
+      const aiString materialName = scene.mMaterials[in.mMaterialIndex]->GetName();
+      const std::string m = materialName.C_Str();
+      if (!m.empty() && m != AI_DEFAULT_MATERIAL_NAME) {
+        const auto found = std::find(result.materialNames.begin(), result.materialNames.end(), m);
+        material = std::uint32_t(found - result.materialNames.begin());
+        if (found == result.materialNames.end()) result.materialNames.push_back(m);
+      }
+    }
+    const std::size_t firstVertex = result.mesh.vertexCount();
+    result.mesh.append(part);
+    result.trianglePart.insert(result.trianglePart.end(), part.triangleCount(), partIndex);
+    result.triangleMaterial.insert(result.triangleMaterial.end(), part.triangleCount(), material);
+    result.colors.resize(result.mesh.vertexCount(), vec4(1.0f));
+    hasColors.resize(result.mesh.vertexCount(), 0);
+    if (in.HasVertexColors(0) && in.mNumVertices == part.vertexCount()) {
+      for (unsigned v = 0; v < in.mNumVertices; ++v) {
+        const aiColor4D& c = in.mColors[0][v];
+        result.colors[firstVertex + v] = vec4(c.r, c.g, c.b, c.a);
+        hasColors[firstVertex + v] = 1;
+      }
+    }
+  }
+  for (unsigned i = 0; i < node.mNumChildren; ++i) flattenParts(scene, *node.mChildren[i], world, result, hasColors);
+}
+
 }  // namespace
+
+MeshParts loadMeshParts(const std::filesystem::path& path, const MeshLoadOptions& options) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", name);
+  if (!std::filesystem::is_regular_file(path, ec)) fail(ErrorKind::Input, "cannot read '{}': not a regular file", name);
+  Assimp::Importer importer;
+  const aiScene& scene = readScene(importer, path, options);
+  MeshParts result;
+  std::vector<char> hasColors;
+  flattenParts(scene, *scene.mRootNode, mat4(1.0f), result, hasColors);
+  if (result.mesh.indices.empty()) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
+  result.mesh.validate(fmt::format("mesh '{}'", name));
+  if (std::find(hasColors.begin(), hasColors.end(), 1) == hasColors.end()) result.colors.clear();
+  if (std::all_of(result.triangleMaterial.begin(), result.triangleMaterial.end(),
+                  [](std::uint32_t m) { return m == MeshParts::kNoMaterial; }))
+    result.triangleMaterial.clear();
+  return result;
+}
 
 Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();

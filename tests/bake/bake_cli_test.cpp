@@ -19,7 +19,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <array>
 #include <map>
+#include <set>
+#include <tuple>
 #include <sstream>
 #include <thread>
 
@@ -61,6 +64,35 @@ void writeSpheres(const fs::path& d) {
 }
 
 constexpr auto q = glint::testing::shellQuote;  // a path as one shell word
+
+/// Writes named parts as one OBJ: `o name`, `usemtl material` (from parts.mtl) per part.
+void writeObjParts(const std::vector<std::tuple<std::string, std::string, Mesh>>& parts, const fs::path& path) {
+  std::ofstream out(path);
+  out << "mtllib parts.mtl\n";
+  std::size_t base = 0;
+  for (const auto& [name, material, m] : parts) {
+    out << "o " << name << "\nusemtl " << material << '\n';
+    for (const vec3& p : m.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const vec2& t : m.uvs) out << "vt " << t.x << ' ' << t.y << '\n';
+    for (const vec3& n : m.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
+    for (std::size_t i = 0; i < m.indices.size(); i += 3) {
+      out << 'f';
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t v = base + m.indices[i + std::size_t(k)] + 1;
+        out << ' ' << v << '/' << v << '/' << v;
+      }
+      out << '\n';
+    }
+    base += m.positions.size();
+  }
+  std::ofstream(path.parent_path() / "parts.mtl") << "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n";
+}
+
+Mesh placed(Mesh m, vec3 offset, float u0) {
+  for (vec3& p : m.positions) p += offset;
+  for (vec2& uv : m.uvs) uv = vec2(u0 + 0.02f + 0.46f * uv.x, 0.02f + 0.96f * uv.y);
+  return m;
+}
 
 }  // namespace
 
@@ -361,6 +393,13 @@ TEST(BakeCli, BatchGivesTheBytesOfSeparateBakes) {
   EXPECT_EQ(report["jobs"][1]["output"], (d / "b.png").string());
   EXPECT_EQ(report["jobs"][2]["samples_per_texel"], 4);
   EXPECT_EQ(report["failed"], 0);
+  // Every job bakes high.obj: read once (the bytes above are those of separate bakes), and
+  // jobs 0 and 1 want the same BVH quality (few rays per triangle): built once.
+  EXPECT_EQ(report["jobs"][0]["high_mesh_reused"], false);
+  EXPECT_EQ(report["jobs"][1]["high_mesh_reused"], true);
+  EXPECT_EQ(report["jobs"][2]["high_mesh_reused"], true);
+  EXPECT_EQ(report["jobs"][1].value("bvh_reused", false), true);
+  EXPECT_NE(r.output.find("high mesh reused from an earlier job"), std::string::npos) << r.output;
 }
 
 TEST(BakeCli, BatchJobRunsOnlyThatJob) {
@@ -591,4 +630,43 @@ TEST(BakeCli, UdimTilesAreTheBakesOfTheirTrianglesInTheUnitSquare) {
   EXPECT_TRUE(oneLine(unnamed.output)) << unnamed.output;
   EXPECT_NE(unnamed.output.find("<UDIM>"), std::string::npos) << unnamed.output;
   EXPECT_FALSE(fs::exists(d / "x.png"));
+}
+
+// Bake groups from files: two interpenetrating spheres named a_low/b_low and a_high/b_high,
+// in one command with a material ID map; the report lists the groups, the material map
+// holds exactly the two materials' colours on the islands.
+TEST(BakeCli, BakeGroupsByNameAndMaterialIdFromFiles) {
+  const auto d = dir("groups");
+  const vec3 a(-0.4f, 0, 0), b(0.4f, 0, 0);
+  writeObjParts({{"a_low", "red", placed(makeUvSphere(0.97f, 16, 8), a, 0.0f)},
+                 {"b_low", "blue", placed(makeUvSphere(0.97f, 16, 8), b, 0.5f)}}, d / "low.obj");
+  writeObjParts({{"a_high", "red", placed(makeUvSphere(1.0f, 48, 24), a, 0.0f)},
+                 {"b_high_1", "blue", placed(makeUvSphere(1.0f, 48, 24), b, 0.5f)},
+                 {"stray_high", "blue", placed(makeCube(0.2f), vec3(5, 0, 0), 0.0f)}}, d / "high.obj");
+  const auto r = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "n.png") +
+                          " --material-id " + q(d / "m.png") + " --size 64x64 --max-front 0.3 --max-rear 0.3 --json " +
+                          q(d / "r.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("stray_high"), std::string::npos) << r.output;  // unmatched, by name
+  std::ifstream in(d / "r.json");
+  const auto report = nlohmann::json::parse(in);
+  ASSERT_EQ(report["groups"].size(), 2u) << report.dump(2);
+  EXPECT_EQ(report["groups"][0]["name"], "a");
+  EXPECT_EQ(report["groups"][1]["high_parts"][0], "b_high_1");
+  EXPECT_EQ(report["unmatched_high"][0], "stray_high");
+  EXPECT_EQ(report["maps"]["material_id"], (d / "m.png").string());
+  const Image m = loadImage(d / "m.png");
+  std::set<std::array<int, 3>> colours;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      colours.insert({int(std::lround(m.at(x, y, 0) * 255)), int(std::lround(m.at(x, y, 1) * 255)),
+                      int(std::lround(m.at(x, y, 2) * 255))});
+  colours.erase({0, 0, 0});
+  EXPECT_EQ(colours.size(), 2u);  // red's and blue's colours, nothing blended
+  // Vertex colours the high poly lacks: a one-line input error, nothing written.
+  const auto bad = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "n2.png") +
+                            " --vertex-color " + q(d / "c.png"));
+  EXPECT_EQ(bad.status, 3) << bad.output;
+  EXPECT_NE(bad.output.find("no vertex colours"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(d / "n2.png"));
 }

@@ -62,6 +62,9 @@
 //   opacity      hits / samples per texel (samples outside the UV islands count as
 //                misses, so island borders are antialiased), 0 outside the islands; not
 //                dilated. A texel filled by the closest-point rule counts its one sample.
+//   materialId   a flat colour per high-poly material (majority of the texel's hits; dilation
+//                copies, never blends), vertexColor the high poly's interpolated vertex
+//                colour: both need the high poly's parts, see bake/groups.h (bake groups too)
 //
 // Notes for artists (from the original tool's authors)
 //   - Shared normals. Rays follow the interpolated low-poly normals. Where the low poly has
@@ -179,6 +182,10 @@ struct BakeOptions {
   Distance curvatureRadius{0.01f, true};   ///< the scale curvature is measured at; also the radius that reads white/black in 8/16-bit files
   bool positionMap = false;       ///< also bake the high-poly hit point (object space)
   bool opacity = false;           ///< also bake the fraction of each texel's samples that hit the high poly
+  /// Also bake material ID / vertex colour (bake/groups.h: they need the high poly read as
+  /// parts; bake() of plain meshes gives one material colour, and no vertex colours: Error(Input)).
+  bool materialId = false;
+  bool vertexColor = false;
   /// Pixel type of BakeResult::normal: F32, or U8/U16 quantized as Image::converted does —
   /// what an integer file holds, without a float copy of the map on the way.
   PixelType normalType = PixelType::F32;
@@ -187,6 +194,9 @@ struct BakeOptions {
   std::string progressLabel = "bake";  ///< the bar's label (`glint bake --batch`: "bake 2/3")
   /// Polled between tiles; when it becomes true bake() throws Error(Interrupted).
   const std::atomic<bool>* cancel = nullptr;
+  /// BVHs kept between bakes (bake/scene_cache.h): a bake of a high poly the cache has seen
+  /// (same arrays, same BVH quality) reuses its BVH. Null: built for this bake only.
+  class SceneCache* sceneCache = nullptr;
   /// Benchmarks only: receives every ray the normal pass casts, in a deterministic order
   /// (32 bytes per ray; keep bakes small).
   std::vector<raytrace::Ray>* rayLog = nullptr;
@@ -219,6 +229,7 @@ struct BakeStats {
   /// bounding box (every hit point lies inside it). p = min + value · (max − min).
   std::optional<Bounds> positionBounds;
   std::size_t bvhBytes = 0;             ///< Embree memory for the high poly
+  bool bvhReused = false;               ///< the BVH came from BakeOptions::sceneCache
   bool lowQualityBvh = false;           ///< BVH built at Embree's low quality (few rays per triangle), else medium
   // The three phases add up to the whole of bake():
   double prepareSeconds = 0;            ///< checks, tangents, BVH build, per-triangle tables
@@ -241,6 +252,8 @@ struct BakeResult {
   Image position;   ///< RGB F32 object-space hit points (raw coordinates), when asked; see
                     ///< output.h's positionForOutput for 8/16-bit files
   Image opacity;    ///< R F32 0..1 hits / samples per texel, 0 outside islands (not dilated), when asked
+  Image materialId; ///< RGB F32, each channel k/255 (bake/groups.h's materialColor), when asked
+  Image vertexColor;///< RGB F32 the high poly's interpolated vertex colour, when asked
   Image coverage;   ///< R U8: 255 inside UV islands, 128 padding, 0 unused
   Mesh low;         ///< the low poly as baked: MikkTSpace tangents, split vertices — render this
   BakeStats stats;
@@ -262,7 +275,8 @@ void validateOptions(const BakeOptions& options);
 /// (`inputs`: low, high and cage; a missing file counts as empty): ~64 MiB of process,
 /// about twice the input files (meshes and BVH), ~19.5 bytes per texel for the normal map
 /// and its buffers and ~8 for each extra map channel (AO, height, miss mask, thickness,
-/// curvature, opacity: one; bent normals, position: three: a float in the texel buffer and one in the
+/// curvature, opacity: one; bent normals, position, vertex colour: three; material ID: two, its
+/// 4-byte index per texel and its RGB image: a float in the texel buffer and one in the
 /// result image). Measured on the studded-torus pair (1024² → 16384², 262k triangles;
 /// 16384²: 4,959 MiB; the extra channels at 2048²: 8.0 bytes each, PNG outputs).
 double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::filesystem::path>& inputs);
