@@ -5,6 +5,7 @@
 #include "support/cli.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <sys/wait.h>
 
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 namespace fs = std::filesystem;
 using namespace glint;
@@ -53,6 +55,33 @@ SceneDifference sceneDifference(const Image& a, const Image& b, int x0) {
 }
 
 }  // namespace
+
+// `glint info --json` is what scripts/gpu-check reads; on a software renderer (this
+// machine's llvmpipe) the check says so in one line, exits 3 and measures nothing.
+TEST(Cli, InfoJsonAndGpuCheckSayWhetherThereIsAGpu) {
+  const auto info = runGlint("info --json");
+  ASSERT_EQ(info.status, 0) << info.output;
+  const auto j = nlohmann::json::parse(info.output, nullptr, false);
+  ASSERT_TRUE(j.is_object()) << info.output;
+  EXPECT_FALSE(j.at("renderer").get<std::string>().empty());
+  EXPECT_TRUE(j.at("version").get<std::string>().starts_with("4.5")) << j.at("version");
+  EXPECT_GE(j.at("stencil_bits").get<int>(), 8);
+  const bool software = j.at("software").get<bool>();
+  EXPECT_EQ(software, j.at("renderer").get<std::string>().find("llvmpipe") != std::string::npos) << j.at("renderer");
+  if (!software) return;  // a real GPU: gpu-check would measure for 8 minutes
+  const fs::path out = dir("gpu-check");
+  const auto check = glint::testing::runShell(std::string(GLINT_SOURCE_DIR) + "/scripts/gpu-check -o " + out.string() +
+                                              " --glint " + GLINT_EXE);
+  EXPECT_EQ(check.status, 3) << check.output;
+  EXPECT_TRUE(oneLine(check.output)) << check.output;
+  EXPECT_NE(check.output.find("no GPU"), std::string::npos) << check.output;
+  std::ifstream in(out / "gpu-check.json");
+  const auto report = nlohmann::json::parse(in, nullptr, false);
+  ASSERT_TRUE(report.is_object());
+  EXPECT_TRUE(report.at("status").get<std::string>().starts_with("no GPU")) << report.dump();
+  EXPECT_TRUE(report.at("info").at("software").get<bool>());
+  EXPECT_TRUE(report.at("bench").empty());
+}
 
 TEST(Cli, ListNamesEveryVariant) {
   const auto r = runGlint("list --names");
