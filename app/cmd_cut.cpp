@@ -26,7 +26,7 @@ struct CutArgs {
   ToolSettings tool;
 };
 
-constexpr const char* kFooter = R"(How it works (ATI's "Pipe Dream" shadow cutting, seed 001):
+constexpr const char* kCutFooter = R"(How it works (ATI's "Pipe Dream" shadow cutting, seed 001):
   A beam is "a pyramid-shaped volume": from the light through a polygon, bounded by
   three planes through the light and the polygon's edges, and by the polygon's own
   plane. The part between the light and the polygon is its near beam; the part beyond
@@ -81,7 +81,7 @@ std::string grazingWarning(const cut::CutStats& s) {
 Command cutCommand(CLI::App& app, const GlobalOptions& global) {
   auto a = std::make_shared<CutArgs>();
   auto* cmd = app.add_subcommand("cut", "Cut static shadows into geometry: pieces tagged with the lights that reach them");
-  cmd->footer(kFooter);
+  cmd->footer(kCutFooter);
   cmd->add_option("scene", a->inputs, "Static geometry: one or more mesh files (OBJ, PLY, glTF/GLB, FBX, ...), joined")
       ->required();
   cmd->add_option("-o,--output", a->outputs, "Output: .glb, .gltf or .ply (repeat for several); with --shard, the shard file")

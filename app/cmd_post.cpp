@@ -34,7 +34,7 @@ render::post::PostJob makeJob(const PostArgs& a, const GlobalOptions& global) {
   return job;
 }
 
-constexpr const char* kFooter = R"(Examples:
+constexpr const char* kPostFooter = R"(Examples:
   glint post photo.jpg -o sepia.png -e sepia
   glint post street.png -o npr.png -e posterize --set size=4
   glint post clip.mp4 -o clip-edges.mp4 -e kuwahara -e edges
@@ -69,7 +69,7 @@ Command postCommand(CLI::App& app, const GlobalOptions& global) {
   auto a = std::make_shared<PostArgs>();
   auto* cmd = app.add_subcommand("post", "Post-process an image, a video, a camera or a lavfi source on the GPU "
                                          "(sepia, Sobel, Kuwahara, FFT filters)");
-  cmd->footer(std::string(kFooter) + "\n\n" + render::post::effectHelp());
+  cmd->footer(std::string(kPostFooter) + "\n\n" + render::post::effectHelp());
   cmd->add_option("file", a->input, "Image or video file to read (or lavfi:GRAPH; '-': stdin, an image when the "
                                     "output is one, else a video stream)");
   cmd->add_option("-o,--output", a->output, "Image or video to write; format from the extension ('-': stdout, see --format)");

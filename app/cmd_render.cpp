@@ -26,7 +26,7 @@ struct RenderArgs {
   int fps = 30, crf = 18;
 };
 
-constexpr const char* kFooter = R"(Examples:
+constexpr const char* kRenderFooter = R"(Examples:
   glint render basics/triangle/depth -o depth.png
   glint render basics/depth/greater --size 1024x1024 -o greater.png
   glint render pipedream -o clip.mp4 --frames 0:600 --fps 30 --size 640x360
@@ -45,7 +45,7 @@ Command renderCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<RenderArgs>();
   auto* cmd = app.add_subcommand("render", "Render one scene variant headless to an image (PNG, EXR, TGA, JPEG, ...), "
                                            "or its animation to a video (MP4, MKV)");
-  cmd->footer(kFooter);
+  cmd->footer(kRenderFooter);
   cmd->add_option("scene", args->name, "scene/variant, or scene for its first variant (see `glint list`)")->required();
   cmd->add_option("-o,--output", args->output, "Output image or video; the format follows the extension "
                                                "(default: SCENE-VARIANT.png)");

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'T', 'R'};
+constexpr char kCacheMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'T', 'R'};
 constexpr std::uint32_t kFormatVersion = 1;
 
 }  // namespace
@@ -48,7 +48,7 @@ namespace {
 /// The file's bytes, written straight to `path` (the caller makes it atomic).
 void writeCutFile(const CutTriangles& t, std::uint64_t key, const fs::path& path) {
   detail::BinaryWriter w;
-  for (char c : kMagic) w.pod(c);
+  for (char c : kCacheMagic) w.pod(c);
   w.pod(kFormatVersion);
   w.pod(key);
   w.array(t.positions);
@@ -70,9 +70,9 @@ void saveCutTriangles(const CutTriangles& t, std::uint64_t key, const fs::path& 
 
 CutTriangles loadCutTriangles(const fs::path& path, std::uint64_t expectedKey) {
   detail::BinaryReader r(readTextFile(path), fmt::format("'{}' is not a usable cut", path.string()));
-  char magic[sizeof(kMagic)];
+  char magic[sizeof(kCacheMagic)];
   for (char& c : magic) c = r.pod<char>();
-  if (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) r.bad("not a glint cut file");
+  if (std::memcmp(magic, kCacheMagic, sizeof(kCacheMagic)) != 0) r.bad("not a glint cut file");
   if (r.pod<std::uint32_t>() != kFormatVersion) r.bad("written by another version of glint");
   const auto key = r.pod<std::uint64_t>();
   if (expectedKey != 0 && key != expectedKey) r.bad("the cut of another scene");

@@ -16,7 +16,7 @@ namespace glint::cut {
 
 namespace {
 
-constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'U', 'T'};
+constexpr char kShardMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'U', 'T'};
 /// 2: piece positions snapped to the input's exact coordinates (exact::Geometry::snapped);
 /// shards of version 1 would merge into a mesh no single run writes.
 constexpr std::uint32_t kVersion = 2;
@@ -62,7 +62,7 @@ CutStats readStats(Reader& r) {
 
 void saveShard(const Shard& shard, const std::filesystem::path& path) {
   Writer w;
-  for (char c : kMagic) w.pod(c);
+  for (char c : kShardMagic) w.pod(c);
   w.pod(kVersion);
   w.pod(shard.inputHash);
   w.pod(std::int32_t(shard.shardIndex));
@@ -102,7 +102,7 @@ Shard loadShard(const std::filesystem::path& path) {
   Reader r(std::move(data), fmt::format("'{}' is not a usable cut shard", path.string()));
   char magic[8];
   for (char& c : magic) c = r.pod<char>();
-  if (std::memcmp(magic, kMagic, 8) != 0) fail(ErrorKind::Input, "'{}' is not a glint cut shard", path.string());
+  if (std::memcmp(magic, kShardMagic, 8) != 0) fail(ErrorKind::Input, "'{}' is not a glint cut shard", path.string());
   if (r.pod<std::uint32_t>() != kVersion) fail(ErrorKind::Input, "'{}' is a shard of another glint version", path.string());
   Shard s;
   s.inputHash = r.pod<std::uint64_t>();
