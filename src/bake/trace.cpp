@@ -6,6 +6,7 @@
 #include "glint/mesh/tangents.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace glint::bake::detail {
@@ -150,29 +151,54 @@ private:
   std::vector<raytrace::Ray>* m_log;
 };
 
+/// cos and sin of 2π·radicalInverse(i) for the first 4096 i (the most AO samples a bake
+/// takes): the turns of a Hammersley set's second coordinate, computed once.
+struct BaseTurns {
+  static constexpr std::uint32_t kCount = 4096;
+  std::array<float, kCount> cosine, sine;
+  BaseTurns() {
+    for (std::uint32_t i = 0; i < kCount; ++i) {
+      const float phi = 2.0f * kPi * radicalInverse(i);
+      cosine[i] = std::cos(phi);
+      sine[i] = std::sin(phi);
+    }
+  }
+};
+const BaseTurns& baseTurns() {
+  static const BaseTurns turns;
+  return turns;
+}
+
 /// A stratified set of `count` cosine-weighted directions around `axis`: a Hammersley set
-/// rotated by the random offsets (r1, r2) of one sample's stream (deterministic).
+/// rotated by the random offsets (r1, r2) of one sample's stream (deterministic). The
+/// offset r2 of the turn is a rotation by 2π·r2 of every direction around the axis, applied
+/// as one rotation to the precomputed turns (no sine or cosine per ray).
 class CosineSet {
 public:
   CosineSet(const vec3& axis, std::uint64_t stream, int count) : m_n(axis), m_k(count) {
     const vec3 a = std::fabs(axis.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0);
-    m_t = glm::normalize(glm::cross(a, axis));
-    m_b = glm::cross(axis, m_t);
+    const vec3 t = glm::normalize(glm::cross(a, axis)), b = glm::cross(axis, t);
     m_r1 = toUnit(mix(stream * 2 + 1));
-    m_r2 = toUnit(mix(stream * 2 + 2));
+    const float turn = 2.0f * kPi * toUnit(mix(stream * 2 + 2));
+    const float c = std::cos(turn), s = std::sin(turn);
+    // (cos φ, sin φ) in the frame (t, b) turned by `turn` is (cos φ, sin φ) in (t', b').
+    m_t = c * t + s * b;
+    m_b = c * b - s * t;
   }
   int size() const { return m_k; }
   vec3 operator[](int i) const {
-    const float u1 = std::fmod((float(i) + 0.5f) / float(m_k) + m_r1, 1.0f);
-    const float u2 = std::fmod(radicalInverse(std::uint32_t(i)) + m_r2, 1.0f);
-    const float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
-    return r * std::cos(phi) * m_t + r * std::sin(phi) * m_b + std::sqrt(std::max(0.0f, 1.0f - u1)) * m_n;
+    float u1 = (float(i) + 0.5f) / float(m_k) + m_r1;
+    if (u1 >= 1.0f) u1 -= 1.0f;
+    const BaseTurns& turns = baseTurns();
+    const std::uint32_t j = std::uint32_t(i);
+    const float r = std::sqrt(u1);
+    return r * turns.cosine[j] * m_t + r * turns.sine[j] * m_b + std::sqrt(std::max(0.0f, 1.0f - u1)) * m_n;
   }
 
 private:
   vec3 m_t, m_b, m_n;
   int m_k;
-  float m_r1 = 0, m_r2 = 0;
+  float m_r1 = 0;
 };
 
 /// The facet normal at a hit, turned to the side of the (smooth) `normal`.
