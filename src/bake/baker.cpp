@@ -450,6 +450,7 @@ void bakeTiles(Context& ctx, BakeStats& stats) {
     stats.aoRays += c.aoRays;
     stats.thicknessRays += c.thicknessRays;
     stats.curvatureRays += c.curvatureRays;
+    stats.vertexMeasurements += c.vertexMeasurements;
     stats.overlappingSamples += c.overlaps;
   }
   if (options.rayLog) {
@@ -633,6 +634,7 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
     ctx.highCornerNormals = groupMesh.normals.data();
     ctx.highTriangleIds = groupIds.data();
   }
+  ctx.vertexCache = detail::buildVertexCache(ctx, match ? groupMesh : *in.high);
   const double setupSeconds = secondsSince(setupStart);
   stats.prepareSeconds = secondsSince(start);  // the phases cover the whole of bake()
 
@@ -654,6 +656,7 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
         ctx.highCornerNormals = groupMesh.normals.data();
         ctx.highTriangleIds = groupIds.data();
         ctx.epsilon = groupEpsilon(g);
+        ctx.vertexCache = detail::buildVertexCache(ctx, groupMesh);
         stats.bvhBytes = std::max(stats.bvhBytes, scene.memoryBytes());
       }
       for (std::size_t i = 0; i < allBins.size(); ++i) {

@@ -58,6 +58,7 @@ nlohmann::ordered_json toJson(const BakeStats& s) {
   report["ao_rays"] = s.aoRays;
   report["thickness_rays"] = s.thicknessRays;
   report["curvature_rays"] = s.curvatureRays;
+  report["vertex_measurements"] = s.vertexMeasurements;
   report["hits"] = s.hits;
   report["inward_hits"] = s.inwardHits;
   report["misses"] = s.misses;

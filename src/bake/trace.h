@@ -7,6 +7,7 @@
 #include "internal.h"
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -30,7 +31,34 @@ struct Slot {
 /// Per-tile counters, summed at the end (integers: exact in any order).
 struct Counters {
   std::uint64_t covered = 0, conservative = 0, samples = 0, hits = 0, misses = 0, rays = 0, aoRays = 0, overlaps = 0,
-                inward = 0, thicknessRays = 0, curvatureRays = 0;
+                inward = 0, thicknessRays = 0, curvatureRays = 0, vertexMeasurements = 0;
+};
+
+struct Context;
+
+/// Thickness and curvature measured once per high-poly vertex and interpolated across the
+/// triangles that are small against the scale those maps measure at (longest edge at most
+/// half the thickness distance, the curvature radius): what they measure changes little
+/// across such a triangle, and a dense mesh under a large bake would otherwise measure
+/// nearly the same point for every texel its triangles cover (a 262k-triangle torus at
+/// 2048²: 16 texels a triangle). Larger triangles are measured at each hit, as without the
+/// cache, and so is every triangle of a bake with fewer samples than the mesh has vertices.
+/// Vertices are the scene's corners joined where position and normal are equal, so a
+/// hard edge keeps a value per side. Built per scene (a bake group has its own).
+struct VertexCache {
+  enum : std::uint8_t { kThickness = 1, kCurvature = 2 };
+  /// One map's values: measured on first use, exactly once (trace.cpp, cachedAtVertex).
+  struct Values {
+    std::unique_ptr<std::atomic<std::uint8_t>[]> state;  ///< per vertex: unmeasured, being measured, measured
+    std::unique_ptr<float[]> value;
+  };
+  const Mesh* mesh = nullptr;                 ///< the scene's triangles: corner 3t + k is mesh->indices[3t + k]
+  std::vector<std::uint32_t> vertexOfCorner;  ///< per scene corner
+  std::vector<std::uint32_t> cornerOfVertex;  ///< per vertex, one of its corners
+  std::vector<std::uint8_t> small;            ///< per scene triangle: the maps interpolated on it
+  Values thickness, curvature;
+
+  vec3 position(std::uint32_t corner) const { return mesh->positions[mesh->indices[corner]]; }
 };
 
 struct Context {
@@ -78,7 +106,13 @@ struct Context {
   const std::uint32_t* highTriangleIds = nullptr; ///< the scene's triangle → the high poly's (null: the same)
   int colorChannel = -1;                          ///< vertex colour (3)
   std::vector<std::uint32_t> texelMaterial;       ///< per texel material index + 1 (0: none), with a material ID map
+  std::unique_ptr<VertexCache> vertexCache;       ///< with thickness or curvature, where some triangles are small
 };
+
+/// The vertex cache of the scene `mesh` (its triangles as the scene's, corner normals as
+/// ctx.highCornerNormals) for the maps ctx asks for; null when no triangle is small enough
+/// or neither map is asked for. Called after the channels are set up.
+std::unique_ptr<VertexCache> buildVertexCache(const Context& ctx, const Mesh& mesh);
 
 /// One sample to trace: its slot, UV and random seed.
 struct SampleInput {

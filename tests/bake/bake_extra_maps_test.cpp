@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -243,6 +244,66 @@ TEST(BakeExtraMaps, CurvatureOfASphereIsOneOverTheRadius) {
     EXPECT_LT(worst, 0.005);
     EXPECT_LT(worst8, 1.0 / 255.0);  // quantization (half a step) and the curvature's 0.5 %
   }
+}
+
+// Thickness and curvature measured at the high poly's vertices and interpolated (bake
+// trace.h, VertexCache): a 512×256 bake of the 128×64 sphere has 16 samples a vertex and
+// triangles (edges ≤ 0.05) far smaller than D = 2.5 and r = 0.2, so both maps take that
+// path. The analytic answers are those of the per-texel tests above (4/3 · R / D; 1/R);
+// the bounds are theirs too, and the whole bake must cast fewer rays than per texel and
+// give the same maps and counts on one thread as on two.
+TEST(BakeExtraMaps, ThicknessAndCurvatureAtVerticesOfADenseSphere) {
+  log::setLevel(log::Level::Error);
+  const Mesh high = makeUvSphere(1.0f, 128, 64);
+  const Mesh low = makeUvSphere(1.0f, 16, 8);
+  bake::BakeOptions options;
+  options.width = 512;
+  options.height = 256;
+  options.thickness = true;
+  options.curvature = true;
+  options.aoSamples = 16;
+  options.thicknessDistance = {2.5f, false};
+  options.curvatureRadius = {0.2f, false};
+  const auto r = bake::bake(low, high, options);
+  // Each of the sphere's vertices (poles and seam joined: 127 × 63 + 2 + 63 along the
+  // seam, at most) measured once per map.
+  EXPECT_GT(r.stats.vertexMeasurements, 2u * 7000u);
+  EXPECT_LE(r.stats.vertexMeasurements, 2u * std::uint64_t(high.vertexCount()));
+  EXPECT_LT(r.stats.thicknessRays, r.stats.hits * 16u / 2u);  // per texel it would be hits × 16
+  EXPECT_LT(r.stats.curvatureRays, r.stats.hits * 8u / 2u);
+  const double thick = 4.0 / 3.0 / 2.5;
+  double sumT = 0, worstT = 0, sumC = 0, worstC = 0;
+  int n = 0;
+  for (int row = 0; row < 256; ++row)
+    for (int x = 0; x < 512; ++x) {
+      if (!inIsland(r, x, row)) continue;
+      const double t = r.thickness.at(x, row, 0) - thick, c = r.curvature.at(x, row, 0) - 1.0;
+      sumT += t;
+      worstT = std::max(worstT, std::abs(t));
+      sumC += c;
+      worstC = std::max(worstC, std::abs(c));
+      ++n;
+    }
+  std::printf("sphere at vertices: thickness mean error %+.5f, worst %.4f; curvature mean relative error %+.5f, worst "
+              "%.5f (%d texels, %llu vertex measurements)\n", sumT / n, worstT, sumC / n, worstC, n,
+              static_cast<unsigned long long>(r.stats.vertexMeasurements));
+  EXPECT_GT(n, 100000);
+  EXPECT_LT(std::abs(sumT / n), 0.005);
+  EXPECT_LT(worstT, 0.02);
+  EXPECT_LT(std::abs(sumC / n), 0.002);
+  EXPECT_LT(worstC, 0.005);
+  // The same on one thread: each vertex is measured once, by whichever sample comes first.
+  const auto one = [&] {
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+    return bake::bake(low, high, options);
+  }();
+  EXPECT_EQ(one.stats.vertexMeasurements, r.stats.vertexMeasurements);
+  EXPECT_EQ(one.stats.thicknessRays, r.stats.thicknessRays);
+  EXPECT_EQ(one.stats.curvatureRays, r.stats.curvatureRays);
+  EXPECT_TRUE(std::equal(one.thickness.pixels<float>().begin(), one.thickness.pixels<float>().end(),
+                         r.thickness.pixels<float>().begin()));
+  EXPECT_TRUE(std::equal(one.curvature.pixels<float>().begin(), one.curvature.pixels<float>().end(),
+                         r.curvature.pixels<float>().begin()));
 }
 
 // A torus (ring radius a = 1 around +Y, tube radius b = 0.6: fat enough that its inner side

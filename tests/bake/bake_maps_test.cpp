@@ -398,7 +398,7 @@ TEST(BakeMaps, ReportAndMemoryEstimate) {
   std::vector<std::string> keys;
   for (const auto& [key, value] : s.items()) keys.push_back(key);
   EXPECT_EQ(keys, (std::vector<std::string>{"low_triangles", "high_triangles", "texels", "covered_texels",
-                                            "conservative_texels", "padded_texels", "samples", "rays", "ao_rays", "thickness_rays", "curvature_rays", "hits",
+                                            "conservative_texels", "padded_texels", "samples", "rays", "ao_rays", "thickness_rays", "curvature_rays", "vertex_measurements", "hits",
                                             "inward_hits", "misses", "hit_ratio", "max_front", "max_rear", "rays_per_second", "bvh_mib",
                                             "bvh_quality"}));
   EXPECT_EQ(s["low_triangles"], low.triangleCount());

@@ -217,6 +217,10 @@ struct BakeStats {
   std::uint64_t aoRays = 0;             ///< hemisphere rays (AO and bent normals share them)
   std::uint64_t thicknessRays = 0;      ///< rays into the surface (thickness)
   std::uint64_t curvatureRays = 0;      ///< rays dropping points onto the high poly (curvature)
+  /// High-poly vertices whose thickness or curvature was measured once and interpolated over
+  /// the small triangles around them, instead of measured at every hit (docs/bake.md,
+  /// "Thickness and curvature at vertices"); counted once per map.
+  std::uint64_t vertexMeasurements = 0;
   std::uint64_t overlappingSamples = 0; ///< samples inside more than one UV triangle
   std::size_t mirroredTriangles = 0;    ///< low-poly triangles with mirrored UVs
   std::size_t degenerateUvTriangles = 0;///< low-poly triangles with zero UV area (skipped)
