@@ -444,10 +444,6 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run, HighCache* cache = 
       fail(ErrorKind::Usage, "bake: the low poly's UVs span UDIM tiles (or an output names <UDIM>): name every map with "
            "<UDIM> where the tile number goes, e.g. -o normal.<UDIM>.png");
     }
-    if (options.cage)
-      fail(ErrorKind::Usage, "bake: --cage with UDIM tiles is not supported yet: bake each tile's part on its own");
-    if (match.grouped())
-      fail(ErrorKind::Usage, "bake: bake groups with UDIM tiles are not supported yet: bake each tile's parts on their own");
     bake::UdimSplit split = bake::splitUdimTiles(low);
     if (split.outOfRangeTriangles)
       run.warn(fmt::format("{} low-poly triangle{} with UVs outside the UDIM range (u in [0, 10), v >= 0) left out",
@@ -468,6 +464,20 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run, HighCache* cache = 
       *d = bake::Distance{d->resolve(diagonal), false};
   }
   if (!udim) tiles.push_back({.number = 0, .low = low, .triangles = low.triangleCount()});
+  // A UDIM tile's cage is the cage's vertices of the tile's triangles (the cage has the low
+  // poly's vertices and triangles), and its bake groups are those of its triangles' parts.
+  const std::optional<Mesh> wholeCage = udim ? options.cage : std::nullopt;
+  const auto tileCage = [&](const bake::UdimTile& tile) {
+    Mesh cage = tile.low;
+    for (std::size_t k = 0; k < tile.lowVertices.size(); ++k) cage.positions[k] = wholeCage->positions[tile.lowVertices[k]];
+    return cage;
+  };
+  const auto tileParts = [&](const bake::UdimTile& tile) {
+    MeshParts parts{.mesh = tile.low, .partNames = lowParts->partNames};
+    parts.trianglePart.reserve(tile.lowTriangles.size());
+    for (const std::uint32_t t : tile.lowTriangles) parts.trianglePart.push_back(lowParts->trianglePart[t]);
+    return parts;
+  };
 
   auto& report = run.report();
   report["low"] = a.low;
@@ -485,9 +495,16 @@ void runBake(const BakeArgs& a, BakePlan plan, ToolRun& run, HighCache* cache = 
   for (const bake::UdimTile& tile : tiles) {
     const auto file = [&](const std::string& path) { return udim ? bake::udimPath(path, tile.number) : path; };
     if (udim) options.progressLabel = fmt::format("{} tile {}", label, tile.number);
-    const bake::BakeResult result =
-        highParts ? bake::bake(lowParts && !udim ? *lowParts : MeshParts{.mesh = tile.low}, *highParts, match, options)
-                  : bake::bake(tile.low, *high, options);
+    if (udim && wholeCage) options.cage = tileCage(tile);
+    bake::BakeResult result;
+    if (udim && lowParts) {  // the tile's parts, matched as the whole low poly's were
+      const MeshParts parts = tileParts(tile);
+      result = bake::bake(parts, *highParts, bake::matchGroups(parts, *highParts, naming), options);
+    } else if (highParts) {
+      result = bake::bake(lowParts ? *lowParts : MeshParts{.mesh = tile.low}, *highParts, match, options);
+    } else {
+      result = bake::bake(tile.low, *high, options);
+    }
     const bake::BakeStats& s = result.stats;
     run.addSeconds("prepare", s.prepareSeconds);
     run.addSeconds("trace", s.traceSeconds);

@@ -25,6 +25,7 @@ UdimSplit splitUdimTiles(const Mesh& low) {
     Mesh mesh;
     std::vector<std::uint32_t> remap;  // low vertex → tile vertex (+1; 0: not yet)
     std::size_t triangles = 0;
+    std::vector<std::uint32_t> lowTriangles, lowVertices;
   };
   std::map<int, Building> tiles;
   UdimSplit split;
@@ -54,12 +55,15 @@ UdimSplit splitUdimTiles(const Mesh& low) {
         m.uvs.push_back(low.uvs[i] - vec2(fu, fv));
         if (low.hasTangents()) m.tangents.push_back(low.tangents[i]);
         tile.remap[i] = std::uint32_t(m.positions.size());
+        tile.lowVertices.push_back(i);
       }
       tile.mesh.indices.push_back(tile.remap[i] - 1);
     }
+    tile.lowTriangles.push_back(std::uint32_t(t / 3));
     ++tile.triangles;
   }
-  for (auto& [number, tile] : tiles) split.tiles.push_back({number, std::move(tile.mesh), tile.triangles});
+  for (auto& [number, tile] : tiles)
+    split.tiles.push_back({number, std::move(tile.mesh), tile.triangles, std::move(tile.lowTriangles), std::move(tile.lowVertices)});
   return split;
 }
 

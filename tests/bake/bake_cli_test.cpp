@@ -628,6 +628,78 @@ TEST(BakeCli, UdimTilesAreTheBakesOfTheirTrianglesInTheUnitSquare) {
   EXPECT_FALSE(fs::exists(d / "x.png"));
 }
 
+// UDIM tiles with a cage, and with bake groups: each tile is still the bake of its own
+// triangles in the unit square, byte for byte: through the cage's vertices of those
+// triangles, and with the groups of those triangles' parts (rays of a tile's part hit only
+// its own group's high poly, though the other group's sphere cuts through it).
+TEST(BakeCli, UdimTilesWithACageAndWithBakeGroups) {
+  const auto d = dir("udim-cage-groups");
+  const std::string options = " --size 32x32 --samples 4 --padding 2 -q";
+  const auto cageOf = [](Mesh m) {
+    for (std::size_t i = 0; i < m.positions.size(); ++i) m.positions[i] += 0.1f * m.normals[i];
+    return m;
+  };
+  // The cage: the UDIM test's two spheres, tile 1002's moved 3 along x.
+  Mesh lowA = makeUvSphere(1.0f, 16, 8), lowB = lowA;
+  lowB.transform(glm::translate(mat4(1.0f), vec3(3.0f, 0.0f, 0.0f)));
+  Mesh high = makeUvSphere(1.0f, 64, 32), highB = makeUvSphere(1.0f, 8, 4);
+  highB.transform(glm::translate(mat4(1.0f), vec3(3.0f, 0.0f, 0.0f)));
+  high.append(highB);
+  writeObj(high, d / "high.obj");
+  writeObj(lowA, d / "a_low.obj");
+  writeObj(cageOf(lowA), d / "a_cage.obj");
+  writeObj(lowB, d / "b_low.obj");
+  writeObj(cageOf(lowB), d / "b_cage.obj");
+  Mesh low = lowA, shifted = lowB;
+  for (vec2& uv : shifted.uvs) uv.x += 1.0f;
+  low.append(shifted);
+  writeObj(low, d / "low.obj");
+  writeObj(cageOf(low), d / "cage.obj");
+  const auto r = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " --cage " + q(d / "cage.obj") + " -o " +
+                          q(d / "n.<UDIM>.png") + options);
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* part : {"a", "b"}) {
+    const std::string tile = part == std::string("a") ? "1001" : "1002", p(part);
+    const auto ref = runGlint("bake " + q(d / (p + "_low.obj")) + " " + q(d / "high.obj") + " --cage " +
+                              q(d / (p + "_cage.obj")) + " -o " + q(d / ("ref_" + p + ".png")) + options);
+    ASSERT_EQ(ref.status, 0) << ref.output;
+    EXPECT_FALSE(bytes(d / ("n." + tile + ".png")).empty()) << tile;
+    EXPECT_TRUE(bytes(d / ("n." + tile + ".png")) == bytes(d / ("ref_" + p + ".png"))) << "cage, tile " << tile;
+  }
+
+  // Groups: two interpenetrating spheres, a's island in tile 1001 and b's in tile 1002.
+  // (The sphere's own UVs, k/16 and k/8: written exactly to the OBJ, before and after the
+  // tile's +1, as in the UDIM test above.)
+  const auto onGrid = [](Mesh m, vec3 offset) {
+    for (vec3& p : m.positions) p += offset;
+    return m;
+  };
+  const vec3 a(-0.4f, 0, 0), b(0.4f, 0, 0);
+  const Mesh lowPartA = onGrid(makeUvSphere(0.97f, 16, 8), a), lowPartB = onGrid(makeUvSphere(0.97f, 16, 8), b);
+  Mesh lowPartB1002 = lowPartB;
+  for (vec2& uv : lowPartB1002.uvs) uv.x += 1.0f;
+  writeObjParts({{"a_low", "red", lowPartA}, {"b_low", "blue", lowPartB1002}}, d / "glow.obj");
+  writeObjParts({{"a_low", "red", lowPartA}}, d / "glow_a.obj");
+  writeObjParts({{"b_low", "blue", lowPartB}}, d / "glow_b.obj");
+  writeObjParts({{"a_high", "red", placed(makeUvSphere(1.0f, 48, 24), a, 0.0f)},
+                 {"b_high", "blue", placed(makeUvSphere(1.0f, 48, 24), b, 0.0f)}}, d / "ghigh.obj");
+  const std::string groupOptions = " --max-front 0.3 --max-rear 0.3" + options;
+  const auto g = runGlint("bake " + q(d / "glow.obj") + " " + q(d / "ghigh.obj") + " -o " + q(d / "g.<UDIM>.png") +
+                          " --json " + q(d / "g.json") + groupOptions);
+  ASSERT_EQ(g.status, 0) << g.output;
+  for (const char* part : {"a", "b"}) {
+    const std::string tile = part == std::string("a") ? "1001" : "1002", p(part);
+    const auto ref = runGlint("bake " + q(d / ("glow_" + p + ".obj")) + " " + q(d / "ghigh.obj") + " -o " +
+                              q(d / ("gref_" + p + ".png")) + groupOptions);
+    ASSERT_EQ(ref.status, 0) << ref.output;
+    EXPECT_FALSE(bytes(d / ("g." + tile + ".png")).empty()) << tile;
+    EXPECT_TRUE(bytes(d / ("g." + tile + ".png")) == bytes(d / ("gref_" + p + ".png"))) << "groups, tile " << tile;
+  }
+  std::ifstream in(d / "g.json");
+  const auto report = nlohmann::json::parse(in);
+  ASSERT_EQ(report["udim_tiles"].size(), 2u);
+}
+
 // Bake groups from files: two interpenetrating spheres named a_low/b_low and a_high/b_high,
 // in one command with a material ID map; the report lists the groups, the material map
 // holds exactly the two materials' colours on the islands.

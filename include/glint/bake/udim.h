@@ -26,6 +26,7 @@
 #include "glint/mesh/mesh.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ struct UdimTile {
   int number = 1001;      ///< 1001 + u + 10 v
   Mesh low;               ///< the tile's triangles (every attribute kept), UVs moved by (−u, −v)
   std::size_t triangles = 0;
+  std::vector<std::uint32_t> lowTriangles;  ///< per triangle of `low`: its index in the low poly
+  std::vector<std::uint32_t> lowVertices;   ///< per vertex of `low`: its index in the low poly (a cage's
+                                            ///< vertices are the low poly's: the tile's cage is these)
 };
 
 struct UdimSplit {
