@@ -201,7 +201,7 @@ void storePartsMaps(Context& ctx, std::size_t texel, std::span<const SampleResul
       for (std::size_t j = i; j < results.size(); ++j) n += results[j].hit && materialOf(results[j]) == m;
       if (n > bestCount) bestCount = n, best = m + 1;
     }
-    ctx.texelMaterial[texel] = best;
+    ctx.texelMaterial[texel] = best ? best : kMaterialMissed;  // no hit: black, kept out of dilation
   }
   if (ctx.colorChannel >= 0) {
     vec3 sum(0.0f);
@@ -252,7 +252,7 @@ Image materialImage(const Context& ctx) {
   for (int y = 0; y < H; ++y) {
     for (int x = 0; x < W; ++x) {
       const std::uint32_t id = ctx.texelMaterial[std::size_t(y) * std::size_t(W) + std::size_t(x)];
-      const vec3 c = id ? colors[id - 1] : vec3(0.0f);
+      const vec3 c = id != 0 && id != kMaterialMissed ? colors[id - 1] : vec3(0.0f);
       float* out = &px[(std::size_t(H - 1 - y) * std::size_t(W) + std::size_t(x)) * 3];
       out[0] = c.r, out[1] = c.g, out[2] = c.b;
     }

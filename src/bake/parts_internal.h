@@ -38,16 +38,24 @@ PartsTables makePartsTables(const BakeOptions& options, const Mesh& high, const 
 Mesh groupHighMesh(const Mesh& high, const std::vector<std::uint32_t>& highTriangleGroup, std::uint32_t group,
                    std::vector<std::uint32_t>& ids);
 
-/// A texel's material (into ctx.texelMaterial) and vertex colour (into out[colorChannel])
-/// from its samples `results`.
+/// ctx.texelMaterial of a texel on a UV island whose samples all missed: black, like the
+/// other maps' missed texels, and not an empty texel that dilation fills (dilation fills
+/// the texels outside the islands only, as it does for every other map).
+inline constexpr std::uint32_t kMaterialMissed = 0xFFFFFFFFu;
+
+/// A texel's material (into ctx.texelMaterial: index + 1, kMaterialMissed where no sample
+/// hit) and vertex colour (into out[colorChannel]) from its samples `results`.
 void storePartsMaps(Context& ctx, std::size_t texel, std::span<const SampleResult> results, float* out);
 
-/// Grows texelMaterial into empty (0) texels: each pass copies the first filled
-/// 8-neighbour (left, right, below, above, then the diagonals) of the previous pass.
+/// Grows texelMaterial into empty (0: off the islands) texels: each pass copies the first
+/// filled 8-neighbour (left, right, below, above, then the diagonals) of the previous pass
+/// (kMaterialMissed included, so a missed border texel spreads black, as the other maps
+/// spread their missed texels' values).
 /// `passes` < 0: until nothing changes.
 void dilateMaterials(std::vector<std::uint32_t>& ids, int width, int height, int passes);
 
-/// The material ID map (row 0 on top) from ctx.texelMaterial; black where there is none.
+/// The material ID map (row 0 on top) from ctx.texelMaterial; black where there is none
+/// (0 or kMaterialMissed).
 Image materialImage(const Context& ctx);
 
 }  // namespace glint::bake::detail

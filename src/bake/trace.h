@@ -105,7 +105,7 @@ struct Context {
   const struct PartsTables* parts = nullptr;      ///< material/colour tables, when those maps are asked
   const std::uint32_t* highTriangleIds = nullptr; ///< the scene's triangle → the high poly's (null: the same)
   int colorChannel = -1;                          ///< vertex colour (3)
-  std::vector<std::uint32_t> texelMaterial;       ///< per texel material index + 1 (0: none), with a material ID map
+  std::vector<std::uint32_t> texelMaterial;       ///< per texel material index + 1 (0: off the islands; detail::kMaterialMissed: no hit), with a material ID map
   std::unique_ptr<VertexCache> vertexCache;       ///< with thickness or curvature, where some triangles are small
 };
 

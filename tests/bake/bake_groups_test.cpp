@@ -214,6 +214,49 @@ TEST(BakeMaterialId, EveryTexelIsExactlyItsMaterialsColour) {
   EXPECT_FALSE(plain.warnings.empty());
 }
 
+// A high poly smaller than the low poly's island (an impostor card, a hole): texels on the
+// island whose rays all missed are black, as the docs and the vertex colour map have it;
+// dilation fills only the texels outside the island (it used to fill these too, up to
+// --padding texels out from every hit: a halo of material colour around the silhouette).
+TEST(BakeMaterialId, MissedTexelsOnTheIslandStayBlack) {
+  log::setLevel(log::Level::Error);
+  const Mesh low = makePlane(2.0f);  // x, z in [-1, 1], the whole map one island
+  MeshParts high = part(makeGrid(8, 8, 1.0f), "plane");  // x, z in [-0.5, 0.5]
+  high.materialNames = {"steel"};
+  high.triangleMaterial.assign(high.mesh.triangleCount(), 0);
+  high.colors.assign(high.mesh.positions.size(), vec4(1.0f, 0.5f, 0.25f, 1.0f));
+  bake::BakeOptions options;
+  options.width = options.height = 64;
+  options.samples = 4;
+  options.materialId = true;
+  options.vertexColor = true;
+  options.progress = false;  // padding: the default 16
+  const bake::BakeResult r = bake::bake(part(low, "plane"), high, bake::GroupMatch{}, options);
+  const Image map = r.materialId.converted(PixelType::U8);
+  const vec3 steel = glm::round(bake::materialColor("steel") * 255.0f);
+  int black = 0, coloured = 0;
+  for (int row = 0; row < 64; ++row) {
+    for (int x = 0; x < 64; ++x) {
+      const auto s = surfaceAt(low, texelCentre(x, row, 64, 64));
+      ASSERT_TRUE(s.has_value());
+      const std::uint8_t* px = map.pixels<std::uint8_t>().data() + (std::size_t(row) * 64 + std::size_t(x)) * 3;
+      const vec3 got(px[0], px[1], px[2]);
+      const float margin = 2.0f * 2.0f / 64.0f;  // two texels either side of the high poly's edge
+      const float out = std::max(std::fabs(s->position.x), std::fabs(s->position.z));
+      if (out > 0.5f + margin) {
+        EXPECT_EQ(got, vec3(0.0f)) << x << "," << row;
+        EXPECT_EQ(r.vertexColor.at(x, row, 0), 0.0f) << x << "," << row;  // the two maps agree
+        ++black;
+      } else if (out < 0.5f - margin) {
+        EXPECT_EQ(got, steel) << x << "," << row;
+        ++coloured;
+      }
+    }
+  }
+  EXPECT_GT(black, 2500);
+  EXPECT_GT(coloured, 700);
+}
+
 // A linear colour gradient over a plane: the map reproduces it within 8-bit quantization
 // (interpolation is exact for a linear function, and so is the average of the samples).
 TEST(BakeVertexColor, LinearGradientIsReproduced) {
