@@ -32,7 +32,10 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
                             3 * int(options.bentNormals) + int(options.thickness) + int(options.curvature) +
                             3 * int(options.positionMap) + int(options.opacity) + 3 * int(options.vertexColor) +
                             2 * int(options.materialId);
-  return 64.0 + (2.0 * inputBytes + texels * (19.5 + 8.0 * extraChannels)) / (1 << 20);
+  // Thickness and curvature may keep per-vertex tables of the high poly (trace.h,
+  // VertexCache: ~40 bytes a triangle while they are built), about 1.5× a binary PLY's bytes.
+  const double vertexTables = options.thickness || options.curvature ? 1.5 * inputBytes : 0.0;
+  return 64.0 + (2.0 * inputBytes + vertexTables + texels * (19.5 + 8.0 * extraChannels)) / (1 << 20);
 }
 
 nlohmann::ordered_json toJson(const BakeOptions& options) {
