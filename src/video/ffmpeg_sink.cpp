@@ -55,8 +55,6 @@ void openFile(AVFormatContext& output, const fs::path& tmp, const fs::path& dest
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(e));
   }
 }
-}  // namespace
-
 struct FfmpegSink {
   SinkOptions options;
   fs::path destination;
@@ -82,6 +80,7 @@ struct FfmpegSink {
   void writeAudio(Packet packet);
   void finish();
 };
+}  // namespace (FfmpegSink holds the deleters above: it is this file's alone too)
 
 void FfmpegSink::writePacket(AVPacket& p) {
   if (const int e = av_interleaved_write_frame(output.get(), &p); e < 0) {

@@ -28,8 +28,6 @@ std::string describe(const std::string& name, SourceKind kind) {
   }
   return fmt::format("'{}'", name);
 }
-}  // namespace
-
 struct FfmpegSource {
   SourceOptions options;
   SourceInfo info;
@@ -71,6 +69,7 @@ struct FfmpegSource {
   void pace(double seconds);
   bool read(Frame& frame);
 };
+}  // namespace (FfmpegSource holds the deleters above: it is this file's alone too)
 
 void FfmpegSource::open(const std::string& name) {
   initFfmpeg();

@@ -109,7 +109,9 @@ std::string Chain::describe() const {
 }
 
 // ---------------------------------------------------------------------------
-namespace {
+// FrameStream's parts: in a named namespace, not an anonymous one, since FrameStream::Impl
+// (a member of a public class) holds them.
+namespace stream_detail {
 // A persistently mapped buffer for pixel transfers.
 struct MappedBuffer {
   gl::Buffer buffer;
@@ -128,7 +130,9 @@ struct Slot {
   gl::Texture input;
   GLsync fence = nullptr;
 };
-}  // namespace
+}  // namespace stream_detail
+using stream_detail::MappedBuffer;
+using stream_detail::Slot;
 
 struct FrameStream::Impl {
   Chain chain;
