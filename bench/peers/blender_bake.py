@@ -13,10 +13,14 @@
 # AO_SAMPLES Cycles samples per texel (one AO ray each, as glint's --ao-samples rays) and the
 # world's AO distance AO_DISTANCE (glint's --ao-distance).
 # Written for Blender 3.4 (Debian 12); uses the OBJ importer that version has.
+import os
 import sys
 import time
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_common import bake_target, use_cycles  # noqa: E402
 
 
 def main():
@@ -45,12 +49,7 @@ def main():
             polygon.use_smooth = True
 
     scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = samples
-    # Denoising is on in the factory settings; Debian's Blender has no OpenImageDenoise, and
-    # a bake that asks for it leaves the image untouched while reporting success.
-    scene.cycles.use_denoising = False
+    use_cycles(scene, samples)  # (denoiser off: blender_common.py)
     bake = scene.render.bake
     bake.use_selected_to_active = True
     bake.cage_extrusion = distance
@@ -64,17 +63,7 @@ def main():
         scene.world = world
         world.light_settings.distance = ao_distance
 
-    material = bpy.data.materials.new("bake-target")
-    material.use_nodes = True
-    node = material.node_tree.nodes.new("ShaderNodeTexImage")
-    material.node_tree.nodes.active = node
-    low.data.materials.clear()
-    low.data.materials.append(material)
-
-    bpy.ops.object.select_all(action="DESELECT")
-    high.select_set(True)
-    low.select_set(True)
-    bpy.context.view_layer.objects.active = low
+    node = bake_target(low, high)
     for name in passes:
         image = bpy.data.images.new(f"baked-{name}", size, size, float_buffer=(name == "position"))
         node.image = image

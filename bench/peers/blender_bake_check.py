@@ -30,10 +30,14 @@
 # which keeps every coordinate as the file has it, so positions and object-space normals
 # are in the OBJ's own axes, the ones glint bakes in. Written for Blender 3.4 (Debian 12).
 import math
+import os
 import sys
 import time
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_common import bake_target, use_cycles  # noqa: E402
 
 
 def main():
@@ -64,10 +68,7 @@ def main():
             polygon.use_smooth = True
 
     scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = samples
-    scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise (blender_bake.py)
+    use_cycles(scene, samples)
     world = bpy.data.worlds.new("bake-world")
     scene.world = world
     world.light_settings.distance = ao_distance
@@ -106,18 +107,7 @@ def main():
             with bpy.context.temp_override(edit_image=image):
                 bpy.ops.image.tile_fill(color=(0.0, 0.0, 0.0, 0.0), width=size, height=size, float=False, alpha=True)
 
-    material = bpy.data.materials.new("bake-target")
-    material.use_nodes = True
-    node = material.node_tree.nodes.new("ShaderNodeTexImage")
-    node.image = image
-    material.node_tree.nodes.active = node
-    low.data.materials.clear()
-    low.data.materials.append(material)
-
-    bpy.ops.object.select_all(action="DESELECT")
-    high.select_set(True)
-    low.select_set(True)
-    bpy.context.view_layer.objects.active = low
+    bake_target(low, high, image)
     bpy.ops.object.bake(type={"ao": "AO", "position": "POSITION", "normal": "NORMAL"}[kind], normal_space="OBJECT",
                         normal_r="POS_X", normal_g="POS_Y", normal_b="POS_Z", use_selected_to_active=True,
                         cage_extrusion=distance, max_ray_distance=2.0 * distance, margin=0, use_clear=False)
