@@ -323,6 +323,37 @@ int Geometry::exactSide(const VertexDef& v, const PlaneDef& plane) const {
   return 0;
 }
 
+std::array<mpq_class, 3> Geometry::exactPosition(const VertexDef& v) const {
+  const auto q3 = [](const E3& e) { return std::array<mpq_class, 3>{mpq_class(e.x), mpq_class(e.y), mpq_class(e.z)}; };
+  switch (v.kind) {
+    case VertexKind::Point: break;
+    case VertexKind::LinePlane: {
+      // a + t (b − a) with t = Q(a) / (Q(a) − Q(b)): (Q(a) b − Q(b) a) / (Q(a) − Q(b)).
+      const dvec3 &q0 = point(v.q.p[0]), &q1 = point(v.q.p[1]), &q2 = point(v.q.p[2]);
+      const E qa = evalExact(q0, q1, q2, point(v.a)), qb = evalExact(q0, q1, q2, point(v.b));
+      const E3 a = toE(point(v.a)), b = toE(point(v.b));
+      const mpq_class w(qa - qb);
+      std::array<mpq_class, 3> x = q3({qa * b.x - qb * a.x, qa * b.y - qb * a.y, qa * b.z - qb * a.z});
+      for (mpq_class& c : x) c /= w;
+      return x;
+    }
+    case VertexKind::ThreePlanes: {
+      // n_i · x + d_i = 0 for the three planes: x = −(d_q n_r×n_s + d_r n_s×n_q + d_s n_q×n_r) / det(n_q, n_r, n_s).
+      const PlaneDef* defs[3] = {&v.q, &v.r, &v.s};
+      EPlane m[3];
+      for (int i = 0; i < 3; ++i) m[i] = planeExact(point(defs[i]->p[0]), point(defs[i]->p[1]), point(defs[i]->p[2]));
+      const E3 rs = cross(m[1].n, m[2].n), sq = cross(m[2].n, m[0].n), qr = cross(m[0].n, m[1].n);
+      const mpq_class w(-dot(m[0].n, rs));
+      std::array<mpq_class, 3> x = q3({m[0].d * rs.x + m[1].d * sq.x + m[2].d * qr.x, m[0].d * rs.y + m[1].d * sq.y + m[2].d * qr.y,
+                                        m[0].d * rs.z + m[1].d * sq.z + m[2].d * qr.z});
+      for (mpq_class& c : x) c /= w;
+      return x;
+    }
+  }
+  const dvec3& p = point(v.a);
+  return {mpq_class(p.x), mpq_class(p.y), mpq_class(p.z)};
+}
+
 int Geometry::compareAlongLine(std::uint32_t u, std::uint32_t v, const PlaneRec& q, const PlaneRec& r,
                                PredicateStats& stats) const {
   if (q.key == r.key) {

@@ -20,6 +20,8 @@
 // arithmetic. docs/cut.md has the argument and the measurements.
 #include "glint/core/math.h"
 
+#include <gmpxx.h>
+
 #include <array>
 #include <cstdint>
 #include <span>
@@ -131,6 +133,10 @@ public:
   /// is that coordinate. So a floor at y = 0 stays at y = 0, not −1e-16. A function of the
   /// name only: the same vertex gets the same position in every receiver and shard.
   dvec3 snapped(const VertexDef& def, dvec3 x) const;
+
+  /// The vertex's coordinates as exact rationals: for the few constructions that need
+  /// points, not signs against planes (regions.cpp triangulates with them).
+  std::array<mpq_class, 3> exactPosition(const VertexDef& v) const;
 
 private:
   int exactSide(const VertexDef& v, const PlaneDef& plane) const;

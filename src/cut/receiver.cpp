@@ -1,6 +1,7 @@
 #include "receiver.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace glint::cut {
@@ -137,7 +138,7 @@ void ReceiverCutter::NameIndex::clear() {
 }
 
 ReceiverCutter::ReceiverCutter(const SceneData& scene, const std::atomic<bool>* cancel)
-    : m_scene(scene), m_g(scene.geometry), m_cancel(cancel) {}
+    : m_scene(scene), m_g(scene.geometry), m_cancel(cancel), m_triangulator(scene.geometry) {}
 
 void ReceiverCutter::reset(std::uint32_t face) {
   m_face = face;
@@ -624,29 +625,173 @@ void ReceiverCutter::merge() {
   }
 }
 
-void ReceiverCutter::emit(ReceiverPieces& out) {
+void ReceiverCutter::emitPolygon(ReceiverPieces& out, LightMask mask, std::span<const std::uint32_t> vertices,
+                                 std::span<const std::uint8_t> flags) {
+  out.polygonStart.push_back(std::uint32_t(out.corners.size()));
+  out.masks.push_back(mask);
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    std::uint32_t& l = m_local[vertices[i]];
+    if (l == kNone) {
+      l = std::uint32_t(out.vertices.size());
+      out.vertices.push_back(m_vertices[vertices[i]].def);
+      out.positions.push_back(m_g.position(m_vertices[vertices[i]]));
+    }
+    out.corners.push_back(l);
+    out.cornerFlags.push_back(flags[i]);
+  }
+}
+
+void ReceiverCutter::emitFaces(ReceiverPieces& out) {
   out.clear();
-  std::vector<std::uint32_t> local(m_vertices.size(), kNone);
+  m_local.assign(m_vertices.size(), kNone);
   for (std::uint32_t f = 0; f < m_faces.size(); ++f) {
     const Face& face = m_faces[f];
     if (!face.alive) continue;
-    out.polygonStart.push_back(std::uint32_t(out.corners.size()));
-    out.masks.push_back(face.mask);
+    m_loopVertices.clear();
+    m_polygonFlags.clear();
     std::uint32_t e = face.edge;
     do {
       const HalfEdge& he = m_edges[e];
-      std::uint32_t& l = local[he.origin];
-      if (l == kNone) {
-        l = std::uint32_t(out.vertices.size());
-        out.vertices.push_back(m_vertices[he.origin].def);
-        out.positions.push_back(m_g.position(m_vertices[he.origin]));
-      }
-      out.corners.push_back(l);
+      m_loopVertices.push_back(he.origin);
       std::uint8_t flags = he.line < 0 ? std::uint8_t(-1 - he.line) : std::uint8_t(kInterior);
       if (straight(he.prev, e)) flags |= kStraight;
-      out.cornerFlags.push_back(flags);
+      m_polygonFlags.push_back(flags);
       e = he.next;
     } while (e != face.edge);
+    emitPolygon(out, face.mask, m_loopVertices, m_polygonFlags);
+  }
+  out.polygonStart.push_back(std::uint32_t(out.corners.size()));
+}
+
+bool ReceiverCutter::boundary(std::uint32_t e) const {
+  const HalfEdge& he = m_edges[e];
+  return he.twin == kNone || m_faces[m_edges[he.twin].face].mask != m_faces[he.face].mask;
+}
+
+void ReceiverCutter::emit(ReceiverPieces& out) {
+  // Regions: faces joined across edges whose faces have the same mask, in order of their
+  // first face (so the output does not depend on anything but the subdivision).
+  const std::uint32_t faceCount = std::uint32_t(m_faces.size());
+  m_region.assign(faceCount, kNone);
+  m_regionFaces.clear();
+  m_regionStart.clear();
+  for (std::uint32_t f = 0; f < faceCount; ++f) {
+    if (!m_faces[f].alive || m_region[f] != kNone) continue;
+    const std::uint32_t r = std::uint32_t(m_regionStart.size());
+    m_regionStart.push_back(std::uint32_t(m_regionFaces.size()));
+    m_region[f] = r;
+    m_stack.assign(1, f);
+    while (!m_stack.empty()) {
+      const std::uint32_t g = m_stack.back();
+      m_stack.pop_back();
+      m_regionFaces.push_back(g);
+      std::uint32_t e = m_faces[g].edge;
+      do {
+        const HalfEdge& he = m_edges[e];
+        if (he.twin != kNone && !boundary(e)) {
+          const std::uint32_t h = m_edges[he.twin].face;
+          if (m_region[h] == kNone) {
+            m_region[h] = r;
+            m_stack.push_back(h);
+          }
+        }
+        e = he.next;
+      } while (e != m_faces[g].edge);
+    }
+  }
+  m_regionStart.push_back(std::uint32_t(m_regionFaces.size()));
+  // How many outline edges meet at each vertex (A's edges count), and which of A's edges
+  // each vertex lies on.
+  m_degree.assign(m_vertices.size(), 0);
+  m_onEdge.assign(m_vertices.size(), 0);
+  for (std::uint32_t e = 0; e < m_edges.size(); ++e) {
+    const HalfEdge& he = m_edges[e];
+    if (!he.alive || !m_faces[he.face].alive) continue;
+    const std::uint32_t to = m_edges[he.next].origin;
+    if (he.line < 0) {
+      m_onEdge[he.origin] |= std::uint8_t(1u << (-1 - he.line));
+      m_onEdge[to] |= std::uint8_t(1u << (-1 - he.line));
+    }
+    if (!boundary(e) || (he.twin != kNone && he.twin < e)) continue;
+    m_degree[he.origin] = std::uint8_t(std::min(m_degree[he.origin] + 1, 255));
+    m_degree[to] = std::uint8_t(std::min(m_degree[to] + 1, 255));
+  }
+  // A vertex stays where two outline edges turn or more than two meet; elsewhere it lies
+  // on a straight outline between two regions (or inside one) and every face around it
+  // agrees to drop it. On A's edges, a neighbouring receiver that keeps one puts it back
+  // (merge.cpp, shared edges).
+  const auto keep = [&](std::uint32_t incoming, std::uint32_t outgoing) {
+    return m_degree[m_edges[outgoing].origin] != 2 || !straight(incoming, outgoing);
+  };
+  out.clear();
+  m_local.assign(m_vertices.size(), kNone);
+  m_visited.assign(m_edges.size(), 0);
+  bool corners = false;
+  for (std::uint32_t r = 0; r + 1 < m_regionStart.size(); ++r) {
+    const std::uint32_t first = m_regionFaces[m_regionStart[r]];
+    const LightMask mask = m_faces[first].mask;
+    // The region's outlines: from each unvisited outline edge, around the region.
+    m_loopEdges.clear();
+    m_loopStart.clear();
+    for (std::uint32_t i = m_regionStart[r]; i < m_regionStart[r + 1]; ++i) {
+      const std::uint32_t g = m_regionFaces[i];
+      std::uint32_t e0 = m_faces[g].edge;
+      do {
+        if (boundary(e0) && !m_visited[e0]) {
+          m_loopStart.push_back(std::uint32_t(m_loopEdges.size()));
+          std::uint32_t e = e0;
+          do {
+            m_visited[e] = 1;
+            m_loopEdges.push_back(e);
+            std::uint32_t x = m_edges[e].next;  // around the end vertex, through the region, to the next outline edge
+            while (!boundary(x)) x = m_edges[m_edges[x].twin].next;
+            e = x;
+          } while (e != e0);
+        }
+        e0 = m_edges[e0].next;
+      } while (e0 != m_faces[g].edge);
+    }
+    m_loopStart.push_back(std::uint32_t(m_loopEdges.size()));
+    // The corners kept, loop by loop.
+    m_loopVertices.clear();
+    m_polygonFlags.clear();
+    std::vector<std::uint32_t> keptStart;
+    for (std::size_t l = 0; l + 1 < m_loopStart.size(); ++l) {
+      keptStart.push_back(std::uint32_t(m_loopVertices.size()));
+      const std::uint32_t a = m_loopStart[l], z = m_loopStart[l + 1];
+      for (std::uint32_t i = a; i < z; ++i) {
+        const std::uint32_t in = m_loopEdges[i == a ? z - 1 : i - 1], e = m_loopEdges[i];
+        if (!keep(in, e)) continue;
+        m_loopVertices.push_back(m_edges[e].origin);
+        std::uint8_t flags = m_edges[e].line < 0 ? std::uint8_t(-1 - m_edges[e].line) : std::uint8_t(kInterior);
+        if (straight(in, e)) flags |= kStraight;
+        m_polygonFlags.push_back(flags);
+      }
+    }
+    keptStart.push_back(std::uint32_t(m_loopVertices.size()));
+    if (m_regionStart[r + 1] - m_regionStart[r] == 1) {  // one convex face: its kept corners
+      emitPolygon(out, mask, m_loopVertices, m_polygonFlags);
+      continue;
+    }
+    if (!corners) {
+      std::array<VertexDef, 3> defs;
+      for (std::size_t k = 0; k < 3; ++k) defs[k] = VertexDef{.kind = VertexKind::Point, .a = m_corner[k]};
+      m_triangulator.reset(m_axisU, m_axisV, defs);
+      corners = true;
+    }
+    m_triangles.clear();
+    if (!m_triangulator.triangulate(m_vertices, m_loopVertices, keptStart, m_triangles)) {
+      emitFaces(out);  // keep every vertex everywhere, so that the regions still meet without T-junctions
+      return;
+    }
+    for (std::size_t t = 0; t < m_triangles.size(); t += 3) {
+      std::array<std::uint8_t, 3> flags;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::uint8_t both = m_onEdge[m_triangles[t + k]] & m_onEdge[m_triangles[t + (k + 1) % 3]];
+        flags[k] = both == 0 ? std::uint8_t(kInterior) : std::uint8_t(std::countr_zero(both));
+      }
+      emitPolygon(out, mask, std::span(m_triangles).subspan(t, 3), flags);
+    }
   }
   out.polygonStart.push_back(std::uint32_t(out.corners.size()));
 }

@@ -15,12 +15,15 @@
 // area is split along those of them that cross it; the part inside is shadowed for that
 // light. Faces already shadowed for a light are not cut again by its occluders. Finally
 // adjacent faces with the same light mask are merged while their union stays convex (the
-// seed's "optimization step") and straight vertices no longer needed are dropped.
+// seed's "optimization step"), and each region of one mask is triangulated again with
+// only the vertices where its outline turns or meets another outline (regions.h).
 #include "candidates.h"
 #include "exact.h"
+#include "regions.h"
 
 #include <array>
 #include <atomic>
+#include <span>
 #include <cstdint>
 #include <vector>
 
@@ -144,6 +147,12 @@ private:
   void dropStraightVertex(std::uint32_t incoming);
   bool straight(std::uint32_t incoming, std::uint32_t outgoing);
   void emit(ReceiverPieces& out);
+  /// Appends a polygon: corners (vertex ids) with their CornerFlags.
+  void emitPolygon(ReceiverPieces& out, LightMask mask, std::span<const std::uint32_t> vertices,
+                   std::span<const std::uint8_t> flags);
+  /// The faces as they are, every vertex kept (when a region cannot be triangulated).
+  void emitFaces(ReceiverPieces& out);
+  bool boundary(std::uint32_t e) const;
 
   const SceneData& m_scene;
   const exact::Geometry& m_g;
@@ -167,6 +176,12 @@ private:
   std::vector<const exact::VertexRec*> m_recs;
   std::vector<Occluder> m_occluders;
   std::vector<std::uint32_t> m_lit, m_nextLit;  ///< faces still lit by the current light
+  // emit: regions and their outlines
+  RegionTriangulator m_triangulator;
+  std::vector<std::uint32_t> m_local, m_region, m_regionFaces, m_regionStart, m_stack;
+  std::vector<std::uint8_t> m_degree, m_onEdge, m_visited;
+  std::vector<std::uint32_t> m_loopEdges, m_loopVertices, m_loopStart, m_triangles;
+  std::vector<std::uint8_t> m_polygonFlags;
 };
 
 }  // namespace glint::cut

@@ -74,8 +74,9 @@ using dvec3 = glm::dvec3;
 /// The cutter's version: raised whenever cut() gives different output for the same input
 /// (a fix, a change to merging or rounding), so that cached cuts (cut/cache.h) keyed by it
 /// are rebuilt. 2: vertices on input points and on axis-aligned input planes keep the
-/// input's exact coordinates.
-constexpr std::uint32_t kCutterVersion = 2;
+/// input's exact coordinates. 3: each light-mask region of a receiver is triangulated with
+/// only the vertices where its outline turns.
+constexpr std::uint32_t kCutterVersion = 3;
 
 /// Bit l set: light l reaches the piece.
 using LightMask = std::uint32_t;
