@@ -4,7 +4,7 @@
 // degenerate and cyclically overlapping triangles are the common case, not the rare one,
 // and 1–3 lights on the same grid. The cut must end (no loop), and what it returns must be
 // a cut: every piece comes from an input triangle, masks name only given lights, and the
-// pieces of each triangle cover its area.
+// pieces of each triangle (or of each patch of coplanar triangles merged) cover its area.
 #include "support.h"
 
 #include "glint/core/log.h"
@@ -60,9 +60,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       area[out.polygonSource[p]] += cut::polygonArea(out, p);
     }
+    // Pieces of a patch of coplanar triangles merged count for the patch (its lowest triangle).
+    fuzz::check(out.trianglePatch.size() == triangles, "a patch per triangle");
+    std::vector<double> inputArea(triangles, 0.0);
     for (std::size_t t = 0; t < triangles; ++t) {
+      fuzz::check(out.trianglePatch[t] <= t && out.trianglePatch[out.trianglePatch[t]] == out.trianglePatch[t],
+                  "a patch is named by its lowest triangle");
       const glm::dvec3 a(mesh.positions[3 * t]), b(mesh.positions[3 * t + 1]), c(mesh.positions[3 * t + 2]);
-      const double input = 0.5 * glm::length(glm::cross(b - a, c - a));
+      inputArea[out.trianglePatch[t]] += 0.5 * glm::length(glm::cross(b - a, c - a));
+    }
+    for (std::size_t t = 0; t < triangles; ++t) {
+      const double input = inputArea[t];
       // Degenerate triangles are carried through or dropped (counted in the stats); the
       // others keep their area, up to slivers that rounding to float flattened.
       if (input > 1e-6) fuzz::check(std::abs(area[t] - input) <= 1e-6 * input + 1e-9 * double(result.stats.droppedSlivers + 1) , "area kept");

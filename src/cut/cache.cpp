@@ -35,13 +35,12 @@ CutTriangles cutTriangles(const CutMesh& mesh) {
   return out;
 }
 
-std::uint64_t cutCacheKey(const Mesh& scene, const std::vector<Light>& lights) {
+std::uint64_t cutCacheKey(const Mesh& scene, const std::vector<Light>& lights, const std::vector<std::uint32_t>& mergeGroups) {
   // Each value's bytes in memory order (little-endian here, as the cache files are).
-  return Fnv1a(inputHash(scene, lights))
-      .add(std::uint64_t(lights.size()))
-      .add(std::uint64_t(kCutterVersion))
-      .add(std::uint64_t(kFormatVersion))
-      .value();
+  Fnv1a h(inputHash(scene, lights));
+  h.add(std::uint64_t(lights.size())).add(std::uint64_t(kCutterVersion)).add(std::uint64_t(kFormatVersion));
+  if (!mergeGroups.empty()) h.add(std::uint64_t(mergeGroups.size())).add(std::span(mergeGroups));
+  return h.value();
 }
 
 namespace {
@@ -96,7 +95,7 @@ CachedCut cachedCut(const Mesh& scene, const std::vector<Light>& lights, const C
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   CachedCut out;
-  out.key = cutCacheKey(scene, lights);
+  out.key = cutCacheKey(scene, lights, options.mergeGroups);
   const fs::path directory = options.directory.empty() ? cacheDirectory() : options.directory;
   const std::string name = fmt::format("{}-{:016x}.cut", options.name, out.key);
   const auto build = [&](const fs::path& tmp) {
@@ -106,6 +105,7 @@ CachedCut cachedCut(const Mesh& scene, const std::vector<Light>& lights, const C
     cutOptions.lights = lights;
     cutOptions.progress = options.progress;
     cutOptions.cancel = options.cancel;
+    cutOptions.mergeGroups = options.mergeGroups;
     CutResult result = cut(scene, cutOptions);
     out.warnings = result.warnings;
     out.triangles = cutTriangles(result.mesh);

@@ -323,6 +323,12 @@ int Geometry::exactSide(const VertexDef& v, const PlaneDef& plane) const {
   return 0;
 }
 
+int Geometry::normalsDot(const PlaneDef& p, const PlaneDef& q) const {
+  const EPlane a = planeExact(point(p.p[0]), point(p.p[1]), point(p.p[2]));
+  const EPlane b = planeExact(point(q.p[0]), point(q.p[1]), point(q.p[2]));
+  return signOf(dot(a.n, b.n));
+}
+
 std::array<mpq_class, 3> Geometry::exactPosition(const VertexDef& v) const {
   const auto q3 = [](const E3& e) { return std::array<mpq_class, 3>{mpq_class(e.x), mpq_class(e.y), mpq_class(e.z)}; };
   switch (v.kind) {

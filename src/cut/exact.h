@@ -134,6 +134,9 @@ public:
   /// name only: the same vertex gets the same position in every receiver and shard.
   dvec3 snapped(const VertexDef& def, dvec3 x) const;
 
+  /// Sign of the dot product of the two planes' normals, exactly.
+  int normalsDot(const PlaneDef& p, const PlaneDef& q) const;
+
   /// The vertex's coordinates as exact rationals: for the few constructions that need
   /// points, not signs against planes (regions.cpp triangulates with them).
   std::array<mpq_class, 3> exactPosition(const VertexDef& v) const;

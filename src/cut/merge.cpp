@@ -8,12 +8,15 @@
 //   2. ids       vertex ids: welded points, then edge vertices edge by edge, then each
 //                receiver's interior vertices in triangle order
 //   3. polygons  triangle by triangle, with the edge vertices inserted on boundary runs
+//   3b. coplanar pieces of coplanar neighbours with one light mask merged, the vertices
+//                inside them dropped (coplanar.h)
 //   4. rounding  to float; vertices of one surface that round to one position become one,
 //                and polygons left with fewer than three corners are dropped
 //   count        polygons, triangles, vertices and areas per light
 #include "glint/core/error.h"
 #include "glint/core/log.h"
 
+#include "coplanar.h"
 #include "lights.h"
 #include "pieces.h"
 
@@ -108,9 +111,11 @@ struct Merge {
   std::vector<std::uint32_t> edgeGroup;   ///< EdgeMap edge → group; kNone: no vertex on it
   std::vector<std::size_t> byReceiver;    ///< entries sorted by (block, entry, local)
   std::vector<dvec3> precise;             ///< position of every id
+  std::vector<exact::VertexDef> defs;     ///< name of every id
   std::vector<std::uint32_t> vertexComponent;  ///< connected surface of every id
   // 3. polygons
   CutMesh polygons;                       ///< corners are ids; no positions yet
+  std::vector<std::uint32_t> polygonFirst;  ///< per triangle, and the end: its polygons
 
   const PieceBlock& block(std::uint32_t b) const { return *blocks[b]; }
   const exact::VertexDef& defOf(const EdgeEntry& x) const {
@@ -228,8 +233,12 @@ void Merge::numberVertices() {
   groupBase.assign(unionCount.size() + 1, pointCount);
   for (std::size_t gi = 0; gi < unionCount.size(); ++gi) groupBase[gi + 1] = groupBase[gi] + unionCount[gi];
   precise.resize(groupBase.back());
+  defs.resize(groupBase.back());
   vertexComponent.assign(groupBase.back(), kNone);
-  for (std::uint32_t i = 0; i < pointCount; ++i) precise[i] = g.point(i);
+  for (std::uint32_t i = 0; i < pointCount; ++i) {
+    precise[i] = g.point(i);
+    defs[i] = exact::VertexDef{.kind = exact::VertexKind::Point, .a = i};
+  }
   for (std::uint32_t f = 0; f < scene.triangles.size(); ++f)
     for (std::uint32_t c : scene.triangles[f])
       if (vertexComponent[c] == kNone) vertexComponent[c] = component[f];
@@ -239,6 +248,7 @@ void Merge::numberVertices() {
     const std::uint32_t c = component[prep.edges.faces(prep.edges.edges()[entries[groupStart[gi]].edge])[0].face];
     for (std::size_t i = groupStart[gi + 1]; i-- > groupStart[gi];) {  // the first entry's position wins
       precise[groupBase[gi] + entries[i].unionIndex] = posOf(entries[i]);
+      defs[groupBase[gi] + entries[i].unionIndex] = defOf(entries[i]);
       vertexComponent[groupBase[gi] + entries[i].unionIndex] = c;
     }
   }
@@ -279,6 +289,7 @@ void Merge::receiverIds(std::uint32_t f, std::vector<std::uint32_t>& localId,
     } else {
       localId[v] = std::uint32_t(precise.size());
       precise.push_back(blk.positions[v0 + v]);
+      defs.push_back(d);
       vertexComponent.push_back(scene.component[f]);
     }
   }
@@ -414,6 +425,8 @@ void countOutput(const CutMesh& m, CutStats& stats) {
 
 CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOptions& options) {
   if (shards.empty()) fail(ErrorKind::Usage, "nothing to merge: no shards");
+  if (!options.mergeGroups.empty() && options.mergeGroups.size() != mesh.triangleCount())
+    fail(ErrorKind::Usage, "merge groups: {} given for {} triangles", options.mergeGroups.size(), mesh.triangleCount());
   checkShardLights(options.lights, shards.front().lights);
   const auto start = Clock::now();
   const Prepared prep = prepare(mesh, shards.front().lights, false);
@@ -427,10 +440,19 @@ CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOpti
   merge.sortAlongEdges(result.stats);
   throwIfCancelled(options);
   merge.numberVertices();
-  for (std::uint32_t f = 0; f < merge.where.size(); ++f)
+  merge.polygonFirst.reserve(merge.where.size() + 1);
+  for (std::uint32_t f = 0; f < merge.where.size(); ++f) {
+    merge.polygonFirst.push_back(std::uint32_t(merge.polygons.polygonCount()));
     if (merge.where[f].first != kNone) merge.addPolygons(f);
+  }
+  merge.polygonFirst.push_back(std::uint32_t(merge.polygons.polygonCount()));
+  throwIfCancelled(options);
+  const CoplanarInput coplanar{prep, merge.polygonFirst, merge.defs, options.mergeGroups};
+  std::vector<std::uint32_t> patch = coplanarPatches(coplanar);
+  merge.polygons = mergeCoplanar(coplanar, patch, merge.polygons, result.stats.mergedPatches);
   throwIfCancelled(options);
   result.mesh = merge.rounded(result.stats.droppedSlivers);
+  result.mesh.trianglePatch = patch;
   countOutput(result.mesh, result.stats);
   result.stats.assembleSeconds = since(start);
   if (result.stats.droppedSlivers > 0) {

@@ -776,21 +776,24 @@ void ReceiverCutter::emit(ReceiverPieces& out) {
     if (!corners) {
       std::array<VertexDef, 3> defs;
       for (std::size_t k = 0; k < 3; ++k) defs[k] = VertexDef{.kind = VertexKind::Point, .a = m_corner[k]};
-      m_triangulator.reset(m_axisU, m_axisV, defs);
+      m_triangulator.reset(m_axisU, m_axisV, defs, [this](std::uint32_t id) -> const VertexDef& { return m_vertices[id].def; });
       corners = true;
     }
-    m_triangles.clear();
-    if (!m_triangulator.triangulate(m_vertices, m_loopVertices, keptStart, m_triangles)) {
+    m_pieces.clear();
+    if (!m_triangulator.triangulate(m_loopVertices, keptStart, m_pieces)) {
       emitFaces(out);  // keep every vertex everywhere, so that the regions still meet without T-junctions
       return;
     }
-    for (std::size_t t = 0; t < m_triangles.size(); t += 3) {
-      std::array<std::uint8_t, 3> flags;
-      for (std::size_t k = 0; k < 3; ++k) {
-        const std::uint8_t both = m_onEdge[m_triangles[t + k]] & m_onEdge[m_triangles[t + (k + 1) % 3]];
-        flags[k] = both == 0 ? std::uint8_t(kInterior) : std::uint8_t(std::countr_zero(both));
+    for (std::size_t q = 0, s = 0; q < m_pieces.end.size(); s = m_pieces.end[q++]) {
+      const std::size_t k = m_pieces.end[q] - s;
+      m_polygonFlags.clear();
+      for (std::size_t i = 0; i < k; ++i) {
+        const std::uint8_t both = m_onEdge[m_pieces.corners[s + i]] & m_onEdge[m_pieces.corners[s + (i + 1) % k]];
+        std::uint8_t flags = both == 0 ? std::uint8_t(kInterior) : std::uint8_t(std::countr_zero(both));
+        if (m_pieces.straight[s + i]) flags |= kStraight;
+        m_polygonFlags.push_back(flags);
       }
-      emitPolygon(out, mask, std::span(m_triangles).subspan(t, 3), flags);
+      emitPolygon(out, mask, std::span(m_pieces.corners).subspan(s, k), m_polygonFlags);
     }
   }
   out.polygonStart.push_back(std::uint32_t(out.corners.size()));

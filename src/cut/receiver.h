@@ -180,7 +180,8 @@ private:
   RegionTriangulator m_triangulator;
   std::vector<std::uint32_t> m_local, m_region, m_regionFaces, m_regionStart, m_stack;
   std::vector<std::uint8_t> m_degree, m_onEdge, m_visited;
-  std::vector<std::uint32_t> m_loopEdges, m_loopVertices, m_loopStart, m_triangles;
+  std::vector<std::uint32_t> m_loopEdges, m_loopVertices, m_loopStart;
+  ConvexPieces m_pieces;
   std::vector<std::uint8_t> m_polygonFlags;
 };
 

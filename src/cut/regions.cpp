@@ -7,6 +7,7 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <algorithm>
 #include <deque>
 #include <unordered_map>
 
@@ -33,12 +34,13 @@ struct RegionTriangulator::Impl {
   const exact::Geometry& g;
   int u = 0, v = 1;
   bool flipped = false;  ///< the projection turns A's counter-clockwise into clockwise
-  std::unordered_map<std::uint32_t, Point> points;  ///< by vertex id, this receiver
+  Defs defs;
+  std::unordered_map<std::uint32_t, Point> points;  ///< by vertex id, this plane
 
-  const Point& point(std::span<const exact::VertexRec> vertices, std::uint32_t id) {
+  const Point& point(std::uint32_t id) {
     auto it = points.find(id);
     if (it == points.end()) {
-      const auto x = g.exactPosition(vertices[id].def);
+      const auto x = g.exactPosition(defs(id));
       it = points.emplace(id, Point(K::FT(x[std::size_t(u)]), K::FT(x[std::size_t(v)]))).first;
     }
     return it->second;
@@ -48,9 +50,10 @@ struct RegionTriangulator::Impl {
 RegionTriangulator::RegionTriangulator(const exact::Geometry& geometry) : m(std::make_unique<Impl>(Impl{geometry})) {}
 RegionTriangulator::~RegionTriangulator() = default;
 
-void RegionTriangulator::reset(int axisU, int axisV, const std::array<exact::VertexDef, 3>& corners) {
+void RegionTriangulator::reset(int axisU, int axisV, const std::array<exact::VertexDef, 3>& corners, Defs defs) {
   m->u = axisU;
   m->v = axisV;
+  m->defs = std::move(defs);
   m->points.clear();
   std::array<Point, 3> p;
   for (std::size_t k = 0; k < 3; ++k) {
@@ -60,8 +63,12 @@ void RegionTriangulator::reset(int axisU, int axisV, const std::array<exact::Ver
   m->flipped = CGAL::orientation(p[0], p[1], p[2]) == CGAL::CLOCKWISE;
 }
 
-bool RegionTriangulator::triangulate(std::span<const exact::VertexRec> vertices, std::span<const std::uint32_t> loopVertices,
-                                     std::span<const std::uint32_t> loopStart, std::vector<std::uint32_t>& triangles) {
+bool RegionTriangulator::collinear(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  return CGAL::orientation(m->point(a), m->point(b), m->point(c)) == CGAL::COLLINEAR;
+}
+
+bool RegionTriangulator::triangulate(std::span<const std::uint32_t> loopVertices,
+                                     std::span<const std::uint32_t> loopStart, ConvexPieces& out) {
   Cdt cdt;
   try {
     for (std::size_t l = 0; l + 1 < loopStart.size(); ++l) {
@@ -71,7 +78,7 @@ bool RegionTriangulator::triangulate(std::span<const exact::VertexRec> vertices,
       for (std::uint32_t i = a; i < z; ++i) {
         const std::uint32_t id = loopVertices[i];
         const std::size_t count = cdt.number_of_vertices();
-        const Cdt::Vertex_handle h = cdt.insert(m->point(vertices, id));
+        const Cdt::Vertex_handle h = cdt.insert(m->point(id));
         if (cdt.number_of_vertices() > count) h->info() = id;
         else if (h->info() != id) return false;  // two vertices at one point: a zero-length edge
         if (i == a) first = h;
@@ -111,22 +118,68 @@ bool RegionTriangulator::triangulate(std::span<const exact::VertexRec> vertices,
       }
     }
   }
-  const std::size_t before = triangles.size();
-  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-    if (f->info() % 2 == 0) continue;
-    const std::uint32_t a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
-    if (m->flipped) triangles.insert(triangles.end(), {a, c, b});
-    else triangles.insert(triangles.end(), {a, b, c});
-  }
   // Every outline edge has the region on exactly one side; otherwise the loops were not
   // the outline of one region.
   for (auto e = cdt.finite_edges_begin(); e != cdt.finite_edges_end(); ++e) {
     if (!cdt.is_constrained(*e)) continue;
     const bool in = e->first->info() % 2 == 1, out = e->first->neighbor(e->second)->info() % 2 == 1;
-    if (in == out) {
-      triangles.resize(before);
-      return false;
+    if (in == out) return false;
+  }
+  // The region's triangles, each a polygon (counter-clockwise in the projection), then
+  // joined greedily across diagonals where both ends stay convex.
+  std::vector<Cdt::Face_handle> faces;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+    if (f->info() % 2 == 1) {
+      f->info() = 2 * int(faces.size()) + 1;  // odd still: inside, and its index
+      faces.push_back(f);
     }
+  const auto index = [](Cdt::Face_handle f) { return std::uint32_t((f->info() - 1) / 2); };
+  std::vector<std::uint32_t> parent(faces.size());
+  std::vector<std::vector<Cdt::Vertex_handle>> cycle(faces.size());
+  for (std::uint32_t i = 0; i < faces.size(); ++i) {
+    parent[i] = i;
+    cycle[i] = {faces[i]->vertex(0), faces[i]->vertex(1), faces[i]->vertex(2)};
+  }
+  const auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  // Rotates c so that it starts at v.
+  const auto startAt = [](std::vector<Cdt::Vertex_handle>& c, Cdt::Vertex_handle v) {
+    std::rotate(c.begin(), std::find(c.begin(), c.end(), v), c.end());
+  };
+  for (std::uint32_t i = 0; i < faces.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const Cdt::Face_handle n = faces[i]->neighbor(k);
+      if (cdt.is_infinite(n) || n->info() % 2 == 0 || index(n) < i) continue;
+      const std::uint32_t p = find(i), q = find(index(n));
+      if (p == q) continue;
+      // In f the diagonal runs a → b; in its neighbour b → a.
+      const Cdt::Vertex_handle a = faces[i]->vertex(Cdt::ccw(k)), b = faces[i]->vertex(Cdt::cw(k));
+      std::vector<Cdt::Vertex_handle>& P = cycle[p];
+      std::vector<Cdt::Vertex_handle>& Q = cycle[q];
+      startAt(P, b);  // b ... a
+      startAt(Q, a);  // a ... b
+      if (P.back() != a || Q.back() != b) continue;  // not a side of both (cannot happen)
+      const auto convex = [](Cdt::Vertex_handle x, Cdt::Vertex_handle y, Cdt::Vertex_handle z) {
+        return CGAL::orientation(x->point(), y->point(), z->point()) != CGAL::RIGHT_TURN;
+      };
+      if (!convex(P[P.size() - 2], a, Q[1]) || !convex(Q[Q.size() - 2], b, P[1])) continue;
+      P.insert(P.end(), Q.begin() + 1, Q.end() - 1);
+      Q.clear();
+      parent[q] = p;
+    }
+  for (std::uint32_t i = 0; i < faces.size(); ++i) {
+    if (find(i) != i) continue;
+    std::vector<Cdt::Vertex_handle>& c = cycle[i];
+    if (m->flipped) std::reverse(c.begin(), c.end());
+    const std::size_t k = c.size();
+    for (std::size_t j = 0; j < k; ++j) {
+      out.corners.push_back(c[j]->info());
+      out.straight.push_back(CGAL::orientation(c[(j + k - 1) % k]->point(), c[j]->point(), c[(j + 1) % k]->point()) ==
+                             CGAL::COLLINEAR);
+    }
+    out.end.push_back(std::uint32_t(out.corners.size()));
   }
   return true;
 }

@@ -31,7 +31,9 @@ nlohmann::ordered_json toJson(const CutStats& s) {
   report["output_triangles"] = s.outputTriangles;
   report["output_vertices"] = s.outputVertices;
   report["polygons_per_input_triangle"] = double(s.outputPolygons) / double(std::max<std::uint64_t>(1, s.inputTriangles));
+  report["triangles_per_input_triangle"] = double(s.outputTriangles) / double(std::max<std::uint64_t>(1, s.inputTriangles));
   report["pieces_before_merge"] = s.facesBeforeMerge;
+  report["merged_patches"] = s.mergedPatches;
   report["degenerate_triangles"] = s.degenerateTriangles;
   report["collapsed_triangles"] = s.collapsedTriangles;
   report["dropped_slivers"] = s.droppedSlivers;

@@ -96,10 +96,13 @@ Mesh cyclicTriangles() {
   return scene;
 }
 
+/// Shadowed area of the triangle's pieces (of its patch's, when it merged with coplanar
+/// neighbours).
 double shadowedAreaOf(const CutResult& r, std::uint32_t triangle, int light = 0) {
   double area = 0.0;
   for (std::size_t p = 0; p < r.mesh.polygonCount(); ++p)
-    if (r.mesh.polygonSource[p] == triangle && !(r.mesh.polygonMask[p] & (1u << light))) area += polygonArea(r.mesh, p);
+    if (r.mesh.polygonSource[p] == r.mesh.trianglePatch[triangle] && !(r.mesh.polygonMask[p] & (1u << light)))
+      area += polygonArea(r.mesh, p);
   return area;
 }
 
@@ -246,7 +249,7 @@ TEST(Cut, OutputDoesNotDependOnThreads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
     two = cut::cut(scene, options);
   }
-  ASSERT_GT(one.mesh.polygonCount(), scene.triangleCount());
+  ASSERT_GT(one.stats.facesBeforeMerge, scene.triangleCount());  // shadows were cut in
   expectSame(one.mesh, two.mesh);
 }
 
@@ -299,7 +302,7 @@ TEST(Cut, ReportAndMemoryEstimate) {
   std::vector<std::string> keys;
   for (const auto& [key, value] : j.items()) keys.push_back(key);
   EXPECT_EQ(keys, (std::vector<std::string>{"input_triangles", "output_polygons", "output_triangles", "output_vertices",
-                                            "polygons_per_input_triangle", "pieces_before_merge", "degenerate_triangles",
+                                            "polygons_per_input_triangle", "triangles_per_input_triangle", "pieces_before_merge", "merged_patches", "degenerate_triangles",
                                             "collapsed_triangles", "dropped_slivers", "per_light", "candidates",
                                             "occluders", "clipped_pairs", "cuts", "clipped_pairs_per_second",
                                             "predicates"}));
@@ -407,7 +410,7 @@ TEST(Cut, ExactInputCoordinatesStayExact) {
   options.lights = {{.position = {0.3f, 5.0f, 0.2f}, .name = "key"}, {.position = {-2.1f, 3.3f, 1.7f}, .name = "fill"}};
   const CutResult r = cut::cut(scene, options);
   const CutMesh& m = r.mesh;
-  ASSERT_GT(m.polygonCount(), scene.triangleCount());
+  ASSERT_GT(r.stats.cuts, 0u);
   std::size_t onAxisPlanes = 0, onInputPoints = 0, floorVertices = 0;
   for (std::size_t p = 0; p < m.polygonCount(); ++p) {
     const std::uint32_t f = m.polygonSource[p];
@@ -428,9 +431,11 @@ TEST(Cut, ExactInputCoordinatesStayExact) {
   // Vertices that are input points (within a hair: nothing else of this scene comes so close)
   // are those points exactly: the box's corners on the floor, shadows meeting them.
   onInputPoints = expectInputPointsExact(scene, m);
-  EXPECT_GT(floorVertices, 300u);
-  EXPECT_GT(onAxisPlanes, 500u);
-  EXPECT_GT(onInputPoints, 50u);
+  // Enough of each kind to mean something (the floor's 72 cells merge into a few convex
+  // pieces around the shadows: 86 floor corners, 214 on axis planes, 29 input points).
+  EXPECT_GT(floorVertices, 60u);
+  EXPECT_GT(onAxisPlanes, 150u);
+  EXPECT_GT(onInputPoints, 20u);
   // Still the same cut: watertight, every piece's mask as the shadow rays say.
   expectClosed(scene, m);
   EXPECT_LT(worstAreaError(scene, m), 1e-6);

@@ -112,7 +112,10 @@ inline OracleResult shadowOracle(const Mesh& scene, const CutMesh& mesh, const s
     for (std::size_t k = 0; k < pending.size(); ++k) {
       const std::size_t i = pending[k];
       if (!hits[k]) continue;
-      if (hits[k]->triangle == source[i]) {
+      // A piece of a merged patch lies in the plane of all its triangles: a hit on any of
+      // them is the piece's own surface.
+      const std::uint32_t hit = hits[k]->triangle;
+      if (hit == source[i] || (hit < mesh.trianglePatch.size() && mesh.trianglePatch[hit] == source[i])) {
         rays[i].tnear = hits[k]->t + 1e-7f;
         again.push_back(i);
       } else {
@@ -128,18 +131,21 @@ inline OracleResult shadowOracle(const Mesh& scene, const CutMesh& mesh, const s
   return r;
 }
 
-/// The largest relative difference between an input triangle's area and the summed area
-/// of its pieces (precise positions), over triangles with area.
+/// The largest relative difference between the area of an input triangle, or of a patch
+/// of coplanar triangles merged (CutMesh::trianglePatch), and the summed area of its
+/// pieces (precise positions), over those with area.
 inline double worstAreaError(const Mesh& scene, const CutMesh& mesh) {
-  std::vector<double> sum(scene.triangleCount(), 0.0);
+  std::vector<double> sum(scene.triangleCount(), 0.0), input(scene.triangleCount(), 0.0);
   for (std::size_t p = 0; p < mesh.polygonCount(); ++p) sum[mesh.polygonSource[p]] += polygonArea(mesh, p);
-  double worst = 0.0;
   for (std::size_t t = 0; t < scene.triangleCount(); ++t) {
     const dvec3 a(scene.positions[scene.indices[3 * t]]), b(scene.positions[scene.indices[3 * t + 1]]),
         c(scene.positions[scene.indices[3 * t + 2]]);
-    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
-    if (area == 0.0) continue;
-    worst = std::max(worst, std::abs(sum[t] - area) / area);
+    input[mesh.trianglePatch.empty() ? t : mesh.trianglePatch[t]] += 0.5 * glm::length(glm::cross(b - a, c - a));
+  }
+  double worst = 0.0;
+  for (std::size_t t = 0; t < scene.triangleCount(); ++t) {
+    if (input[t] == 0.0) continue;
+    worst = std::max(worst, std::abs(sum[t] - input[t]) / input[t]);
   }
   return worst;
 }

@@ -55,14 +55,16 @@ struct CutTriangles {
 CutTriangles cutTriangles(const CutMesh& mesh);
 
 /// Names a cut: FNV-1a over the scene's positions and indices, the light positions,
-/// kCutterVersion and the cache file's format version.
-std::uint64_t cutCacheKey(const Mesh& scene, const std::vector<Light>& lights);
+/// kCutterVersion, the cache file's format version and the merge groups (when given).
+std::uint64_t cutCacheKey(const Mesh& scene, const std::vector<Light>& lights,
+                          const std::vector<std::uint32_t>& mergeGroups = {});
 
 struct CachedCutOptions {
   std::filesystem::path directory;  ///< empty: glint's cache directory (core/cache.h)
   std::string name = "cut";         ///< file name prefix: <name>-<key in hex>.cut
   bool progress = false;            ///< the cutter's progress bar while building (on a terminal)
   const std::atomic<bool>* cancel = nullptr;  ///< passed to the cutter: Error(Interrupted), nothing written
+  std::vector<std::uint32_t> mergeGroups;     ///< CutOptions::mergeGroups
 };
 
 struct CachedCut {

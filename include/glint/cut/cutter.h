@@ -100,19 +100,31 @@ struct CutOptions {
   /// receivers are near each other and share occluders.
   int shardIndex = 0;
   int shardCount = 1;
+  /// Per input triangle, or empty: pieces of coplanar neighbours merge only when their
+  /// triangles have the same value here (e.g. a material and a smoothing group, when the
+  /// caller interpolates attributes across each input triangle). Empty: every coplanar
+  /// neighbour of one surface may merge.
+  std::vector<std::uint32_t> mergeGroups;
   bool progress = false;                       ///< a progress bar on stderr (when a terminal)
   const std::atomic<bool>* cancel = nullptr;   ///< polled; when set, cut() throws Error(Interrupted)
 };
 
-/// The cut mesh: convex polygons (counter-clockwise), each a piece of one input triangle.
+/// The cut mesh: convex polygons (counter-clockwise), each in the plane of its source: a
+/// piece of one input triangle, or of a *patch* of coplanar neighbours of one surface
+/// merged where they have the same light mask (the seed's optimization step across
+/// triangles; docs/cut.md).
 struct CutMesh {
   std::vector<vec3> positions;              ///< output vertices, rounded to float
   std::vector<dvec3> precisePositions;      ///< the same points to about a double's precision
   std::vector<std::uint32_t> polygonStart;  ///< polygon p: corners[polygonStart[p] .. polygonStart[p+1])
   std::vector<std::uint32_t> corners;       ///< vertex indices
   std::vector<std::uint8_t> straight;       ///< per corner: 1 when it lies on a straight side (no turn)
-  std::vector<std::uint32_t> polygonSource; ///< the input triangle each polygon is a piece of
+  std::vector<std::uint32_t> polygonSource; ///< the input triangle each polygon is a piece of (of a patch: its lowest triangle)
   std::vector<LightMask> polygonMask;       ///< per polygon: the lights that reach it
+  /// Per input triangle: the lowest triangle of its patch (itself when it has no coplanar
+  /// neighbour to merge with), so pieces of triangle t are the polygons whose source is
+  /// trianglePatch[t]. Empty for a mesh loaded from a file.
+  std::vector<std::uint32_t> trianglePatch;
 
   std::size_t polygonCount() const { return polygonMask.size(); }
   std::size_t cornerCount(std::size_t polygon) const { return polygonStart[polygon + 1] - polygonStart[polygon]; }
@@ -134,6 +146,7 @@ struct CutStats {
   std::uint64_t collapsedTriangles = 0;   ///< two corners at one position: dropped
   std::uint64_t outputPolygons = 0, outputTriangles = 0, outputVertices = 0;
   std::uint64_t droppedSlivers = 0;     ///< pieces that rounding to float flattened
+  std::uint64_t mergedPatches = 0;      ///< patches of coplanar triangles whose pieces merged
   std::uint64_t candidates = 0;         ///< (receiver, triangle) pairs from the near-beam queries
   std::uint64_t occluders = 0;          ///< of those, the ones whose far beam may reach the receiver
   std::uint64_t clippedPairs = 0;       ///< (piece, far beam) pairs clipped exactly
@@ -205,7 +218,8 @@ double estimatePeakMemoryMiB(std::uint64_t triangles, std::size_t lights, int th
 /// given, possibly empty).
 nlohmann::ordered_json toJson(const std::vector<Light>& lights);
 /// The report of a cut, key by key: input_triangles, output_polygons, output_triangles,
-/// output_vertices, polygons_per_input_triangle, pieces_before_merge, degenerate_triangles,
+/// output_vertices, polygons_per_input_triangle, triangles_per_input_triangle,
+/// pieces_before_merge, merged_patches, degenerate_triangles,
 /// collapsed_triangles, dropped_slivers, per_light [{name, lit_polygons, shadowed_polygons,
 /// lit_area, shadowed_area, grazing_triangles}], candidates, occluders, clipped_pairs, cuts,
 /// clipped_pairs_per_second, predicates {symbolic, interval, exact}.

@@ -37,6 +37,21 @@ dvec3 barycentric(dvec3 p, dvec3 a, dvec3 b, dvec3 c) {
   return sum > 0.0 ? w / sum : dvec3(1.0 / 3.0);
 }
 
+/// The cut's merge groups: pieces of coplanar neighbours merge only where the stage's
+/// colours and normals are one across both (makeStaticGeometry interpolates them over each
+/// piece's source triangle): flat triangles (three equal corner normals) by material; a
+/// smooth triangle (a tube's quad) in a group of its own.
+std::vector<std::uint32_t> mergeGroups(const InstrumentMachine& machine) {
+  const Mesh& m = machine.staticMesh;
+  std::vector<std::uint32_t> groups(m.triangleCount());
+  for (std::size_t t = 0; t < groups.size(); ++t) {
+    const vec3 a = m.normals[m.indices[3 * t]], b = m.normals[m.indices[3 * t + 1]], c = m.normals[m.indices[3 * t + 2]];
+    const bool flat = a == b && b == c;
+    groups[t] = flat ? std::uint32_t(machine.triangleMaterial[t]) : std::uint32_t(0x80000000u + t);
+  }
+  return groups;
+}
+
 }  // namespace
 
 Mesh cutEdges(const cut::CutTriangles& cut) {
@@ -155,7 +170,7 @@ std::shared_ptr<const Stage> loadStage(const StageOptions& options) {
   const cut::CachedCut cut =
       cut::cachedCut(stage->machine.staticMesh, cutLights(stage->machine),
                      {.directory = options.cacheDirectory, .name = fmt::format("pipedream-detail{}", detail),
-                      .progress = options.progress});
+                      .progress = options.progress, .mergeGroups = mergeGroups(stage->machine)});
   stage->cutFile = cut.file;
   stage->cutBuilt = cut.built;
   stage->cutSeconds = cut.seconds;
