@@ -97,10 +97,12 @@ void runSuite(Recorder& r) {
     const std::string group = "growth";
     const std::string name = fmt::format("{}k tris", stage.triangleCount() / 1000);
     r.record({.group = group, .name = name, .value = run.seconds, .unit = "s",
-              .note = fmt::format("{:.1f} CPU s, {:.0f} pairs/CPU s, {} polygons out ({:.2f}×), peak {:.0f} MiB, load {:.2f}",
+              .note = fmt::format("{:.1f} CPU s, {:.0f} pairs/CPU s, {} polygons out ({:.2f}×), {} triangles ({:.2f}×), peak {:.0f} MiB, load {:.2f}",
                                   run.cpuSeconds, double(run.result.stats.clippedPairs) / run.cpuSeconds,
                                   run.result.stats.outputPolygons,
-                                  double(run.result.stats.outputPolygons) / double(stage.triangleCount()), run.peakMiB,
+                                  double(run.result.stats.outputPolygons) / double(stage.triangleCount()),
+                                  run.result.stats.outputTriangles,
+                                  double(run.result.stats.outputTriangles) / double(stage.triangleCount()), run.peakMiB,
                                   run.load)});
     logN.push_back(std::log(double(stage.triangleCount())));
     logT.push_back(std::log(run.seconds));
@@ -153,6 +155,12 @@ void runSuite(Recorder& r) {
     r.record({.group = group, .name = "input triangles", .value = double(s.inputTriangles), .unit = ""});
     r.record({.group = group, .name = "output polygons", .value = double(s.outputPolygons), .unit = "", .ratioTo = "input triangles"});
     r.record({.group = group, .name = "output triangles", .value = double(s.outputTriangles), .unit = "", .ratioTo = "input triangles"});
+    r.record({.group = group, .name = "polygons out per input triangle", .value = double(s.outputPolygons) / double(s.inputTriangles),
+              .unit = "", .note = "convex pieces, after merging"});
+    r.record({.group = group, .name = "triangles out per input triangle", .value = double(s.outputTriangles) / double(s.inputTriangles),
+              .unit = "", .note = "target ≤ 1.5 (issue 24; 4.13 before the merge across triangles)"});
+    r.record({.group = group, .name = "patches merged", .value = double(s.mergedPatches), .unit = "",
+              .note = "sets of coplanar neighbours whose pieces merged across triangles"});
     r.record({.group = group, .name = "pieces before merge", .value = double(s.facesBeforeMerge), .unit = "", .ratioTo = "input triangles"});
     r.record({.group = group, .name = "candidates (near-beam query)", .value = double(s.candidates), .unit = "", .ratioTo = "input triangles"});
     r.record({.group = group, .name = "occluders (far beam meets A)", .value = double(s.occluders), .unit = "", .ratioTo = "input triangles"});

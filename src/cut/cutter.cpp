@@ -212,6 +212,7 @@ Shard cutShard(const Mesh& mesh, const CutOptions& options) {
 }
 
 CutResult cut(const Mesh& mesh, const CutOptions& options) {
+  checkMergeGroups(mesh, options);
   CutOptions whole = options;
   whole.shardIndex = 0;
   whole.shardCount = 1;

@@ -423,10 +423,14 @@ void countOutput(const CutMesh& m, CutStats& stats) {
 
 }  // namespace
 
-CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOptions& options) {
-  if (shards.empty()) fail(ErrorKind::Usage, "nothing to merge: no shards");
+void checkMergeGroups(const Mesh& mesh, const CutOptions& options) {
   if (!options.mergeGroups.empty() && options.mergeGroups.size() != mesh.triangleCount())
     fail(ErrorKind::Usage, "merge groups: {} given for {} triangles", options.mergeGroups.size(), mesh.triangleCount());
+}
+
+CutResult mergeShards(const Mesh& mesh, std::vector<Shard> shards, const CutOptions& options) {
+  if (shards.empty()) fail(ErrorKind::Usage, "nothing to merge: no shards");
+  checkMergeGroups(mesh, options);
   checkShardLights(options.lights, shards.front().lights);
   const auto start = Clock::now();
   const Prepared prep = prepare(mesh, shards.front().lights, false);

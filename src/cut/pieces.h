@@ -54,6 +54,9 @@ struct Prepared {
 /// the light warnings (merging).
 Prepared prepare(const Mesh& mesh, const std::vector<Light>& lights, bool bvh);
 
+/// Error(Usage) unless options.mergeGroups is empty or has one group per triangle.
+void checkMergeGroups(const Mesh& mesh, const CutOptions& options);
+
 /// The hash of a scene and its lights that shards carry.
 std::uint64_t inputHash(const Mesh& mesh, const std::vector<Light>& lights);
 

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <numeric>
 
 using namespace glint;
 using namespace glint::cut;
@@ -440,6 +441,71 @@ TEST(Cut, ExactInputCoordinatesStayExact) {
   expectClosed(scene, m);
   EXPECT_LT(worstAreaError(scene, m), 1e-6);
   expectAgreement("exact coordinates", shadowOracle(scene, m, options.lights, 32));
+}
+
+// Issue 24: the optimization step across triangles. A floor of 8 × 8 cells (128
+// triangles) under a box comes out as a few convex pieces around the box's shadow, with
+// the box's four shadow corners and the floor's four corners, and nothing else of the grid.
+TEST(Cut, CoplanarNeighboursMergeAcrossTriangles) {
+  Mesh scene = makeGrid(8, 8, 8.0f);                            // y = 0, open; triangles 0–127
+  scene.append(makeBox({-1.0f, 1.0f, -1.0f}, {1.0f, 1.5f, 1.0f}));  // floating above it
+  CutOptions options;
+  options.lights = {{.position = {0.7f, 6.0f, 0.4f}, .name = "key"}};
+  const CutResult r = cut::cut(scene, options);
+  const CutMesh& m = r.mesh;
+  ASSERT_EQ(m.trianglePatch.size(), scene.triangleCount());
+  for (std::uint32_t t = 0; t < 128; ++t) EXPECT_EQ(m.trianglePatch[t], 0u) << "floor triangle " << t;
+  std::size_t floorTriangles = 0, floorPolygons = 0, shadowed = 0;
+  for (std::size_t p = 0; p < m.polygonCount(); ++p)
+    if (m.polygonSource[p] == 0) {
+      ++floorPolygons;
+      floorTriangles += m.cornerCount(p) - 2;
+      shadowed += m.polygonMask[p] == 0;
+    }
+  // The lit floor is a square with a square hole: 8 corners, 2 loops, 8 triangles; the
+  // shadow a quadrilateral: 2. (Each box face's two triangles merge too.)
+  EXPECT_EQ(floorTriangles, 10u);
+  EXPECT_GE(shadowed, 1u);
+  EXPECT_LE(floorPolygons, 8u);
+  EXPECT_EQ(r.stats.mergedPatches, 1u + 0u) << "the floor (the box's faces are whole: nothing to drop)";
+  EXPECT_LT(worstAreaError(scene, m), 1e-9);
+  expectClosed(scene, m);
+  expectAgreement("floor under a box, merged", shadowOracle(scene, m, options.lights, 256));
+
+  // The same by shards, and on one thread: the same mesh.
+  std::vector<Shard> shards;
+  for (int i = 0; i < 3; ++i) {
+    CutOptions part = options;
+    part.shardIndex = i;
+    part.shardCount = 3;
+    shards.push_back(cutShard(scene, part));
+  }
+  expectSame(m, mergeShards(scene, shards).mesh);
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    expectSame(m, cut::cut(scene, options).mesh);
+  }
+
+  // Merge groups: a group of its own per triangle merges nothing; two halves merge apart.
+  CutOptions apart = options;
+  apart.mergeGroups.resize(scene.triangleCount());
+  std::iota(apart.mergeGroups.begin(), apart.mergeGroups.end(), 0u);
+  const CutResult alone = cut::cut(scene, apart);
+  EXPECT_EQ(alone.stats.mergedPatches, 0u);
+  for (std::uint32_t t = 0; t < scene.triangleCount(); ++t) EXPECT_EQ(alone.mesh.trianglePatch[t], t);
+  EXPECT_GT(alone.stats.outputTriangles, 128u);
+  expectAgreement("floor under a box, unmerged", shadowOracle(scene, alone.mesh, options.lights, 16));
+  CutOptions halves = options;
+  halves.mergeGroups.assign(scene.triangleCount(), 7u);
+  for (std::uint32_t t = 0; t < 64; ++t) halves.mergeGroups[t] = 3u;  // the grid's first four rows
+  const CutResult two = cut::cut(scene, halves);
+  EXPECT_EQ(two.mesh.trianglePatch[0], 0u);
+  EXPECT_EQ(two.mesh.trianglePatch[127], 64u);
+  EXPECT_LT(worstAreaError(scene, two.mesh), 1e-9);
+  expectAgreement("floor under a box, two groups", shadowOracle(scene, two.mesh, options.lights, 64));
+  CutOptions wrong = options;
+  wrong.mergeGroups = {1, 2, 3};
+  EXPECT_THROW(cut::cut(scene, wrong), Error);
 }
 
 TEST(Cut, MachineRoomAgreesWithShadowRaysAndStaysClosed) {
