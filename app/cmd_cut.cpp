@@ -33,8 +33,10 @@ constexpr const char* kCutFooter = R"(How it works (ATI's "Pipe Dream" shadow cu
   it, its far beam. "For every polygon in our scene one at a time we're going to dice
   it up": for polygon A, every polygon B in A's near beam takes "its far beam and cut[s]
   into" A "with those three planes" (and its own), and each resulting piece is tagged
-  "as in or out of light". Pieces of one polygon with the same tags are merged back
-  ("an optimization step"). With several lights every piece carries a light mask: bit l
+  "as in or out of light". Pieces with the same tags are merged back ("an
+  optimization step"), across triangles too where neighbours of one surface lie in one
+  plane (a floor's grid, a box's face): only the corners where shadow outlines turn
+  stay, so a floor of a thousand cells in one light is a handful of polygons. With several lights every piece carries a light mask: bit l
   is set when light l reaches it, so a renderer can draw shadowed pieces with a cheaper
   shader and write how many lights already shadow them (the destination-alpha dim).
 
@@ -44,7 +46,8 @@ constexpr const char* kCutFooter = R"(How it works (ATI's "Pipe Dream" shadow cu
 
 Outputs (one or more -o): .glb/.gltf (one primitive per light mask, the mask in its
 extras, grey vertex colours, the lights as KHR_lights_punctual) and .ply (the convex
-polygons with per-face light_mask, source triangle and colour).
+polygons with per-face light_mask, source triangle (for pieces merged across coplanar
+triangles, the lowest of them) and colour).
 
 Lights: --light x,y,z[,name], repeatable (up to 32); without --light, the point lights
 of the glTF inputs (KHR_lights_punctual) are used.

@@ -15,7 +15,7 @@ namespace glint::cut {
 
 namespace {
 
-constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+constexpr std::uint32_t kNoPiece = 0xFFFFFFFFu;
 
 /// One patch's pieces after merging, before they take their place in the mesh.
 struct PatchPieces {
@@ -43,11 +43,11 @@ private:
   struct VertexInfo {
     bool outline = false;           ///< on the patch's outline: stays
     std::uint8_t degree = 0;        ///< region outline edges meeting here
-    std::uint32_t ends[2] = {kNone, kNone};  ///< the other ends of the first two
+    std::uint32_t ends[2] = {kNoPiece, kNoPiece};  ///< the other ends of the first two
     bool drop = false;
   };
   bool boundary(std::uint32_t i) const {
-    return m_twin[i] == kNone || m_mask[m_poly[i]] != m_mask[m_poly[m_twin[i]]];
+    return m_twin[i] == kNoPiece || m_mask[m_poly[i]] != m_mask[m_poly[m_twin[i]]];
   }
   std::uint32_t findRegion(std::uint32_t p) {
     while (m_region[p] != p) p = m_region[p] = m_region[m_region[p]];
@@ -93,7 +93,7 @@ std::optional<PatchPieces> PatchMerger::merge(std::span<const std::uint32_t> tri
   std::iota(m_sorted.begin(), m_sorted.end(), 0u);
   const auto key = [&](std::uint32_t i) { return std::pair(m_vertex[i], m_vertex[m_next[i]]); };
   std::sort(m_sorted.begin(), m_sorted.end(), [&](std::uint32_t x, std::uint32_t y) { return key(x) < key(y); });
-  m_twin.assign(n, kNone);
+  m_twin.assign(n, kNoPiece);
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::pair want(m_vertex[m_next[i]], m_vertex[i]);
     const auto it = std::lower_bound(m_sorted.begin(), m_sorted.end(), want,
@@ -106,56 +106,50 @@ std::optional<PatchPieces> PatchMerger::merge(std::span<const std::uint32_t> tri
     const std::uint32_t u = m_vertex[i], v = m_vertex[m_next[i]];
     VertexInfo& a = m_info[u];
     VertexInfo& b = m_info[v];
-    if (m_twin[i] == kNone) a.outline = b.outline = true;
-    if (!boundary(i) || (m_twin[i] != kNone && m_twin[i] < i)) continue;
+    if (m_twin[i] == kNoPiece) a.outline = b.outline = true;
+    if (!boundary(i) || (m_twin[i] != kNoPiece && m_twin[i] < i)) continue;
     if (a.degree < 2) a.ends[a.degree] = v;
     if (b.degree < 2) b.ends[b.degree] = u;
     a.degree = std::uint8_t(std::min(a.degree + 1, 255));
     b.degree = std::uint8_t(std::min(b.degree + 1, 255));
   }
   // Which vertices go: inside the patch, inside a region or on a straight outline.
-  const std::uint32_t root = triangles.front();
-  const auto& corners = m_in.prep.scene->triangles[root];
+  // The patch's plane for exact tests: its lowest triangle, projected along the dominant
+  // axis of its normal (once, when first needed).
   bool any = false, plane = false;
-  for (auto& [id, info] : m_info) {
-    // On the outline only where no other patch has the vertex (an open edge of the
-    // surface), and then only on a straight outline.
-    if (info.outline && (m_in.shared[id] || info.degree != 2)) continue;
-    if (info.degree != 0 && info.degree != 2) continue;
-    if (info.degree == 2) {
-      if (!plane) {
-        const auto& pts = m_in.prep.scene->geometry;
-        const dvec3 a = pts.point(corners[0]), b = pts.point(corners[1]), c = pts.point(corners[2]);
-        const dvec3 an = glm::abs(glm::cross(b - a, c - a));
-        const int axis = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
-        std::array<exact::VertexDef, 3> defs;
-        for (std::size_t k = 0; k < 3; ++k) defs[k] = exact::VertexDef{.kind = exact::VertexKind::Point, .a = corners[k]};
-        m_triangulator.reset((axis + 1) % 3, (axis + 2) % 3, defs,
-                             [this](std::uint32_t v) -> const exact::VertexDef& { return m_in.defs[v]; });
-        plane = true;
-      }
-      if (!m_triangulator.collinear(info.ends[0], id, info.ends[1])) continue;
-    }
-    info.drop = true;
-    any = true;
-  }
-  if (!any) return std::nullopt;
-  if (!plane) {
-    const auto& pts = m_in.prep.scene->geometry;
-    const dvec3 a = pts.point(corners[0]), b = pts.point(corners[1]), c = pts.point(corners[2]);
+  const auto setPlane = [&] {
+    if (plane) return;
+    plane = true;
+    const auto& corners = m_in.prep.scene->triangles[triangles.front()];
+    const exact::Geometry& g = m_in.prep.scene->geometry;
+    const dvec3 a = g.point(corners[0]), b = g.point(corners[1]), c = g.point(corners[2]);
     const dvec3 an = glm::abs(glm::cross(b - a, c - a));
     const int axis = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
     std::array<exact::VertexDef, 3> defs;
     for (std::size_t k = 0; k < 3; ++k) defs[k] = exact::VertexDef{.kind = exact::VertexKind::Point, .a = corners[k]};
     m_triangulator.reset((axis + 1) % 3, (axis + 2) % 3, defs,
                          [this](std::uint32_t v) -> const exact::VertexDef& { return m_in.defs[v]; });
+  };
+  for (auto& [id, info] : m_info) {
+    // On the outline only where no other patch has the vertex (an open edge of the
+    // surface), and then only on a straight outline.
+    if (info.outline && (m_in.shared[id] || info.degree != 2)) continue;
+    if (info.degree != 0 && info.degree != 2) continue;
+    if (info.degree == 2) {
+      setPlane();
+      if (!m_triangulator.collinear(info.ends[0], id, info.ends[1])) continue;
+    }
+    info.drop = true;
+    any = true;
   }
+  if (!any) return std::nullopt;
+  setPlane();
   // Regions: polygons joined across sides whose polygons have the same mask.
   const std::uint32_t polys = std::uint32_t(m_mask.size());
   m_region.resize(polys);
   std::iota(m_region.begin(), m_region.end(), 0u);
   for (std::uint32_t i = 0; i < n; ++i)
-    if (m_twin[i] != kNone && !boundary(i)) {
+    if (m_twin[i] != kNoPiece && !boundary(i)) {
       const std::uint32_t a = findRegion(m_poly[i]), b = findRegion(m_poly[m_twin[i]]);
       if (a != b) m_region[std::max(a, b)] = std::min(a, b);
     }
@@ -238,10 +232,10 @@ std::vector<std::uint32_t> coplanarPatches(const CoplanarInput& in) {
     if (!in.groups.empty() && in.groups[f0] != in.groups[f1]) continue;
     const auto& t0 = scene.triangles[f0];
     const auto& t1 = scene.triangles[f1];
-    std::uint32_t d = kNone;
+    std::uint32_t d = kNoPiece;
     for (std::uint32_t c : t1)
       if (c != e.a && c != e.b) d = c;
-    if (d == kNone) continue;
+    if (d == kNoPiece) continue;
     const exact::PlaneDef p0{{t0[0], t0[1], t0[2]}}, p1{{t1[0], t1[1], t1[2]}};
     if (g.side(d, p0, stats) != 0 || g.normalsDot(p0, p1) <= 0) continue;
     const std::uint32_t a = find(f0), b = find(f1);
@@ -256,20 +250,20 @@ CutMesh mergeCoplanar(CoplanarInput in, std::vector<std::uint32_t>& patch, const
                       std::uint64_t& merged) {
   const std::size_t n = patch.size();
   // Vertices that pieces of two or more patches use.
-  std::vector<std::uint32_t> owner(in.defs.size(), kNone);
+  std::vector<std::uint32_t> owner(in.defs.size(), kNoPiece);
   std::vector<std::uint8_t> shared(in.defs.size(), 0);
   for (std::uint32_t f = 0; f < n; ++f)
     for (std::uint32_t q = in.polygonFirst[f]; q < in.polygonFirst[f + 1]; ++q)
       for (std::uint32_t c = polygons.polygonStart[q]; c < polygons.polygonStart[q + 1]; ++c) {
         std::uint32_t& o = owner[polygons.corners[c]];
-        if (o == kNone) o = patch[f];
+        if (o == kNoPiece) o = patch[f];
         else if (o != patch[f]) shared[polygons.corners[c]] = 1;
       }
   in.shared = shared;
   // Patches of two or more triangles, their triangles ascending.
   std::vector<std::uint32_t> size(n, 0);
   for (std::uint32_t r : patch) ++size[r];
-  std::vector<std::uint32_t> roots, start(n, kNone);
+  std::vector<std::uint32_t> roots, start(n, kNoPiece);
   std::vector<std::uint32_t> members;
   for (std::uint32_t f = 0; f < n; ++f)
     if (patch[f] == f && size[f] > 1) {
@@ -281,7 +275,7 @@ CutMesh mergeCoplanar(CoplanarInput in, std::vector<std::uint32_t>& patch, const
   members.resize(memberStart.back());
   std::vector<std::uint32_t> fill(memberStart.begin(), memberStart.end() - 1);
   for (std::uint32_t f = 0; f < n; ++f)
-    if (start[patch[f]] != kNone) members[fill[start[patch[f]]]++] = f;
+    if (start[patch[f]] != kNoPiece) members[fill[start[patch[f]]]++] = f;
 
   std::vector<std::optional<PatchPieces>> results(roots.size());
   tbb::enumerable_thread_specific<std::unique_ptr<PatchMerger>> mergers;
@@ -294,7 +288,7 @@ CutMesh mergeCoplanar(CoplanarInput in, std::vector<std::uint32_t>& patch, const
 
   // A patch that did not change is its triangles, each on its own.
   for (std::uint32_t f = 0; f < n; ++f)
-    if (start[patch[f]] != kNone && !results[start[patch[f]]]) patch[f] = f;
+    if (start[patch[f]] != kNoPiece && !results[start[patch[f]]]) patch[f] = f;
   CutMesh out;
   out.polygonStart.push_back(0);
   const auto append = [&](std::span<const std::uint32_t> ids, std::span<const std::uint8_t> flags, std::uint32_t source,
@@ -308,7 +302,7 @@ CutMesh mergeCoplanar(CoplanarInput in, std::vector<std::uint32_t>& patch, const
   merged = 0;
   for (std::uint32_t f = 0; f < n; ++f) {
     const std::uint32_t i = start[patch[f]];
-    if (i != kNone && results[i]) {
+    if (i != kNoPiece && results[i]) {
       if (patch[f] != f) continue;
       const PatchPieces& p = *results[i];
       ++merged;

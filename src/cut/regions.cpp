@@ -17,7 +17,6 @@ namespace {
 
 using K = CGAL::Exact_predicates_exact_constructions_kernel;
 using Point = K::Point_2;
-constexpr std::uint32_t kNoId = 0xFFFFFFFFu;
 /// Faces carry their nesting level: −1 unknown, 0 outside, 1 inside the outline, 2 in a
 /// hole, ... (odd: inside the region).
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
