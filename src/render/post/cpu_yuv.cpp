@@ -48,20 +48,43 @@ Planes planesOf(video::Frame& frame, ivec2 size) {
   return {y, u, u + std::size_t(size.x / 2) * std::size_t(size.y / 2), size.x, size.y};
 }
 
-// Luma with weights `w` per pixel, normalized: chroma taken from the pixel's 2×2 block.
+// Luma with weights `w` per pixel, normalized. The chroma term (zero when `w` are the
+// input's own weights) is interpolated to the pixel as H.264's default chroma siting places
+// the samples: co-sited with the even columns, halfway between two rows (bilinear; a
+// decoder's RGB conversion interpolates too, so Sobel's edges see the same luma).
 void lumaPlane(const Planes& p, const Matrix& m, dvec3 w, std::vector<float>& out) {
   out.resize(std::size_t(p.w) * std::size_t(p.h));
   const auto [a, b] = lumaFromChroma(m, w);
-  const int cw = p.w / 2;
+  const int cw = p.w / 2, ch = p.h / 2;
+  const bool chroma = std::abs(a) > 1e-6f || std::abs(b) > 1e-6f;
+  const auto termRow = [&](int cy, float* t) {
+    const std::uint8_t* u = p.u + std::size_t(cy) * std::size_t(cw);
+    const std::uint8_t* v = p.v + std::size_t(cy) * std::size_t(cw);
+    for (int x = 0; x < cw; ++x) t[x] = (a * (float(u[x]) - 128.0f) + b * (float(v[x]) - 128.0f)) / kCScale;
+  };
   parallelRows(p.h, [&](int begin, int end) {
-    std::vector<float> chroma(static_cast<std::size_t>(cw));
+    const auto n = static_cast<std::size_t>(cw);
+    std::vector<float> near(n), far(n), term(n + 1);
     for (int y = begin; y < end; ++y) {
-      const std::uint8_t* u = p.u + std::size_t(y / 2) * std::size_t(cw);
-      const std::uint8_t* v = p.v + std::size_t(y / 2) * std::size_t(cw);
-      for (int x = 0; x < cw; ++x) chroma[std::size_t(x)] = (a * (float(u[x]) - 128.0f) + b * (float(v[x]) - 128.0f)) / kCScale;
       const std::uint8_t* in = p.y + std::size_t(y) * std::size_t(p.w);
       float* o = out.data() + std::size_t(y) * std::size_t(p.w);
-      for (int x = 0; x < p.w; ++x) o[x] = (float(in[x]) - 16.0f) / kYScale + chroma[std::size_t(x / 2)];
+      if (!chroma) {
+        for (int x = 0; x < p.w; ++x) o[x] = (float(in[x]) - 16.0f) / kYScale;
+        continue;
+      }
+      // Even rows: 3/4 of chroma row y/2 and 1/4 of the row above; odd rows: 3/4 of row
+      // (y − 1)/2 and 1/4 of the row below.
+      const int cy = y / 2;
+      const int other = std::clamp(y % 2 == 0 ? cy - 1 : cy + 1, 0, ch - 1);
+      termRow(cy, near.data());
+      termRow(other, far.data());
+      for (std::size_t x = 0; x < n; ++x) term[x] = 0.75f * near[x] + 0.25f * far[x];
+      term[n] = term[n - 1];
+      for (int x = 0; x < p.w; ++x) {
+        const std::size_t c = std::size_t(x / 2);
+        const float t = x % 2 == 0 ? term[c] : 0.5f * (term[c] + term[c + 1]);
+        o[x] = (float(in[x]) - 16.0f) / kYScale + t;
+      }
     }
   });
 }
@@ -102,11 +125,16 @@ public:
         std::uint8_t* vo = p.v + std::size_t(cy) * std::size_t(cw);
         const int* i0 = index.data();
         const int* i1 = index.data() + p.w;
+        // Chroma where H.264 sites it: [1 2 1]/4 across columns 2x−1, 2x, 2x+1 (edges
+        // repeated), the mean of the two rows.
         for (int x = 0; x < cw; ++x) {
-          const std::size_t a = std::size_t(i0[2 * x]), b = std::size_t(i0[2 * x + 1]), c = std::size_t(i1[2 * x]),
-                            d = std::size_t(i1[2 * x + 1]);
-          uo[x] = clampByte(128.0f + kCScale * 0.25f * (m_u[a] + m_u[b] + m_u[c] + m_u[d]));
-          vo[x] = clampByte(128.0f + kCScale * 0.25f * (m_v[a] + m_v[b] + m_v[c] + m_v[d]));
+          const int l = std::max(2 * x - 1, 0), c = 2 * x, r = 2 * x + 1;
+          const auto filtered = [&](const std::array<float, kSteps>& t) {
+            return 0.125f * (t[std::size_t(i0[l])] + 2.0f * t[std::size_t(i0[c])] + t[std::size_t(i0[r])] +
+                             t[std::size_t(i1[l])] + 2.0f * t[std::size_t(i1[c])] + t[std::size_t(i1[r])]);
+          };
+          uo[x] = clampByte(128.0f + kCScale * filtered(m_u));
+          vo[x] = clampByte(128.0f + kCScale * filtered(m_v));
         }
       }
     });
