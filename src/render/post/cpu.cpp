@@ -13,10 +13,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <mutex>
 #include <thread>
+
+static_assert(std::endian::native == std::endian::little, "the RGBA8 tables assume R in the low byte");
 
 namespace glint::render::post {
 
@@ -195,36 +199,42 @@ void lumaPlane(const Image& in, std::vector<float>& luma) {
   });
 }
 
+// Sepia: the result is a function of the luma alone (image/post.h), so it is a table of
+// 4096 RGB results indexed by the luma in 12-bit fixed point (steps of 1/4095: a fifteenth
+// of an output step), computed from the 8-bit channels with integer weights.
 class SepiaStage final : public RgbaStage {
 public:
   explicit SepiaStage(const Effect& e) {
-    const dvec3 c = sepiaOffset({.i = e.value("i"), .q = e.value("q")});
-    for (int k = 0; k < 3; ++k) {
-      m_c[k] = float(c[k]);
-      // t ≤ (1 − L)/c where c > 0, t ≤ L/(−c) where c < 0: bound = slope·L + bias.
-      m_slope[k] = c[k] > 0 ? float(-1.0 / c[k]) : c[k] < 0 ? float(-1.0 / c[k]) : 0.0f;
-      m_bias[k] = c[k] > 0 ? float(1.0 / c[k]) : c[k] < 0 ? 0.0f : 1.0f;
+    const SepiaOptions options{.i = e.value("i"), .q = e.value("q")};
+    for (int i = 0; i < kSteps; ++i) {
+      const dvec3 rgb = sepiaPixel(dvec3(double(i) / double(kSteps - 1)), options);
+      std::uint32_t packed = 0;
+      for (int k = 0; k < 3; ++k) packed |= std::uint32_t(std::lround(std::clamp(rgb[k], 0.0, 1.0) * 255.0)) << (8 * k);
+      m_table[std::size_t(i)] = packed;
     }
   }
   void run(const Image& in, Image& out) override {
     const std::size_t w = std::size_t(in.width());
-    const std::uint8_t* src = in.pixels<std::uint8_t>().data();
-    std::uint8_t* dst = out.pixels<std::uint8_t>().data();
-    const float r = float(kLumaR) / 255.0f, g = float(kLumaG) / 255.0f, b = float(kLumaB) / 255.0f;
+    const auto* src = reinterpret_cast<const std::uint32_t*>(in.pixels<std::uint8_t>().data());
+    auto* dst = reinterpret_cast<std::uint32_t*>(out.pixels<std::uint8_t>().data());
+    // L·4095 = Σ weight·channel/255, in 16.16 fixed point.
+    constexpr double scale = double(kSteps - 1) / 255.0 * 65536.0;
+    constexpr std::uint32_t wr = std::uint32_t(kLumaR * scale + 0.5), wg = std::uint32_t(kLumaG * scale + 0.5),
+                            wb = std::uint32_t(kLumaB * scale + 0.5);
+    const std::uint32_t* table = m_table.data();
     parallelRows(in.height(), [&](int begin, int end) {
-      for (std::size_t i = std::size_t(begin) * w; i < std::size_t(end) * w; ++i) {
-        const float l = r * float(src[4 * i]) + g * float(src[4 * i + 1]) + b * float(src[4 * i + 2]);
-        float t = 1.0f;
-        for (int k = 0; k < 3; ++k) t = std::min(t, m_slope[k] * l + m_bias[k]);
-        t = std::max(t, 0.0f);
-        for (int k = 0; k < 3; ++k) dst[4 * i + std::size_t(k)] = std::uint8_t(std::clamp(l + t * m_c[k], 0.0f, 1.0f) * 255.0f + 0.5f);
-        dst[4 * i + 3] = src[4 * i + 3];
+      const std::size_t first = std::size_t(begin) * w, last = std::size_t(end) * w;
+      for (std::size_t i = first; i < last; ++i) {
+        const std::uint32_t p = src[i];  // RGBA in memory: R in the low byte (little-endian)
+        const std::uint32_t index = (wr * (p & 0xFF) + wg * ((p >> 8) & 0xFF) + wb * ((p >> 16) & 0xFF) + 32768u) >> 16;
+        dst[i] = table[std::min(index, std::uint32_t(kSteps - 1))] | (p & 0xFF000000u);
       }
     });
   }
 
 private:
-  float m_c[3], m_slope[3], m_bias[3];
+  static constexpr int kSteps = 4096;
+  std::array<std::uint32_t, kSteps> m_table{};
 };
 
 class SobelStage final : public RgbaStage {

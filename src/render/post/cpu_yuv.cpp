@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 namespace glint::render::post::cpu {
 
@@ -48,93 +49,118 @@ Planes planesOf(video::Frame& frame, ivec2 size) {
   return {y, u, u + std::size_t(size.x / 2) * std::size_t(size.y / 2), size.x, size.y};
 }
 
-// Luma with weights `w` per pixel, normalized. The chroma term (zero when `w` are the
+// Luma with weights `w`, normalized, a row at a time. The chroma term (zero when `w` are the
 // input's own weights) is interpolated to the pixel as H.264's default chroma siting places
 // the samples: co-sited with the even columns, halfway between two rows (bilinear; a
-// decoder's RGB conversion interpolates too, so Sobel's edges see the same luma).
+// decoder's RGB conversion interpolates too, so Sobel's edges see about the same luma).
+class LumaRows {
+public:
+  LumaRows(const Planes& p, const Matrix& m, dvec3 w) : m_p(p) {
+    std::tie(m_a, m_b) = lumaFromChroma(m, w);
+    m_chroma = std::abs(m_a) > 1e-6f || std::abs(m_b) > 1e-6f;
+  }
+  /// Row y's luma into out[0, w); `scratch` holds 2·(w/2 + 1) floats.
+  void row(int y, float* out, float* scratch) const {
+    const std::uint8_t* in = m_p.y + std::size_t(y) * std::size_t(m_p.w);
+    const int w = m_p.w, cw = w / 2;
+    if (!m_chroma) {
+      for (int x = 0; x < w; ++x) out[x] = (float(in[x]) - 16.0f) * (1.0f / kYScale);
+      return;
+    }
+    // Even rows: 3/4 of chroma row y/2 and 1/4 of the row above; odd rows: 3/4 of row
+    // (y − 1)/2 and 1/4 of the row below.
+    const int cy = y / 2, other = std::clamp(y % 2 == 0 ? cy - 1 : cy + 1, 0, m_p.h / 2 - 1);
+    const std::uint8_t *u0 = m_p.u + std::size_t(cy) * std::size_t(cw), *v0 = m_p.v + std::size_t(cy) * std::size_t(cw);
+    const std::uint8_t *u1 = m_p.u + std::size_t(other) * std::size_t(cw), *v1 = m_p.v + std::size_t(other) * std::size_t(cw);
+    float* term = scratch;
+    const float a = m_a / kCScale, b = m_b / kCScale;
+    for (int x = 0; x < cw; ++x) {
+      const float u = 0.75f * float(u0[x]) + 0.25f * float(u1[x]) - 128.0f;
+      const float v = 0.75f * float(v0[x]) + 0.25f * float(v1[x]) - 128.0f;
+      term[x] = a * u + b * v;
+    }
+    term[cw] = term[cw - 1];
+    for (int x = 0; x < cw; ++x) {
+      out[2 * x] = (float(in[2 * x]) - 16.0f) * (1.0f / kYScale) + term[x];
+      out[2 * x + 1] = (float(in[2 * x + 1]) - 16.0f) * (1.0f / kYScale) + 0.5f * (term[x] + term[x + 1]);
+    }
+  }
+
+private:
+  Planes m_p;
+  float m_a = 0, m_b = 0;
+  bool m_chroma = false;
+};
+
+// The whole plane (Sobel and the filters need neighbours).
 void lumaPlane(const Planes& p, const Matrix& m, dvec3 w, std::vector<float>& out) {
   out.resize(std::size_t(p.w) * std::size_t(p.h));
-  const auto [a, b] = lumaFromChroma(m, w);
-  const int cw = p.w / 2, ch = p.h / 2;
-  const bool chroma = std::abs(a) > 1e-6f || std::abs(b) > 1e-6f;
-  const auto termRow = [&](int cy, float* t) {
-    const std::uint8_t* u = p.u + std::size_t(cy) * std::size_t(cw);
-    const std::uint8_t* v = p.v + std::size_t(cy) * std::size_t(cw);
-    for (int x = 0; x < cw; ++x) t[x] = (a * (float(u[x]) - 128.0f) + b * (float(v[x]) - 128.0f)) / kCScale;
-  };
+  const LumaRows rows(p, m, w);
   parallelRows(p.h, [&](int begin, int end) {
-    const auto n = static_cast<std::size_t>(cw);
-    std::vector<float> near(n), far(n), term(n + 1);
-    for (int y = begin; y < end; ++y) {
-      const std::uint8_t* in = p.y + std::size_t(y) * std::size_t(p.w);
-      float* o = out.data() + std::size_t(y) * std::size_t(p.w);
-      if (!chroma) {
-        for (int x = 0; x < p.w; ++x) o[x] = (float(in[x]) - 16.0f) / kYScale;
-        continue;
-      }
-      // Even rows: 3/4 of chroma row y/2 and 1/4 of the row above; odd rows: 3/4 of row
-      // (y − 1)/2 and 1/4 of the row below.
-      const int cy = y / 2;
-      const int other = std::clamp(y % 2 == 0 ? cy - 1 : cy + 1, 0, ch - 1);
-      termRow(cy, near.data());
-      termRow(other, far.data());
-      for (std::size_t x = 0; x < n; ++x) term[x] = 0.75f * near[x] + 0.25f * far[x];
-      term[n] = term[n - 1];
-      for (int x = 0; x < p.w; ++x) {
-        const std::size_t c = std::size_t(x / 2);
-        const float t = x % 2 == 0 ? term[c] : 0.5f * (term[c] + term[c + 1]);
-        o[x] = (float(in[x]) - 16.0f) / kYScale + t;
-      }
-    }
+    std::vector<float> scratch(static_cast<std::size_t>(p.w + 2));
+    for (int y = begin; y < end; ++y) rows.row(y, out.data() + std::size_t(y) * std::size_t(p.w), scratch.data());
   });
 }
 
 std::uint8_t clampByte(float v, float lo = 0.0f, float hi = 255.0f) { return std::uint8_t(std::clamp(v, lo, hi) + 0.5f); }
 
-// Sepia: the output RGB is a function of the YIQ luma L alone, so are its BT.709 Y', Cb', Cr'.
+// Sepia: the output is L·(1, 1, 1) + t(L)·c (image/post.h), with t the largest value ≤ 1
+// that keeps every channel in [0, 1]: t = max(0, min(1, slope_k·L + bias_k)) over the
+// channels. Its BT.709 Y' and chroma are then affine in L and t: a few multiply-adds per
+// pixel, vectorised, no tables.
 class SepiaYuv final : public YuvStage {
 public:
   SepiaYuv(const Effect& e, ivec2 size) : m_size(size) {
-    const SepiaOptions options{.i = e.value("i"), .q = e.value("q")};
-    const dvec3 w709 = kBt709.weights();
-    for (int i = 0; i < kSteps; ++i) {
-      const double l = double(i) / double(kSteps - 1);
-      dvec3 rgb = sepiaPixel(dvec3(l), options);  // grey in: L = l
-      for (int c = 0; c < 3; ++c) rgb[c] = std::round(std::clamp(rgb[c], 0.0, 1.0) * 255.0) / 255.0;  // the RGBA8 target
-      const double y = glm::dot(w709, rgb);
-      m_y[std::size_t(i)] = clampByte(16.0f + kYScale * float(y));
-      m_u[std::size_t(i)] = float((rgb.b - y) / (2.0 * (1.0 - kBt709.kb)));
-      m_v[std::size_t(i)] = float((rgb.r - y) / (2.0 * (1.0 - kBt709.kr)));
+    const dvec3 c = sepiaOffset({.i = e.value("i"), .q = e.value("q")});
+    for (int k = 0; k < 3; ++k) {
+      m_slope[k] = c[k] > 0 ? float(-1.0 / c[k]) : c[k] < 0 ? float(-1.0 / c[k]) : 0.0f;
+      m_bias[k] = c[k] > 0 ? float(1.0 / c[k]) : c[k] < 0 ? 0.0f : 1.0f;
     }
+    const double yc = glm::dot(kBt709.weights(), c);  // Y709 = L + t·yc
+    m_yc = float(yc);
+    m_uc = float((c.b - yc) / (2.0 * (1.0 - kBt709.kb)));
+    m_vc = float((c.r - yc) / (2.0 * (1.0 - kBt709.kr)));
   }
   void run(video::Frame& frame) override {
     const Planes p = planesOf(frame, m_size);
-    lumaPlane(p, matrixOf(frame.matrix), dvec3(kLumaR, kLumaG, kLumaB), m_luma);
-    const int cw = p.w / 2;
+    const LumaRows luma(p, matrixOf(frame.matrix), dvec3(kLumaR, kLumaG, kLumaB));
     parallelRows(p.h / 2, [&](int begin, int end) {
-      std::vector<int> index(static_cast<std::size_t>(2 * p.w));
+      // Locals only in the loops: a store through a uint8_t pointer may alias anything, so
+      // members and captures would be reloaded every pixel and nothing would vectorise.
+      const int w = p.w, cw = w / 2;
+      const float s0 = m_slope[0], s1 = m_slope[1], s2 = m_slope[2], b0 = m_bias[0], b1 = m_bias[1], b2 = m_bias[2];
+      const float yc = m_yc, uc = kCScale * m_uc * 0.125f, vc = kCScale * m_vc * 0.125f;
+      const auto n = static_cast<std::size_t>(w);
+      std::vector<float> l(n), t0(n + 1), t1(n + 1), scratch(n + 2);
       for (int cy = begin; cy < end; ++cy) {
         for (int r = 0; r < 2; ++r) {
-          const float* l = m_luma.data() + std::size_t(2 * cy + r) * std::size_t(p.w);
-          int* idx = index.data() + std::size_t(r) * std::size_t(p.w);
-          for (int x = 0; x < p.w; ++x) idx[x] = int(std::clamp(l[x], 0.0f, 1.0f) * float(kSteps - 1) + 0.5f);
-          std::uint8_t* yo = p.y + std::size_t(2 * cy + r) * std::size_t(p.w);
-          for (int x = 0; x < p.w; ++x) yo[x] = m_y[std::size_t(idx[x])];
+          luma.row(2 * cy + r, l.data(), scratch.data());
+          float* t = r == 0 ? t0.data() : t1.data();
+          const float* lp = l.data();
+          std::uint8_t* yo = p.y + std::size_t(2 * cy + r) * n;
+          for (int x = 0; x < w; ++x) {
+            const float lx = std::min(std::max(lp[x], 0.0f), 1.0f);
+            const float tx = std::max(0.0f, std::min(std::min(1.0f, s0 * lx + b0), std::min(s1 * lx + b1, s2 * lx + b2)));
+            t[x] = tx;
+            yo[x] = std::uint8_t(int(16.5f + kYScale * (lx + tx * yc)));
+          }
         }
+        // Chroma where H.264 sites it: [1 2 1]/4 across columns 2x − 1, 2x, 2x + 1 (the
+        // left edge repeated), the mean of the two rows.
         std::uint8_t* uo = p.u + std::size_t(cy) * std::size_t(cw);
         std::uint8_t* vo = p.v + std::size_t(cy) * std::size_t(cw);
-        const int* i0 = index.data();
-        const int* i1 = index.data() + p.w;
-        // Chroma where H.264 sites it: [1 2 1]/4 across columns 2x−1, 2x, 2x+1 (edges
-        // repeated), the mean of the two rows.
-        for (int x = 0; x < cw; ++x) {
-          const int l = std::max(2 * x - 1, 0), c = 2 * x, r = 2 * x + 1;
-          const auto filtered = [&](const std::array<float, kSteps>& t) {
-            return 0.125f * (t[std::size_t(i0[l])] + 2.0f * t[std::size_t(i0[c])] + t[std::size_t(i0[r])] +
-                             t[std::size_t(i1[l])] + 2.0f * t[std::size_t(i1[c])] + t[std::size_t(i1[r])]);
-          };
-          uo[x] = clampByte(128.0f + kCScale * filtered(m_u));
-          vo[x] = clampByte(128.0f + kCScale * filtered(m_v));
+        const float* a = t0.data();
+        const float* b = t1.data();
+        const auto chroma = [&](int x, int left) {
+          const float tf = a[left] + 2.0f * a[2 * x] + a[2 * x + 1] + b[left] + 2.0f * b[2 * x] + b[2 * x + 1];
+          uo[x] = std::uint8_t(int(128.5f + tf * uc));
+          vo[x] = std::uint8_t(int(128.5f + tf * vc));
+        };
+        chroma(0, 0);
+        for (int x = 1; x < cw; ++x) {
+          const float tf = a[2 * x - 1] + 2.0f * a[2 * x] + a[2 * x + 1] + b[2 * x - 1] + 2.0f * b[2 * x] + b[2 * x + 1];
+          uo[x] = std::uint8_t(int(128.5f + tf * uc));
+          vo[x] = std::uint8_t(int(128.5f + tf * vc));
         }
       }
     });
@@ -142,11 +168,9 @@ public:
   }
 
 private:
-  static constexpr int kSteps = 4096;  // L's table: 1/4095 apart, far below an 8-bit step of the output
   ivec2 m_size;
-  std::array<std::uint8_t, kSteps> m_y{};
-  std::array<float, kSteps> m_u{}, m_v{};
-  std::vector<float> m_luma;
+  float m_slope[3], m_bias[3];
+  float m_yc, m_uc, m_vc;
 };
 
 // Sobel: gray, so Y' = 16 + 219·v and both chroma planes 128.
@@ -162,10 +186,17 @@ public:
     lumaPlane(p, matrixOf(frame.matrix), dvec3(kLumaR, kLumaG, kLumaB), m_luma);
     sobelRows(m_luma.data(), p.w, p.h, [&](int y, const float* gx, const float* gy) {
       std::uint8_t* out = p.y + std::size_t(y) * std::size_t(p.w);
-      for (int x = 0; x < p.w; ++x) {
-        // round(255·v) first, as the GPU's RGBA8 target stores it.
-        const float v = std::round(sobelValue(gx[x], gy[x], m_output, m_scale) * 255.0f) / 255.0f;
-        out[x] = std::uint8_t(16.0f + kYScale * v + 0.5f);
+      // Y' = 16 + 219·v; v in [0, 1], so no clamp. Locals: see SepiaYuv.
+      const int w = p.w;
+      const float scale = m_scale;
+      if (m_output == SobelOutput::Magnitude) {
+        for (int x = 0; x < w; ++x) {
+          const float v = std::min(1.0f, scale * std::sqrt(gx[x] * gx[x] + gy[x] * gy[x]));
+          out[x] = std::uint8_t(int(16.5f + kYScale * v));
+        }
+      } else {
+        const SobelOutput output = m_output;
+        for (int x = 0; x < w; ++x) out[x] = std::uint8_t(int(16.5f + kYScale * sobelValue(gx[x], gy[x], output, scale)));
       }
     });
     std::memset(p.u, 128, std::size_t(p.w / 2) * std::size_t(p.h / 2) * 2);
