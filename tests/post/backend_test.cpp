@@ -260,6 +260,14 @@ TEST(PostBackend, TheCommandChoosesAndReportsItsBackend) {
   const auto missing = runGlint("post " + in + " -o " + (d / "m.png").string() + " -e spectrum --backend cpu");
   EXPECT_EQ(missing.status, 2);
   EXPECT_NE(missing.output.find("no CPU version of spectrum"), std::string::npos) << missing.output;
+  // No texture limit on the CPU: an image wider than any GPU's largest texture (16384 on
+  // llvmpipe) is processed.
+  Image wide(16400, 4, 4);
+  for (auto& b : wide.bytes()) b = std::byte(200);
+  saveImage(wide, d / "wide.png");
+  const auto wideRun = runGlint("post " + (d / "wide.png").string() + " -o " + (d / "w.png").string() + " -e sepia --backend cpu");
+  EXPECT_EQ(wideRun.status, 0) << wideRun.output;
+  EXPECT_LE(compareSteps(loadImage(d / "w.png"), sepiaReference(wide)).maxSteps, 1);
   const auto help = runGlint("post --help");
   EXPECT_NE(help.output.find("--backend"), std::string::npos);
 }

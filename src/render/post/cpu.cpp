@@ -199,42 +199,43 @@ void lumaPlane(const Image& in, std::vector<float>& luma) {
   });
 }
 
-// Sepia: the result is a function of the luma alone (image/post.h), so it is a table of
-// 4096 RGB results indexed by the luma in 12-bit fixed point (steps of 1/4095: a fifteenth
-// of an output step), computed from the 8-bit channels with integer weights.
+// Sepia: the result is a function of the luma alone (image/post.h), so it is a table
+// indexed by the luma, exactly: 1000·255·L = 299·R + 587·G + 114·B is an integer in
+// 0..255000, and each entry is the reference's own rounding of sepiaPixel at that luma
+// (a 1 MiB table, made once per chain; a video's lumas stay in a few cache lines' worth).
+// A coarser table would round differently where L + t·c falls near half a step, and a
+// following Sobel doubles such differences.
 class SepiaStage final : public RgbaStage {
 public:
-  explicit SepiaStage(const Effect& e) {
+  explicit SepiaStage(const Effect& e) : m_table(kEntries) {
     const SepiaOptions options{.i = e.value("i"), .q = e.value("q")};
-    for (int i = 0; i < kSteps; ++i) {
-      const dvec3 rgb = sepiaPixel(dvec3(double(i) / double(kSteps - 1)), options);
-      std::uint32_t packed = 0;
-      for (int k = 0; k < 3; ++k) packed |= std::uint32_t(std::lround(std::clamp(rgb[k], 0.0, 1.0) * 255.0)) << (8 * k);
-      m_table[std::size_t(i)] = packed;
-    }
+    parallelRows(kEntries, [&](int begin, int end) {
+      for (int i = begin; i < end; ++i) {
+        const dvec3 rgb = sepiaPixel(dvec3(double(i) / double(kEntries - 1)), options);
+        std::uint32_t packed = 0;
+        for (int k = 0; k < 3; ++k) packed |= std::uint32_t(std::lround(std::clamp(rgb[k], 0.0, 1.0) * 255.0)) << (8 * k);
+        m_table[std::size_t(i)] = packed;
+      }
+    });
   }
   void run(const Image& in, Image& out) override {
     const std::size_t w = std::size_t(in.width());
     const auto* src = reinterpret_cast<const std::uint32_t*>(in.pixels<std::uint8_t>().data());
     auto* dst = reinterpret_cast<std::uint32_t*>(out.pixels<std::uint8_t>().data());
-    // L·4095 = Σ weight·channel/255, in 16.16 fixed point.
-    constexpr double scale = double(kSteps - 1) / 255.0 * 65536.0;
-    constexpr std::uint32_t wr = std::uint32_t(kLumaR * scale + 0.5), wg = std::uint32_t(kLumaG * scale + 0.5),
-                            wb = std::uint32_t(kLumaB * scale + 0.5);
     const std::uint32_t* table = m_table.data();
     parallelRows(in.height(), [&](int begin, int end) {
       const std::size_t first = std::size_t(begin) * w, last = std::size_t(end) * w;
       for (std::size_t i = first; i < last; ++i) {
         const std::uint32_t p = src[i];  // RGBA in memory: R in the low byte (little-endian)
-        const std::uint32_t index = (wr * (p & 0xFF) + wg * ((p >> 8) & 0xFF) + wb * ((p >> 16) & 0xFF) + 32768u) >> 16;
-        dst[i] = table[std::min(index, std::uint32_t(kSteps - 1))] | (p & 0xFF000000u);
+        const std::uint32_t index = 299u * (p & 0xFF) + 587u * ((p >> 8) & 0xFF) + 114u * ((p >> 16) & 0xFF);
+        dst[i] = table[index] | (p & 0xFF000000u);
       }
     });
   }
 
 private:
-  static constexpr int kSteps = 4096;
-  std::array<std::uint32_t, kSteps> m_table{};
+  static constexpr int kEntries = 255001;  // 1000·255·L for L in [0, 1]
+  std::vector<std::uint32_t> m_table;
 };
 
 class SobelStage final : public RgbaStage {
