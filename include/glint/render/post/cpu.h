@@ -24,9 +24,10 @@
 // RGB ↔ YUV conversions. The result is written in BT.709, limited range (what glint's
 // H.264 sink writes), whatever the input's matrix:
 //   sepia       out RGB is a function of the YIQ luma L alone (L + t(L)·c, image/post.h),
-//               so Y' and the chroma come from tables indexed by L; L is computed from Y'
-//               and the chroma (exactly Y' for a BT.601 input). Chroma: the mean of the
-//               2×2 pixels' values.
+//               so Y' and the chroma are affine in L and t(L) (a clamped linear function);
+//               L is computed from Y' and the chroma (exactly Y' for a BT.601 input, plus
+//               the chroma interpolated where H.264 sites it for BT.709). Chroma out: the
+//               pixels' values filtered as an encoder subsamples ([1 2 1] across, 2 rows).
 //   sobel       gray: Y' = 16 + 219·v from the Sobel of L, chroma 128.
 //   lowpass highpass bandpass blur bokeh
 //               linear filters commute with the (linear) YUV matrix: Y filtered at full
@@ -34,7 +35,8 @@
 //   others      (chains of several effects, kuwahara, edges, posterize) work on RGBA.
 // Against the GPU path on the same video (decoded to RGB, effect, encoded from RGB) the
 // YUV path differs only by how the RGB path rounds, clips out-of-gamut colours and filters
-// chroma: a few 8-bit steps at colour edges (tests/post/cpu_test.cpp states the bounds).
+// chroma: a few 8-bit steps on average at colour edges, more where the RGB path clips
+// (tests/post/backend_test.cpp states the measured bounds).
 
 #include "glint/core/math.h"
 #include "glint/image/image.h"
