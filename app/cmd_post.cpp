@@ -13,7 +13,8 @@ namespace glint::app {
 namespace {
 
 struct PostArgs {
-  std::string input, output, format, camera, lavfi, codec = "h264", preset = "medium", frames, size, rate;
+  std::string input, output, format, camera, lavfi, codec = "h264", preset = "medium", frames, size, rate,
+      backend = "auto";
   std::vector<std::string> effects, settings, concat;
   int crf = 18, channels = 0;
   bool realtime = false, noAudio = false, listEffects = false;
@@ -28,6 +29,7 @@ render::post::PostJob makeJob(const PostArgs& a, const GlobalOptions& global) {
   job.format = a.format;
   job.effects = render::post::parseEffects(a.effects, a.settings);
   job.codec = video::parseCodec(a.codec);
+  job.backend = render::post::parseBackend(a.backend);
   if (!a.frames.empty()) job.frames = parseFrameRange(a.frames, "--frames");
   if (!a.size.empty()) job.cameraSize = parseSize(a.size);
   if (!a.rate.empty()) job.cameraRate = parseFloat(a.rate, "--fps");
@@ -39,6 +41,7 @@ constexpr const char* kPostFooter = R"(Examples:
   glint post street.png -o npr.png -e posterize --set size=4
   glint post clip.mp4 -o clip-edges.mp4 -e kuwahara -e edges
   glint post clip.mp4 -o part2.mkv --codec ffv1 --frames 250:500 -e sepia:i=0.25
+  glint post clip.mp4 -o sepia.mp4 -e sepia --backend cpu
   glint post --concat part1.mkv part2.mkv -o whole.mkv
   glint post --camera /dev/video0 --size 640x480 -o live.mp4 -e sobel
   glint post --input lavfi:testsrc2=size=1280x720:duration=5 -o test.mp4 -e spectrum
@@ -55,7 +58,11 @@ codec, else dropped with a warning. Timestamps are kept: parts made with --frame
 losslessly with --concat (FFV1 parts at any frame; H.264 parts are written without B-frames).
 
 Frames are decoded, processed on the GPU (pixel buffer objects, a few frames in flight) and
-encoded on three overlapped threads. No frame of a file is ever dropped; a live source
+encoded on three overlapped threads. --backend auto (the default) runs the effects on the CPU
+instead (threaded, FFTW, OpenCV) when the GL renderer is a software one (llvmpipe: no GPU),
+as --backend cpu always does (spectrum has no CPU version); --backend gpu keeps OpenGL. On
+the CPU, sepia, sobel and the FFT filters (one effect) work on a video's YUV planes directly,
+skipping the RGB round trip; glint -v post says which backend ran. No frame of a file is ever dropped; a live source
 (camera, --realtime) drops what the GPU cannot keep up with and the report counts it.
 
 Exit status: 0 done, 2 bad option or effect, 3 unreadable input (or an input that broke off:
@@ -83,6 +90,8 @@ Command postCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--fps", a->rate, "Camera: the frame rate to ask for");
   cmd->add_flag("--realtime", a->realtime, "Pace a file or lavfi source at its frame rate and treat it as live "
                                            "(frames the GPU cannot keep up with are dropped and counted)");
+  cmd->add_option("--backend", a->backend, "Where the effects run: auto (the CPU on a software GL renderer such as "
+                  "llvmpipe, else the GPU), gpu (OpenGL) or cpu (threads, FFTW, OpenCV)")->capture_default_str();
   cmd->add_option("--codec", a->codec, "h264 (libx264, yuv420p) or ffv1 (lossless RGB)")->capture_default_str();
   cmd->add_option("--crf", a->crf, "H.264 quality: 0 (lossless) .. 51; 18 is visually lossless")->capture_default_str();
   cmd->add_option("--preset", a->preset, "H.264 speed/size trade-off: ultrafast .. placebo")->capture_default_str();

@@ -50,8 +50,8 @@ Suites& Suites::builtin() {
          .description = "wave simulation step and height → normal pass, GPU vs CPU reference, 256² to 4096²",
          .run = runWaterSuite},
         {.name = "post",
-         .description = "post effects per frame at 640×480, 1080p and 4K vs OpenCV / FFTW; glint post end to end on "
-                         "1080p H.264",
+         .description = "post effects per frame at 640×480, 1080p and 4K (GPU and CPU backend) vs OpenCV / FFTW; "
+                         "glint post end to end vs FFmpeg's nearest filters at 640×480 and 1080p H.264",
          .run = runPostSuite}}) {
       s.add(std::move(suite));
     }

@@ -1,7 +1,9 @@
 // bench post — seed 001's effects per frame at the seed's camera size (640×480), 1080p and
-// 4K, each against its CPU equivalent in OpenCV (and the FFT against FFTW) measured in the
-// same run, alternating runs, medians; and `glint post`'s pipeline end to end on a 1080p
-// H.264 file (decode → GPU effects → encode) against the same pipeline without the GPU.
+// 4K, on the GPU and on the CPU backend (render/post/cpu.h), each against its CPU
+// equivalent in OpenCV (and the FFT against FFTW) measured in the same run, alternating
+// runs, medians; and `glint post` end to end (decode → effect → encode, H.264) at 640×480
+// and 1080p against FFmpeg's nearest filter chain on the same file with the same encoder
+// settings, and the 1080p GPU pipeline against the same pipeline without effects.
 //
 // Every GPU row's note gives the bytes its passes must move at least (each texel read and
 // written once per pass) and the time that takes at an H100's 3.35 TB/s: the memory-
@@ -9,6 +11,7 @@
 #include "glint/bench/bench.h"
 #include "glint/gl/timer.h"
 #include "glint/render/post/chain.h"
+#include "glint/render/post/cpu.h"
 #include "glint/render/post/fft.h"
 #include "glint/render/post/passes.h"
 #include "glint/video/sink.h"
@@ -22,6 +25,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <cstdlib>
 #include <random>
 #include <thread>
 
@@ -93,21 +97,45 @@ void runEffects(Recorder& recorder) {
                                            timerMs, pixels / (gpuMs * 1e3), bound(bytes))});
     };
     const std::string threads = fmt::format("{} thread(s)", peers::peerThreads());
+    // The CPU backend on the same frame, against the same peer (same run, alternating).
+    video::Frame frame{.image = input};  // run in place, frame after frame (the cost does not depend on the content)
+    const auto cpuRow = [&](const std::string& spec, const std::string& peerName, const peers::Work& peer) {
+      post::CpuChain chain(size, post::parseEffects(std::vector<std::string>{spec}));
+      const auto [cpuMs, peerMs] = alternating([&] { chain.run(frame); }, peer, rounds);
+      (void)peerMs;
+      recorder.record({.group = group, .name = spec + " cpu", .value = cpuMs, .unit = "ms", .ratioTo = peerName,
+                       .note = fmt::format("render/post/cpu.h on RGBA8, {:.0f} Mpixel/s",
+                                           pixels / (cpuMs * 1e3))});
+      if (!chain.worksOnYuv()) return;
+      // The video path: the decoder's 4:2:0 planes in, the encoder's out (no RGB at all).
+      video::Frame yuv{.image = Image(size.x, size.y + size.y / 2, 1), .format = video::FrameFormat::Yuv420};
+      std::mt19937 rng(3);
+      for (auto& b : yuv.image.bytes()) b = std::byte(16 + rng() % 220);
+      // In place, frame after frame: these effects' cost does not depend on the content.
+      const auto [yuvMs, unused] = alternating([&] { chain.run(yuv); }, {}, rounds);
+      (void)unused;
+      recorder.record({.group = group, .name = spec + " cpu yuv", .value = yuvMs, .unit = "ms", .ratioTo = peerName,
+                       .note = "the same on YUV 4:2:0 planes, as glint post runs it on H.264"});
+    };
 
     post::SepiaPass sepia;
     row("sepia gpu", [&] { sepia.run(in, out); }, "sepia opencv", peers::opencvSepia(input),
         "cv::transform, the 4×4 colour-matrix sepia, 8-bit, " + threads, pixels * 8);
+    cpuRow("sepia", "sepia opencv", peers::opencvSepia(input));
     post::SobelPass sobel;
     row("sobel gpu", [&] { sobel.run(in, out); }, "sobel opencv", peers::opencvSobel(input),
         "cvtColor + 2× cv::Sobel + magnitude, float, " + threads, pixels * 8);
+    cpuRow("sobel", "sobel opencv", peers::opencvSobel(input));
     post::KuwaharaPass kuwahara;
     row("kuwahara gpu", [&] { kuwahara.run(in, out); }, "kuwahara opencv", peers::opencvKuwahara(input),
         "cv::boxFilter of I and I² + quadrant selection (parallel_for_), " + threads,
         pixels * (4 + 16) + pixels * (16 + 4 + 4));
+    cpuRow("kuwahara", "kuwahara opencv", peers::opencvKuwahara(input));
     post::Chain posterize(size, post::parseEffects(std::vector<std::string>{"posterize"}));
     const auto kuwaharaPeer = peers::opencvKuwahara(input), sobelPeer = peers::opencvSobel(input);
     row("posterize gpu", [&] { posterize.run(in); }, "posterize opencv", [&] { kuwaharaPeer(); sobelPeer(); },
         "the OpenCV Kuwahara and Sobel above, together", pixels * (4 + 16) + pixels * (16 + 4 + 4) + pixels * 8);
+    cpuRow("posterize", "posterize opencv", [&] { kuwaharaPeer(); sobelPeer(); });
     post::SpectrumPass spectrum;
     post::Fft2d luma(size, 1), colour(size, 2);
     row("spectrum gpu", [&] { spectrum.run(in, out); }, "spectrum opencv", peers::opencvSpectrum(input),
@@ -117,6 +145,7 @@ void runEffects(Recorder& recorder) {
     row("lowpass gpu", [&] { lowpass.run(in, out, filter); }, "lowpass opencv", peers::opencvFrequencyFilter(input),
         "3× (cv::dft + mulSpectrums + idft), " + threads,
         pixels * (4 + 16) + 2 * fftBytes(colour) + pixels * (16 + 8 + 16) + pixels * (16 + 4 + 4));
+    cpuRow("lowpass", "lowpass opencv", peers::opencvFrequencyFilter(input));
     row("fft gpu", [&] { luma.run(0, post::FftDirection::Forward); }, "fft fftw", peers::fftwForward(size),
         fmt::format("fftwf_execute, 2D complex float, FFTW_MEASURE, {} thread(s)", std::max(1u, std::thread::hardware_concurrency())),
         fftBytes(luma));
@@ -174,7 +203,7 @@ void runEndToEnd(Recorder& recorder) {
   for (const char* effect : {"sepia", "posterize"}) {
     post::FrameStream stream(size, post::parseEffects(std::vector<std::string>{effect}));
     video::StreamProcessor processor(stream);
-    recorder.record({.group = group, .name = fmt::format("post -e {}", effect), .value = transcodeFps(processor),
+    recorder.record({.group = group, .name = fmt::format("post -e {} gpu", effect), .value = transcodeFps(processor),
                      .unit = "fps", .ratioTo = "decode+encode",
                      .note = "decode → PBO upload → effect → PBO readback → encode, overlapped on 3 threads"});
   }
@@ -182,8 +211,81 @@ void runEndToEnd(Recorder& recorder) {
   fs::remove_all(dir, ec);
 }
 
+// Wall seconds of a shell command; negative when it fails.
+double commandSeconds(const std::string& command) {
+  const auto start = Clock::now();
+  const int status = std::system(command.c_str());
+  const double s = std::chrono::duration<double>(Clock::now() - start).count();
+  return status == 0 ? s : -1.0;
+}
+
+// `glint post` as a user runs it (the command, backend auto: the CPU on llvmpipe) against
+// FFmpeg's nearest filter on the same H.264 file, both encoding with libx264 at the same
+// preset and CRF into yuv420p, every core each; alternating runs, medians.
+void runAgainstFfmpeg(Recorder& recorder) {
+  namespace fs = std::filesystem;
+  if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) {
+    recorder.record({.group = "end to end", .name = "ffmpeg", .value = 0, .unit = "fps", .note = "peer unavailable: no ffmpeg on PATH"});
+    return;
+  }
+  const fs::path dir = fs::temp_directory_path() / fmt::format("glint-bench-post-ffmpeg-{}", getpid());
+  fs::create_directories(dir);
+  const std::string glint = fs::read_symlink("/proc/self/exe").string();
+  const std::string encode = "-c:v libx264 -preset veryfast -crf 18";
+  // glint's nearest FFmpeg chains (colorchannelmixer and edgedetect work on RGB: converted
+  // back to yuv420p for the encoder, as glint's sink does).
+  const std::vector<std::pair<std::string, std::string>> effects = {
+      {"sepia", "colorchannelmixer=.393:.769:.189:0:.349:.686:.168:0:.272:.534:.131,format=yuv420p"},
+      {"sobel", "sobel"},
+      {"lowpass", "fftfilt=dc_Y=0:weight_Y='squish((Y+X)/100-1)'"},
+      {"posterize", "edgedetect=mode=colormix,format=yuv420p"}};
+  for (const auto& [size, frames] : {std::pair{ivec2(640, 480), 96}, std::pair{ivec2(1920, 1080), 48}}) {
+    const std::string group = fmt::format("{}x{} H.264 end to end", size.x, size.y);
+    const fs::path clip = dir / fmt::format("clip-{}.mp4", size.y);
+    {
+      video::Source pattern = video::Source::open(
+          fmt::format("lavfi:testsrc2=size={}x{}:rate=24:duration={}", size.x, size.y, frames / 24));
+      video::Sink sink(clip, {.codec = video::Codec::H264, .size = size, .frameRate = {24, 1},
+                              .timeBase = pattern.info().timeBase, .preset = "ultrafast"});
+      video::Frame f;
+      while (pattern.read(f)) sink.write(f);
+      sink.finish();
+    }
+    const std::string out = (dir / "out.mp4").string();
+    const auto ffmpeg = [&](const std::string& filter) {
+      return fmt::format("ffmpeg -nostdin -v error -y -i {} -vf \"{}\" {} -an {}", clip.string(), filter, encode, out);
+    };
+    const int rounds = 3;
+    const auto fpsOf = [&](double seconds) { return seconds > 0 ? double(frames) / seconds : 0.0; };
+    std::vector<double> nullRuns;
+    for (int i = 0; i < rounds; ++i) nullRuns.push_back(commandSeconds(ffmpeg("null")));
+    recorder.record({.group = group, .name = "ffmpeg null", .value = fpsOf(median(nullRuns)), .unit = "fps",
+                     .note = fmt::format("decode + encode alone ({}, {} frames)", encode, frames)});
+    for (const auto& [effect, filter] : effects) {
+      const std::string post = fmt::format("{} -q post {} -o {} -e {} --preset veryfast --crf 18 --no-audio", glint,
+                                           clip.string(), out, effect);
+      std::vector<double> glintRuns, ffmpegRuns;
+      commandSeconds(post);  // warm-up (the file in the page cache, both commands' libraries)
+      commandSeconds(ffmpeg(filter));
+      for (int i = 0; i < rounds; ++i) {
+        glintRuns.push_back(commandSeconds(post));
+        ffmpegRuns.push_back(commandSeconds(ffmpeg(filter)));
+      }
+      const std::string peer = "ffmpeg " + effect;
+      recorder.record({.group = group, .name = peer, .value = fpsOf(median(ffmpegRuns)), .unit = "fps",
+                       .note = "-vf " + filter});
+      recorder.record({.group = group, .name = "glint post -e " + effect, .value = fpsOf(median(glintRuns)),
+                       .unit = "fps", .ratioTo = peer,
+                       .note = "the command, --backend auto (the CPU on a software GL renderer); ratio ≥ 1: glint faster"});
+    }
+  }
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+}
+
 void runPost(Recorder& recorder) {
   runEffects(recorder);
+  runAgainstFfmpeg(recorder);
   runEndToEnd(recorder);
 }
 

@@ -9,7 +9,7 @@
 #   lib/glint/libglint_ffmpeg.so      the dlopen()ed video module (src/video/backend.h)
 #   lib/cmake/glint/                  glintConfig.cmake, glintConfigVersion.cmake, one
 #                                     glint-<component>-targets*.cmake per component,
-#                                     PeerDependencies.cmake (FFTW, OpenCV targets; with bench)
+#                                     PeerDependencies.cmake (FFTW, OpenCV targets; with post or bench)
 #   share/glint/env, share/glint/bunny  data/ from scripts/setup, when it is there (core/locations.h)
 #
 # Exported targets, namespace glint:: (the same names work in this build as aliases), one
@@ -137,14 +137,14 @@ foreach(component IN LISTS glint_components)
       set(exclude PATTERN pipedream.h EXCLUDE)  # the pipedream stage: a cut
     endif()
     if(component STREQUAL "render")
-      set(exclude PATTERN job.h EXCLUDE)  # render/post/job.h is post's (it needs video)
+      set(exclude PATTERN job.h EXCLUDE PATTERN cpu.h EXCLUDE)  # render/post/{job,cpu}.h are post's (they need video)
     endif()
     install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/glint/${component}" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/glint
             COMPONENT ${component} ${exclude})
   endif()
 endforeach()
 if(GLINT_BUILD_VIDEO)
-  install(FILES "${PROJECT_SOURCE_DIR}/include/glint/render/post/job.h"
+  install(FILES "${PROJECT_SOURCE_DIR}/include/glint/render/post/job.h" "${PROJECT_SOURCE_DIR}/include/glint/render/post/cpu.h"
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/glint/render/post COMPONENT post)
 endif()
 add_executable(glint::glint ALIAS glint)
@@ -163,8 +163,8 @@ write_basic_package_version_file("${PROJECT_BINARY_DIR}/glintConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES "${PROJECT_BINARY_DIR}/glintConfig.cmake" "${PROJECT_BINARY_DIR}/glintConfigVersion.cmake"
   DESTINATION ${GLINT_INSTALL_CMAKE_DIR} COMPONENT core)
-if(GLINT_BUILD_BENCH)
-  install(FILES "${PROJECT_SOURCE_DIR}/cmake/PeerDependencies.cmake" DESTINATION ${GLINT_INSTALL_CMAKE_DIR} COMPONENT bench)
+if(GLINT_BUILD_BENCH OR GLINT_BUILD_VIDEO)  # glint::post's CPU backend and glint::bench's peers link FFTW and OpenCV
+  install(FILES "${PROJECT_SOURCE_DIR}/cmake/PeerDependencies.cmake" DESTINATION ${GLINT_INSTALL_CMAKE_DIR} COMPONENT core)
 endif()
 
 # Data, where scripts/setup put it; absent data is not an install error (the scenes

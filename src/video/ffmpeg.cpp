@@ -248,3 +248,71 @@ void RgbaConverter::fromRgba(const Image& image, AVFrame& frame) {
 }
 
 }  // namespace glint::video
+
+namespace glint::video {
+
+void RgbaConverter::fromYuv420(const Image& planes, YuvMatrix matrix, AVFrame& frame) {
+  const auto to = AVPixelFormat(frame.format);
+  const int width = frame.width, height = frame.height;
+  if (planes.width() != width || planes.height() != height + height / 2 || planes.channels() != 1) {
+    fail(ErrorKind::Internal, "a Yuv420 frame of {}x{} bytes does not match the video's {}x{}", planes.width(),
+         planes.height(), width, height);
+  }
+  auto* y = const_cast<std::uint8_t*>(reinterpret_cast<const std::uint8_t*>(planes.bytes().data()));
+  std::uint8_t* u = y + std::size_t(width) * height;
+  std::uint8_t* v = u + std::size_t(width / 2) * (height / 2);
+  const bool bt709 = matrix == YuvMatrix::Bt709;
+  if (to == AV_PIX_FMT_YUV420P && frame.color_range != AVCOL_RANGE_JPEG &&
+      (frame.colorspace == AVCOL_SPC_BT709) == bt709) {
+    // The encoder's own format and matrix: the planes as they are.
+    av_image_copy_plane(frame.data[0], frame.linesize[0], y, width, width, height);
+    av_image_copy_plane(frame.data[1], frame.linesize[1], u, width / 2, width / 2, height / 2);
+    av_image_copy_plane(frame.data[2], frame.linesize[2], v, width / 2, width / 2, height / 2);
+    return;
+  }
+  // Anything else (FFV1's bgr0, another matrix): libswscale, from limited-range 4:2:0.
+  const int colorspace = bt709 ? SWS_CS_ITU709 : SWS_CS_ITU601;
+  const int target = isYuv(to) ? swsColorspace(frame.colorspace, height) : colorspace;
+  if (isYuv(to) && target != colorspace) {
+    fail(ErrorKind::Internal, "converting a Yuv420 frame between YUV matrices is not supported");
+  }
+  prepare(width, height, AV_PIX_FMT_YUV420P, to, colorspace, false, false);
+  FramePtr src(av_frame_alloc());
+  src->format = AV_PIX_FMT_YUV420P;
+  src->width = width;
+  src->height = height;
+  src->buf[0] = av_buffer_create(y, planes.bytes().size(), noFree, nullptr, AV_BUFFER_FLAG_READONLY);
+  src->data[0] = y;
+  src->data[1] = u;
+  src->data[2] = v;
+  src->linesize[0] = width;
+  src->linesize[1] = src->linesize[2] = width / 2;
+  if (const int e = sws_scale_frame(m_context, &frame, src.get()); e < 0) {
+    fail(ErrorKind::Internal, "cannot convert yuv420p to {}: {}", av_get_pix_fmt_name(to), ffmpegError(e));
+  }
+}
+
+bool takeYuv420(const AVFrame& frame, Frame& out) {
+  if (frame.format != AV_PIX_FMT_YUV420P || frame.color_range == AVCOL_RANGE_JPEG || frame.width % 2 != 0 ||
+      frame.height % 2 != 0) {
+    return false;
+  }
+  const int colorspace = swsColorspace(frame.colorspace, frame.height);
+  if (colorspace != SWS_CS_ITU709 && colorspace != SWS_CS_ITU601) return false;
+  const int width = frame.width, height = frame.height;
+  if (out.image.width() != width || out.image.height() != height + height / 2 || out.image.channels() != 1 ||
+      out.image.type() != PixelType::U8) {
+    out.image = Image(width, height + height / 2, 1, PixelType::U8);
+  }
+  auto* y = reinterpret_cast<std::uint8_t*>(out.image.bytes().data());
+  std::uint8_t* u = y + std::size_t(width) * height;
+  std::uint8_t* v = u + std::size_t(width / 2) * (height / 2);
+  av_image_copy_plane(y, width, frame.data[0], frame.linesize[0], width, height);
+  av_image_copy_plane(u, width / 2, frame.data[1], frame.linesize[1], width / 2, height / 2);
+  av_image_copy_plane(v, width / 2, frame.data[2], frame.linesize[2], width / 2, height / 2);
+  out.format = FrameFormat::Yuv420;
+  out.matrix = colorspace == SWS_CS_ITU709 ? YuvMatrix::Bt709 : YuvMatrix::Bt601;
+  return true;
+}
+
+}  // namespace glint::video

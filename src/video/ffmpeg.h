@@ -86,6 +86,8 @@ public:
   /// `image` (U8 RGBA) → `frame`, whose format, size, colorspace and range are set and
   /// whose buffers are allocated.
   void fromRgba(const Image& image, AVFrame& frame);
+  /// A Yuv420 frame's planes (video/frame.h) in `matrix` → `frame`, as fromRgba.
+  void fromYuv420(const Image& planes, YuvMatrix matrix, AVFrame& frame);
 
 private:
   void prepare(int width, int height, AVPixelFormat from, AVPixelFormat to, int yuvColorspace, bool yuvFullRange,
@@ -133,6 +135,10 @@ Result guarded(backend::Status& status, Body&& body, Result failed) {
 }
 
 std::int64_t concatenateFiles(std::span<const std::filesystem::path> parts, const std::filesystem::path& destination);
+
+/// Copies `frame`'s planes into `out` (FrameFormat::Yuv420) when it is 8-bit limited-range
+/// 4:2:0 in BT.601 or BT.709 with an even size; false (nothing done) otherwise.
+bool takeYuv420(const AVFrame& frame, Frame& out);
 
 /// The colorspace libswscale should use for a YUV frame: its own tag, else BT.709 for
 /// 720 lines and up, BT.601 below.

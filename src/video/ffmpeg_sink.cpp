@@ -204,7 +204,8 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_
 void FfmpegSink::write(const Frame& frame) {
   FfmpegSink& s = *this;
   if (s.finished) fail(ErrorKind::Internal, "Sink::write after finish()");
-  if (frame.image.width() != s.encoder->width || frame.image.height() != s.encoder->height) {
+  const int rows = frame.format == FrameFormat::Yuv420 ? s.encoder->height + s.encoder->height / 2 : s.encoder->height;
+  if (frame.image.width() != s.encoder->width || frame.image.height() != rows) {
     fail(ErrorKind::Internal, "frame {}x{} does not match the video's {}x{}", frame.image.width(),
          frame.image.height(), s.encoder->width, s.encoder->height);
   }
@@ -221,7 +222,8 @@ void FfmpegSink::write(const Frame& frame) {
       fail(ErrorKind::Internal, "out of memory for a video frame: {}", ffmpegError(b));
     }
   }
-  s.converter.fromRgba(frame.image, *s.frame);
+  if (frame.format == FrameFormat::Yuv420) s.converter.fromYuv420(frame.image, frame.matrix, *s.frame);
+  else s.converter.fromRgba(frame.image, *s.frame);
   std::int64_t pts = frame.pts != kNoTimestamp ? frame.pts : (s.lastPts == kNoTimestamp ? 0 : s.lastPts + 1);
   if (s.lastPts != kNoTimestamp && pts <= s.lastPts) pts = s.lastPts + 1;  // encoders need increasing pts
   s.lastPts = pts;

@@ -258,7 +258,10 @@ bool FfmpegSource::decodeOne(Frame& out) {
       if (pts == AV_NOPTS_VALUE) pts = frame->pts;
       if (startPts == kNoTimestamp && pts != AV_NOPTS_VALUE) startPts = pts;
       if (pts == AV_NOPTS_VALUE) pts = kNoTimestamp;
-      converter.toRgba(*frame, out.image);
+      if (!options.yuv420 || !takeYuv420(*frame, out)) {
+        converter.toRgba(*frame, out.image);
+        out.format = FrameFormat::Rgba;
+      }
       out.pts = pts;
       out.seconds = pts != kNoTimestamp ? secondsOf(pts) : 0.0;
       out.index = indexOf(pts);

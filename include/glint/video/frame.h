@@ -28,10 +28,27 @@ struct Rational {
 /// No timestamp (FFmpeg's AV_NOPTS_VALUE).
 constexpr std::int64_t kNoTimestamp = INT64_MIN;
 
-/// One decoded picture. `image` is U8 RGBA, row 0 at the top, tightly packed
-/// (rowBytes() = 4·width).
+/// How a Frame's `image` holds the picture.
+enum class FrameFormat {
+  Rgba,   ///< U8 RGBA, 4 channels, tightly packed (rowBytes() = 4·width): the default
+  /// 8-bit limited-range YUV 4:2:0 as a decoder gives it, planar (I420) in one U8 1-channel
+  /// image of width × (height·3/2): the Y plane (width × height), then U and V (width/2 ×
+  /// height/2 each, rows of width/2 bytes, packed). Even sizes only. Sources deliver it when
+  /// asked (SourceOptions::yuv420) so that an effect defined on luma skips the RGB round trip.
+  Yuv420
+};
+
+/// The YUV matrix of a Yuv420 frame (the stream's tag; untagged: BT.709 from 720 lines up).
+enum class YuvMatrix {
+  Bt601,  ///< Kr = 0.299, Kb = 0.114 (SD video; the luma glint's effects use)
+  Bt709   ///< Kr = 0.2126, Kb = 0.0722 (HD video; what glint's H.264 sink writes)
+};
+
+/// One decoded picture, row 0 at the top: `image` as `format` says (U8 RGBA by default).
 struct Frame {
   Image image;
+  FrameFormat format = FrameFormat::Rgba;
+  YuvMatrix matrix = YuvMatrix::Bt709;  ///< Yuv420 only
   std::int64_t index = 0;   ///< frame number from the start of the source (its first frame is 0)
   std::int64_t pts = kNoTimestamp;  ///< presentation timestamp in the source's time base
   double seconds = 0.0;     ///< pts in seconds from the source's start (0 for its first frame)

@@ -90,7 +90,8 @@ public:
   Sink& operator=(Sink&&) noexcept;
   ~Sink();
 
-  /// Encodes one frame (RGBA8 of the sink's size). Frames must come in pts order.
+  /// Encodes one frame of the sink's size: RGBA8, or Yuv420 (copied as it is into an H.264
+  /// stream when its matrix is BT.709, converted otherwise). Frames must come in pts order.
   void write(const Frame& frame);
   /// Copies one audio packet (from the source given as options.audio).
   void writeAudio(Packet packet);

@@ -63,6 +63,10 @@ struct SourceOptions {
   std::int64_t lastFrame = -1;   ///< one past the last frame to deliver; -1: to the end
   bool keepAudio = true;      ///< keep the first audio stream's packets for passthrough
   int threads = 0;            ///< decoder threads; 0: FFmpeg's choice (one per core)
+  /// Deliver 8-bit limited-range 4:2:0 frames (BT.601 or BT.709, even size) as decoded,
+  /// FrameFormat::Yuv420, without converting to RGBA; any other frame is converted as usual.
+  /// For processors that work on luma (glint post's CPU backend).
+  bool yuv420 = false;
 };
 
 /// What a source is, as far as the container says.

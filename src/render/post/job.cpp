@@ -59,6 +59,50 @@ std::unique_ptr<gl::HeadlessContext> makeContext(const PostJob& job, ivec2 size)
   return context;
 }
 
+// Where the effects run. Auto makes the GL context to read its renderer: kept for the GPU,
+// dropped for the CPU (a software renderer, and the CPU has every effect of the chain).
+Backend chooseBackend(const PostJob& job, std::unique_ptr<gl::HeadlessContext>& context) {
+  if (job.backend != Backend::Auto) return job.backend;
+  context = gl::HeadlessContext::create({.profile = gl::Profile::Core, .debug = job.glDebug});
+  const std::string renderer = gl::queryContextInfo().renderer;
+  if (!isSoftwareRenderer(renderer)) return Backend::Gpu;
+  if (const std::string missing = cpuMissing(job.effects); !missing.empty()) {
+    log::info("post: {} is a software renderer, but {} has no CPU version: on the GPU", renderer, missing);
+    return Backend::Gpu;
+  }
+  log::debug("post: {} is a software renderer: the effects run on the CPU", renderer);
+  context.reset();
+  return Backend::Cpu;
+}
+
+// The GPU's context for frames of `size`: the one chooseBackend made, or a new one.
+void ensureContext(const PostJob& job, ivec2 size, std::unique_ptr<gl::HeadlessContext>& context) {
+  if (!context) {
+    context = makeContext(job, size);
+    return;
+  }
+  const int largest = gl::queryContextInfo().maxTextureSize;
+  if (size.x > largest || size.y > largest) {
+    fail(ErrorKind::Input, "the frames are {}x{}: larger than this GPU's largest texture ({}x{})", size.x, size.y,
+         largest, largest);
+  }
+}
+
+// The CPU backend as transcode's middle stage: frames processed in place, on this thread
+// (the effects spread over the cores themselves).
+class CpuProcessor final : public video::FrameProcessor {
+public:
+  explicit CpuProcessor(CpuChain& chain) : m_chain(chain) {}
+  void process(video::Frame&& frame, const Emit& emit) override {
+    m_chain.run(frame);
+    emit(std::move(frame));
+  }
+  void flush(const Emit&) override {}
+
+private:
+  CpuChain& m_chain;
+};
+
 // The checks that need nothing opened: Error(Usage) or Error(Output).
 void checkJob(const PostJob& job, const ToolRun& run) {
   if (!job.parts.empty()) {
@@ -128,38 +172,56 @@ PostStats runImage(const PostJob& job, ToolRun& run) {
   }
   const ivec2 size(frame.width(), frame.height());
   run.checkMemory(estimatePeakMemoryMiB(size, true), fmt::format("processing a {}x{} image", size.x, size.y));
-  const auto context = makeContext(job, size);
+  std::unique_ptr<gl::HeadlessContext> context;
+  const Backend backend = chooseBackend(job, context);
+  if (backend == Backend::Gpu) ensureContext(job, size, context);
   PostStats stats{.kind = InputKind::Image, .input = job.input, .output = job.output, .size = size, .framesRead = 1,
                   .framesWritten = 1};
+  stats.backend = backendName(backend);
   Image result;
   {
     auto timed = run.phase("process");
-    Chain chain(size, job.effects);
-    result = chain.run(frame);
-    stats.effects = chain.describe();
+    if (backend == Backend::Cpu) {
+      CpuChain chain(size, job.effects);
+      result = chain.run(frame);
+      stats.effects = chain.describe();
+    } else {
+      Chain chain(size, job.effects);
+      result = chain.run(frame);
+      stats.effects = chain.describe();
+    }
   }
   run.throwIfInterrupted();
   {
     auto timed = run.phase("write");
     saveImage(withOutputChannels(result, inputChannels, job.channels, stats.effects), job.output, job.format);
   }
-  log::info("post: {} ({}x{}) → {}: {}", job.input, size.x, size.y, job.output, stats.effects);
+  log::info("post: {} ({}x{}) → {}: {} ({})", job.input, size.x, size.y, job.output, stats.effects, stats.backend);
   return stats;
 }
 
 // A video in, an image out: one frame (the first of --frames), processed.
-PostStats runStill(const PostJob& job, video::Source& source, ToolRun& run) {
+PostStats runStill(const PostJob& job, video::Source& source, Backend backend, ToolRun& run) {
   requireImageIo();
   video::Frame frame;
   if (!source.read(frame)) fail(ErrorKind::Input, "{} has no frame to take a still from", source.info().name);
-  Chain chain(source.info().size, job.effects);
-  const Image result = chain.run(frame.image);
+  Image result;
+  std::string effects;
+  if (backend == Backend::Cpu) {
+    CpuChain chain(source.info().size, job.effects);
+    result = chain.run(frame.image);
+    effects = chain.describe();
+  } else {
+    Chain chain(source.info().size, job.effects);
+    result = chain.run(frame.image);
+    effects = chain.describe();
+  }
   run.throwIfInterrupted();
-  saveImage(withOutputChannels(result, 3, job.channels, chain.describe()), job.output, job.format);  // video: RGB
+  saveImage(withOutputChannels(result, 3, job.channels, effects), job.output, job.format);  // video: RGB
   log::info("post: frame {} ({:.3f} s) of {} → {}", frame.index, frame.seconds, source.info().name, job.output);
   return {.kind = inputKind(job), .still = true, .input = source.info().name, .output = job.output,
-          .size = source.info().size, .effects = chain.describe(), .frame = frame.index, .framesRead = 1,
-          .framesWritten = 1};
+          .size = source.info().size, .effects = effects, .backend = backendName(backend), .frame = frame.index,
+          .framesRead = 1, .framesWritten = 1};
 }
 
 // Warnings about frames the source lost or damaged: said, not silent.
@@ -215,6 +277,11 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
     options.lastFrame = job.frames->end;
   }
   const bool still = imageOutput(job);
+  std::unique_ptr<gl::HeadlessContext> context;
+  const Backend backend = chooseBackend(job, context);
+  // The CPU's luma effects take the decoder's YUV planes as they are and hand them to an
+  // H.264 encoder, itself 4:2:0 (cpu.h); FFV1 (lossless RGB) gets the exact RGB path.
+  options.yuv420 = backend == Backend::Cpu && !still && job.codec == video::Codec::H264 && cpuWorksOnYuv(job.effects);
 
   std::optional<ToolRun::Phase> opening(std::in_place, run, "open");
   video::Source source = video::Source::open(name, options);
@@ -223,17 +290,22 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
     fail(ErrorKind::Input, "--frames {} selects no frame of '{}' ({})", rangeText(*job.frames), name, countOf(info));
   }
   run.checkMemory(estimatePeakMemoryMiB(info.size, still), fmt::format("processing {}x{} video", info.size.x, info.size.y));
-  const auto context = makeContext(job, info.size);
-  if (still) return runStill(job, source, run);
-  FrameStream stream(info.size, job.effects);
+  if (backend == Backend::Gpu) ensureContext(job, info.size, context);
+  if (still) return runStill(job, source, backend, run);
+  std::optional<FrameStream> stream;
+  std::optional<CpuChain> cpuChain;
+  if (backend == Backend::Cpu) cpuChain.emplace(info.size, job.effects);
+  else stream.emplace(info.size, job.effects);
+  const std::string described = cpuChain ? cpuChain->describe() : stream->chain().describe();
   video::Sink sink(job.output, {.codec = job.codec, .size = info.size, .frameRate = info.frameRate,
                                 .timeBase = info.timeBase, .crf = job.crf, .preset = job.preset,
                                 .threads = run.settings().threads, .noReordering = job.frames.has_value(),
                                 .audio = job.keepAudio ? source.audio() : nullptr, .format = job.format});
   opening.reset();
   if (!sink.audioNote().empty()) run.warn(sink.audioNote());
-  log::info("post: {} ({}x{}, {:.3g} fps, {}{}) → {} ({}): {}", name, info.size.x, info.size.y, info.frameRate.value(),
-            info.codec, info.live ? ", live" : "", job.output, video::codecName(job.codec), stream.chain().describe());
+  log::info("post: {} ({}x{}, {:.3g} fps, {}{}) → {} ({}): {} on the {}{}", name, info.size.x, info.size.y,
+            info.frameRate.value(), info.codec, info.live ? ", live" : "", job.output, video::codecName(job.codec),
+            described, backendName(backend), options.yuv420 ? " (in YUV)" : "");
 
   // The frames the container announces for the range (−1: it does not say).
   const std::int64_t expected = expectedFrames(info, options);
@@ -242,7 +314,11 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
   Progress progress("post", std::uint64_t(std::max<std::int64_t>(total, 0)));
   const auto start = std::chrono::steady_clock::now();
   auto lastDetail = start;
-  video::StreamProcessor<FrameStream> processor(stream);
+  std::optional<video::StreamProcessor<FrameStream>> gpuProcessor;
+  std::optional<CpuProcessor> cpuProcessor;
+  if (cpuChain) cpuProcessor.emplace(*cpuChain);
+  else gpuProcessor.emplace(*stream);
+  video::FrameProcessor& processor = cpuChain ? static_cast<video::FrameProcessor&>(*cpuProcessor) : *gpuProcessor;
   const video::TranscodeStats t = video::transcode(
       source, sink, processor,
       {.cancel = &run.cancelFlag(), .progress = [&](std::int64_t done) {
@@ -264,7 +340,8 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
                   .size = info.size,
                   .frameRate = info.frameRate.value(),
                   .codec = video::codecName(job.codec),
-                  .effects = stream.chain().describe(),
+                  .effects = described,
+                  .backend = backendName(backend),
                   .live = info.live,
                   .firstFrame = options.firstFrame,
                   .framesRead = t.framesRead,

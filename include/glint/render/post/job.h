@@ -27,6 +27,7 @@
 #include "glint/core/math.h"
 #include "glint/core/text.h"
 #include "glint/core/tool.h"
+#include "glint/render/post/cpu.h"
 #include "glint/render/post/effects.h"
 #include "glint/video/sink.h"
 
@@ -75,6 +76,9 @@ struct PostJob {
   /// (a video's frames are RGB), in colour when the effects turn a grey input into colour.
   int channels = 0;
   bool glDebug = false;            ///< a GL debug context
+  /// Where the effects run (render/post/cpu.h): auto picks the CPU on a software GL
+  /// renderer (llvmpipe) when it has every effect of the chain.
+  Backend backend = Backend::Auto;
 };
 
 /// The one place the kind of input is worked out (after the one-input check).
@@ -98,6 +102,7 @@ struct PostStats {
   double frameRate = 0.0;
   std::string codec;               ///< "h264" or "ffv1"
   std::string effects;             ///< Chain::describe()
+  std::string backend;             ///< "cpu" or "gpu": where the effects ran (not in toJson)
   bool live = false;
   std::int64_t frame = 0;          ///< still: the frame's index
   std::int64_t firstFrame = 0;
