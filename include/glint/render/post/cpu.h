@@ -7,11 +7,13 @@
 // SwiftShader): there a "GPU" pass is CPU work plus uploads and readbacks.
 //
 /// ```cpp
+/// #include <glint/image/post.h>
 /// #include <glint/render/post/cpu.h>
 /// const std::vector<std::string> specs = {"sepia"};
 /// glint::render::post::CpuChain chain({1920, 1080}, glint::render::post::parseEffects(specs));
 /// glint::video::Frame frame;                  // from a Source opened with options.yuv420 = chain.worksOnYuv()
 /// chain.run(frame);                           // in place: Rgba stays Rgba, Yuv420 stays Yuv420 (BT.709)
+/// const glint::Image photo = glint::postInput(glint::loadImage("photo.png"));
 /// const glint::Image out = chain.run(photo);  // U8 RGBA in, U8 RGBA out
 /// ```
 //
