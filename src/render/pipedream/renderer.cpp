@@ -352,6 +352,27 @@ void Renderer::drawCaster(const Caster& caster, const mat4& model) const {
   glDrawElements(GL_TRIANGLES, caster.indexCount, GL_UNSIGNED_INT, nullptr);
 }
 
+void Renderer::extendVolumeBounds(const vec3& centre, float radius, const vec3& light) {
+  // Every point of the volume is p + t (p − L), t ≥ 0, p in the box: in homogeneous terms a
+  // non-negative combination of the 8 corners (c, 1) and their directions (c − L, 0). When
+  // all 16 lie in front of the eye (clip w > 0), the volume's projection is inside the
+  // bounds of theirs.
+  if (m_volumeBounds.whole) return;
+  const mat4 viewProj = m_camera.viewProjection();
+  for (int k = 0; k < 8; ++k) {
+    const vec3 c = centre + radius * vec3(k & 1 ? 1.0f : -1.0f, k & 2 ? 1.0f : -1.0f, k & 4 ? 1.0f : -1.0f);
+    for (const vec4& clip : {viewProj * vec4(c, 1.0f), viewProj * vec4(c - light, 0.0f)}) {
+      if (!(clip.w > 1e-6f)) {
+        m_volumeBounds.whole = true;
+        return;
+      }
+      const vec2 ndc = vec2(clip) / clip.w;
+      m_volumeBounds.lo = glm::min(m_volumeBounds.lo, ndc);
+      m_volumeBounds.hi = glm::max(m_volumeBounds.hi, ndc);
+    }
+  }
+}
+
 bool Renderer::drawVolumesOf(int light, bool everything) {
   m_extrude.set("uViewProj", m_camera.viewProjection());
   m_extrude.set("uLightPos", m_machine.lights[std::size_t(light)].position);
@@ -365,6 +386,8 @@ bool Renderer::drawVolumesOf(int light, bool everything) {
       return;
     }
     drawCaster(c, model);
+    extendVolumeBounds(vec3(model * vec4(c.centre, 1.0f)), c.radius * maxScale(model),
+                       m_machine.lights[std::size_t(light)].position);
     ++m_stats.castersDrawn;
     m_stats.volumeTriangles += std::size_t(c.indexCount / 3);
     any = true;
@@ -386,6 +409,7 @@ bool Renderer::countVolumes(int light) {
   const StencilLayout layout = stencilLayout();
   // Only the count bits are written, so earlier lights' markers stay.
   zFailCounting(layout.countMask()).apply();
+  m_volumeBounds = {};
   const bool any = drawVolumesOf(light, false);
   if (any) ++m_stats.lightsWithShadows;
   return any;
@@ -394,6 +418,15 @@ bool Renderer::countVolumes(int light) {
 void Renderer::compositeLight(int light, std::uint32_t earlier) {
   m_compositeFbo.bind();
   glViewport(0, 0, m_size.x, m_size.y);
+  // The passes below change only pixels where this light's volumes left a count: the
+  // rectangle of their projections (a pixel of margin), not the whole frame.
+  if (!m_volumeBounds.whole) {
+    const vec2 size(m_size);
+    const ivec2 lo = glm::clamp(ivec2(glm::floor((0.5f * m_volumeBounds.lo + 0.5f) * size)) - 1, ivec2(0), m_size);
+    const ivec2 hi = glm::clamp(ivec2(glm::ceil((0.5f * m_volumeBounds.hi + 0.5f) * size)) + 1, ivec2(0), m_size);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(lo.x, lo.y, std::max(0, hi.x - lo.x), std::max(0, hi.y - lo.y));
+  }
   const StencilLayout layout = stencilLayout();
   if (light > 0) {
     // Destination alpha := this light's factor. It depends on which earlier lights are
@@ -429,6 +462,7 @@ void Renderer::compositeLight(int light, std::uint32_t earlier) {
                 .blend = {.enabled = true, .src = GL_ZERO, .dst = GL_DST_ALPHA}}
       .apply();
   m_quad.drawWithCurrentState();
+  glDisable(GL_SCISSOR_TEST);
 }
 
 void Renderer::present(const gl::Target& target) const {

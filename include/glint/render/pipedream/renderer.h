@@ -210,6 +210,9 @@ private:
   /// Every volume of `light` with the current state: in-range dynamic casters, and with
   /// `everything` the static scene too (Naive). Counts into m_stats.
   bool drawVolumesOf(int light, bool everything);
+  /// Grows m_volumeBounds by the screen area a caster's shadow volume can cover: its
+  /// bounding sphere's box and that box pushed away from the light to infinity.
+  void extendVolumeBounds(const vec3& centre, float radius, const vec3& light);
   void ensureNaiveCasters();
   void renderNaive();
   void drawVolumeWireframe();
@@ -246,6 +249,12 @@ private:
   std::vector<DynamicDraw> m_dynamic;
   std::vector<BallDraw> m_balls;
   FrameStats m_stats;
+  /// Normalized device rectangle holding this light's volumes (lo, hi); `whole` when a
+  /// volume reaches behind the eye and its projection is unbounded.
+  struct VolumeBounds {
+    vec2 lo{1.0f}, hi{-1.0f};
+    bool whole = false;
+  } m_volumeBounds;
 };
 
 }  // namespace glint::render::pipedream
