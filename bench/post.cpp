@@ -239,7 +239,8 @@ void runAgainstFfmpeg(Recorder& recorder) {
       {"sobel", "sobel"},
       {"lowpass", "fftfilt=dc_Y=0:weight_Y='squish((Y+X)/100-1)'"},
       {"posterize", "edgedetect=mode=colormix,format=yuv420p"}};
-  for (const auto& [size, frames] : {std::pair{ivec2(640, 480), 96}, std::pair{ivec2(1920, 1080), 48}}) {
+  for (const auto& [size, frameCount] : {std::pair{ivec2(640, 480), 96}, std::pair{ivec2(1920, 1080), 48}}) {
+    const int frames = frameCount;  // a plain local: lambdas below capture it (clang cannot capture bindings)
     const std::string group = fmt::format("{}x{} H.264 end to end", size.x, size.y);
     const fs::path clip = dir / fmt::format("clip-{}.mp4", size.y);
     {

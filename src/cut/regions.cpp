@@ -27,6 +27,10 @@ using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 // a planar subdivision); anything else throws, and the caller keeps the convex faces.
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
 
+/// A rational as the kernel's number: its exact type is GMP's mpq_class or Boost's
+/// gmp_rational, as CGAL was configured; both take an mpq_t.
+K::FT kernelNumber(const mpq_class& q) { return K::FT(K::FT::ET(q.get_mpq_t())); }
+
 }  // namespace
 
 struct RegionTriangulator::Impl {
@@ -40,7 +44,7 @@ struct RegionTriangulator::Impl {
     auto it = points.find(id);
     if (it == points.end()) {
       const auto x = g.exactPosition(defs(id));
-      it = points.emplace(id, Point(K::FT(x[std::size_t(u)]), K::FT(x[std::size_t(v)]))).first;
+      it = points.emplace(id, Point(kernelNumber(x[std::size_t(u)]), kernelNumber(x[std::size_t(v)]))).first;
     }
     return it->second;
   }
@@ -57,7 +61,7 @@ void RegionTriangulator::reset(int axisU, int axisV, const std::array<exact::Ver
   std::array<Point, 3> p;
   for (std::size_t k = 0; k < 3; ++k) {
     const auto x = m->g.exactPosition(corners[k]);
-    p[k] = Point(K::FT(x[std::size_t(axisU)]), K::FT(x[std::size_t(axisV)]));
+    p[k] = Point(kernelNumber(x[std::size_t(axisU)]), kernelNumber(x[std::size_t(axisV)]));
   }
   m->flipped = CGAL::orientation(p[0], p[1], p[2]) == CGAL::CLOCKWISE;
 }
