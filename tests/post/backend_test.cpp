@@ -30,9 +30,7 @@ using glint::testing::runGlint;
 namespace {
 class PostCpu : public glint::testing::GlTest {};
 
-std::vector<std::pair<std::string, Image>> inputs() {
-  return {{"photo", photograph()}, {"noise", noiseImage(96, 64, 11)}, {"odd", crop(photograph(), 101, 57, 37, 23)}};
-}
+std::vector<std::pair<std::string, Image>> inputs() { return glint::testing::postInputs(); }
 
 Image cpuRun(const Image& image, const std::string& spec) {
   CpuChain chain({image.width(), image.height()}, parseEffects(std::vector<std::string>{spec}));

@@ -27,10 +27,7 @@ using glint::testing::photograph;
 namespace {
 class PostGpu : public glint::testing::GlTest {};
 
-// The three inputs every pass is checked on.
-std::vector<std::pair<std::string, Image>> inputs() {
-  return {{"photo", photograph()}, {"noise", noiseImage(96, 64, 11)}, {"odd", crop(photograph(), 101, 57, 37, 23)}};
-}
+std::vector<std::pair<std::string, Image>> inputs() { return glint::testing::postInputs(); }
 
 Image runPass(const Image& input, const std::function<void(const gl::Texture&, const gl::Texture&)>& pass) {
   const gl::Texture in = uploadFrame(input, "test-input");

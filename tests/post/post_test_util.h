@@ -10,6 +10,9 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace glint::testing {
 
@@ -37,6 +40,12 @@ inline Image crop(const Image& image, int x0, int y0, int w, int h) {
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < image.channels(); ++c) out.set(x, y, c, image.at(x0 + x, y0 + y, c));
   return out;
+}
+
+/// The three inputs every pass is checked on: a photograph, noise, and an odd-sized crop
+/// (the GPU and CPU backend tests share them).
+inline std::vector<std::pair<std::string, Image>> postInputs() {
+  return {{"photo", photograph()}, {"noise", noiseImage(96, 64, 11)}, {"odd", crop(photograph(), 101, 57, 37, 23)}};
 }
 
 struct ChannelDifference {
