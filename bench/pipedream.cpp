@@ -5,13 +5,14 @@
 // The `pipedream` scene at its default size, polygon count and time, from its default
 // camera and from the side (the seed's worst overdraw): the seed's method (Mode::Full) against the naive method (every caster's volumes
 // per light, the uncut scene, multi-pass), each frame waited for (glFinish), medians over
-// runs that alternate between the two so that the shared machine's load falls on both.
+// rounds that time a few frames of each method in turn, so that the shared machine's load
+// falls on all alike; the ratios are the medians of each round's own ratios.
 // Also per frame: triangles drawn (scene passes and volumes), stencil fragments (what the
 // volumes rasterize, GL_SAMPLES_PASSED, depth test off) and the average volume overdraw
 // per pixel; and the static-only frame (no dynamic shadows) as the floor.
 //
 // GLINT_BENCH_PIPEDREAM_SIZE=WxH replaces the size (1920x1080 on a GPU);
-// GLINT_BENCH_PIPEDREAM_RUNS=N the alternating runs (default 3);
+// GLINT_BENCH_PIPEDREAM_RUNS=N the alternating rounds (default 7);
 // GLINT_BENCH_PIPEDREAM_DETAIL=N the stage's detail (default: the scene's).
 #include "glint/bench/bench.h"
 #include "glint/core/log.h"
@@ -41,21 +42,36 @@ void runView(Recorder& recorder, rp::Renderer& renderer, const gl::RenderTarget&
   const ivec2 size = target.size();
   const auto frame = [&](rp::Mode mode) { renderer.render(pose, camera, target.target(), mode); };
 
-  // Alternating runs: each a median of frames of one method, then the other.
+  // Alternating rounds: each times a few frames of every method in turn (a warm-up frame
+  // first, then the median), the order reversed every other round, so that the shared
+  // machine's swings in speed, which last seconds, fall on all three alike.
   std::vector<double> full, naive, staticOnly;
   const double loadBefore = loadAverage();
+  const struct {
+    rp::Mode mode;
+    std::vector<double>* times;
+    int frames;
+  } methods[] = {{rp::Mode::Full, &full, 3}, {rp::Mode::Naive, &naive, 2}, {rp::Mode::StaticOnly, &staticOnly, 3}};
   for (int run = 0; run < runs; ++run) {
-    full.push_back(wallMs([&] { frame(rp::Mode::Full); }, 5));
-    naive.push_back(wallMs([&] { frame(rp::Mode::Naive); }, 2));
-    staticOnly.push_back(wallMs([&] { frame(rp::Mode::StaticOnly); }, 5));
-    log::info("bench pipedream {}: run {}: full {:.1f} ms, naive {:.1f} ms, static only {:.1f} ms", group, run + 1,
+    for (int k = 0; k < 3; ++k) {
+      const auto& m = methods[run % 2 == 0 ? k : 2 - k];
+      m.times->push_back(wallMs([&] { frame(m.mode); }, m.frames));
+    }
+    log::info("bench pipedream {}: round {}: full {:.1f} ms, naive {:.1f} ms, static only {:.1f} ms", group, run + 1,
               full.back(), naive.back(), staticOnly.back());
+  }
+  // Ratios within each round (methods timed seconds apart), then their median.
+  std::vector<double> speedups, shadowRatios;
+  for (int run = 0; run < runs; ++run) {
+    speedups.push_back(naive[std::size_t(run)] / full[std::size_t(run)]);
+    shadowRatios.push_back((naive[std::size_t(run)] - staticOnly[std::size_t(run)]) /
+                           std::max(full[std::size_t(run)] - staticOnly[std::size_t(run)], 1e-3));
   }
   const double load = 0.5 * (loadBefore + loadAverage());
   const auto runsNote = [&](const std::vector<double>& v) {
     std::string s;
     for (const double x : v) s += fmt::format("{}{:.1f}", s.empty() ? "" : ", ", x);
-    return fmt::format("runs {} ms; load {:.1f}", s, load);
+    return fmt::format("rounds {} ms; load {:.1f}", s, load);
   };
 
   // What each frame draws and fills.
@@ -82,12 +98,13 @@ void runView(Recorder& recorder, rp::Renderer& renderer, const gl::RenderTarget&
   recorder.record({.group = group, .name = "static only (no volumes)", .value = staticMs, .unit = "ms",
                    .ratioTo = "full (seed's method)",
                    .note = fmt::format("the cut scene alone: what the dynamic shadows cost on top; {}", runsNote(staticOnly))});
-  recorder.record({.group = group, .name = "speed-up", .value = naiveMs / fullMs, .unit = "x",
-                   .note = "naive / full frame time (seed: 2 fps -> over 30 fps; target >= 15x; on llvmpipe >= 5x)"});
-  recorder.record({.group = group, .name = "shadows: naive cost / full cost", .value = (naiveMs - staticMs) / (fullMs - staticMs),
-                   .unit = "x",
-                   .note = fmt::format("(naive - static only) / (full - static only): what the shadows cost each way, "
-                                       "{:.1f} against {:.1f} ms (target >= 15x)",
+  recorder.record({.group = group, .name = "speed-up", .value = median(speedups), .unit = "x",
+                   .note = fmt::format("naive / full frame time, median of each round's ratio (ratio of the medians "
+                                       "{:.2f}); seed: 2 fps -> over 30 fps; target >= 15x; on llvmpipe >= 5x",
+                                       naiveMs / fullMs)});
+  recorder.record({.group = group, .name = "shadows: naive cost / full cost", .value = median(shadowRatios), .unit = "x",
+                   .note = fmt::format("(naive - static only) / (full - static only), median of each round's: what the "
+                                       "shadows cost each way, {:.1f} against {:.1f} ms in the medians (target >= 15x)",
                                        naiveMs - staticMs, fullMs - staticMs)});
   for (const auto& [name, cost] : {std::pair{"full", fullCost}, std::pair{"naive", naiveCost}}) {
     recorder.record({.group = group, .name = fmt::format("{}: triangles/frame", name),
@@ -107,7 +124,7 @@ void runPipeDream(Recorder& recorder) {
   const scenes::SceneDesc& desc = *scenes::Registry::builtin().resolve("pipedream").scene;
   ivec2 size = desc.defaultSize;
   if (const char* s = std::getenv("GLINT_BENCH_PIPEDREAM_SIZE"); s && *s) std::sscanf(s, "%dx%d", &size.x, &size.y);
-  const int runs = envInt("GLINT_BENCH_PIPEDREAM_RUNS", 3);
+  const int runs = envInt("GLINT_BENCH_PIPEDREAM_RUNS", 7);
   const int detail = envInt("GLINT_BENCH_PIPEDREAM_DETAIL", pd::kDefaultDetail);
 
   const auto stage = pd::loadStage({.detail = detail});

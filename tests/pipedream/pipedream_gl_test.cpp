@@ -338,6 +338,35 @@ TEST_F(GlTest, PipeDreamRangeCullingChangesNoPixel) {
   EXPECT_GT(culled, 0u) << "nothing was out of range: the test shows nothing";
 }
 
+TEST_F(GlTest, PipeDreamClustersChangeNoPixel) {
+  // The static scene drawn in clusters (outside the view culled, the rest nearest first)
+  // against one draw per light mask in the cut's order: the same picture, every mode that
+  // draws the static scene, the naive method's uncut scene included.
+  rp::Renderer& clustered = renderer();
+  rp::Renderer whole(stage().machine, stage().geometry, {.clusterSize = 0.0f});
+  gl::RenderTarget target(kSize);
+  std::size_t culled = 0, drawn = 0;
+  for (const View& v : kViews)
+    for (const rp::Mode mode : {rp::Mode::Full, rp::Mode::Naive}) {
+      const rp::MachinePose pose = poseAt(v.time);
+      clustered.render(pose, camera(v.camera), target.target(), mode);
+      culled += clustered.stats().staticCulled;
+      drawn += clustered.stats().sceneTriangles;
+      const Image a = readFloat(clustered.colorTexture());
+      whole.render(pose, camera(v.camera), target.target(), mode);
+      EXPECT_EQ(whole.stats().staticCulled, 0u);
+      const Image b = readFloat(whole.colorTexture());
+      std::size_t differ = 0;
+      for (int y = 0; y < kSize.y; ++y)
+        for (int x = 0; x < kSize.x; ++x)
+          for (int c = 0; c < 4; ++c) differ += a.at(x, y, c) != b.at(x, y, c);
+      EXPECT_EQ(differ, 0u) << "t = " << v.time << ", camera " << v.camera << ", mode " << int(mode);
+    }
+  EXPECT_GT(culled, 0u) << "no cluster was outside a view: the test shows nothing";
+  std::printf("[ clusters ] %zu static triangles culled of %zu drawn in %zu frames\n", culled, culled + drawn,
+              2 * std::size(kViews));
+}
+
 TEST_F(GlTest, PipeDreamMatchesFullSceneVolumes) {
   // The naive method knows nothing of the cut or the dim factor: ambient, then each light
   // added where its stencil (every caster's volume) is zero. The two pictures are the same

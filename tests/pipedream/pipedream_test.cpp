@@ -15,6 +15,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
+#include <tuple>
 #include <thread>
 
 using namespace glint;
@@ -262,6 +264,27 @@ TEST(StaticGeometry, KeepsEveryCutTriangleGroupedByMaskWithUnitNormals) {
     EXPECT_NEAR(area[mask], cutArea[mask], 1e-6 * cutArea[mask] + 1e-9) << "mask " << mask;
   }
   for (const vec3& n : g.mesh.normals) ASSERT_NEAR(glm::length(n), 1.0f, 1e-4f);
+  // Vertices are shared as the input's are: no two are the same point of the same colour
+  // with the same normal (to rounding), and there are about as many as the cut has points
+  // (not one per triangle corner).
+  std::vector<std::uint32_t> order(g.mesh.positions.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const auto key = [&](std::uint32_t v) {
+    const vec3 p = g.mesh.positions[v];
+    const vec4 col = g.colors[v];
+    return std::make_tuple(p.x, p.y, p.z, col.r, col.g, col.b);
+  };
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  std::size_t twins = 0;
+  for (std::size_t i = 0, run = 0; i < order.size(); ++i) {
+    if (i > 0 && key(order[i]) != key(order[i - 1])) run = i;
+    for (std::size_t j = run; j < i; ++j)
+      twins += glm::length(g.mesh.normals[order[i]] - g.mesh.normals[order[j]]) < 1e-5f;
+  }
+  EXPECT_EQ(twins, 0u);
+  EXPECT_LT(g.mesh.positions.size(), 2 * c.triangles.positions.size());
+  std::printf("[ geometry ] %zu vertices for %zu cut points, %zu triangles\n", g.mesh.positions.size(),
+              c.triangles.positions.size(), g.mesh.triangleCount());
   // Wireframe: each side once; no diagonal (an edge inside a polygon) among them.
   ASSERT_FALSE(g.edges.indices.empty());
   EXPECT_EQ(g.edges.indices.size() % 6, 0u);

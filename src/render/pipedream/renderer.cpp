@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 
 namespace glint::render::pipedream {
 
@@ -85,17 +86,26 @@ Renderer::Renderer(const InstrumentMachine& machine, const StaticGeometry& geome
   if (geometry.lights != m_lights || geometry.maskStart.size() != (std::size_t(1) << m_lights) + 1)
     fail(ErrorKind::Internal, "static geometry cut for {} lights, the machine has {}", geometry.lights, m_lights);
 
-  m_static = GpuMesh(geometry.mesh, geometry.colors, "pipedream-static-cut");
+  {
+    Mesh mesh = geometry.mesh;
+    std::vector<vec4> meshColors = geometry.colors;
+    m_staticClusters = clusterTriangles(mesh, meshColors, geometry.maskStart, m_options.clusterSize);
+    m_static = GpuMesh(mesh, meshColors, "pipedream-static-cut");
+  }
   m_maskStart = geometry.maskStart;
   m_staticTriangles = geometry.mesh.triangleCount();
+  m_staticVertices = geometry.mesh.positions.size();
   if (!geometry.edges.indices.empty()) {
     m_edges = GpuMesh(geometry.edges, {}, "pipedream-cut-edges");
     m_edgeCount = geometry.edges.indices.size() / 2;
   }
   std::vector<vec4> colors;
-  const Mesh uncut = uncutMesh(machine, colors);
+  Mesh uncut = uncutMesh(machine, colors);
+  const std::uint32_t all[] = {0, std::uint32_t(uncut.triangleCount())};
+  m_uncutClusters = clusterTriangles(uncut, colors, all, m_options.clusterSize);
   m_uncut = GpuMesh(uncut, colors, "pipedream-static-uncut");
   m_uncutTriangles = uncut.triangleCount();
+  m_uncutVertices = uncut.positions.size();
 
   const Mesh* parts[3] = {&machine.skin, &machine.cymbal, &machine.mallet};
   const char* names[3] = {"skin", "cymbal", "mallet"};
@@ -130,6 +140,94 @@ Renderer::Renderer(const InstrumentMachine& machine, const StaticGeometry& geome
   m_present = FullscreenPass("pipedream/present.frag");
   for (const gl::Program* p : {&m_lit, &m_shadowed}) setLights(*p);
   renderCube();
+}
+
+std::vector<Renderer::Cluster> Renderer::clusterTriangles(Mesh& mesh, std::vector<vec4>& colors,
+                                                          std::span<const std::uint32_t> groupStart, float cell) {
+  const Bounds box = mesh.bounds();
+  const auto cellOf = [&](std::size_t t) -> std::uint64_t {
+    if (!(cell > 0.0f)) return 0;
+    const vec3 c = (mesh.positions[mesh.indices[3 * t]] + mesh.positions[mesh.indices[3 * t + 1]] +
+                    mesh.positions[mesh.indices[3 * t + 2]]) / 3.0f;
+    const glm::u64vec3 i(glm::clamp((c - box.min) / cell, vec3(0.0f), vec3(1048575.0f)));
+    return (i.x << 40) | (i.y << 20) | i.z;
+  };
+  std::vector<Cluster> clusters;
+  std::vector<std::uint32_t> indices(mesh.indices.size());
+  for (std::size_t g = 0; g + 1 < groupStart.size(); ++g) {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> order;  // (cell, triangle)
+    for (std::uint32_t t = groupStart[g]; t < groupStart[g + 1]; ++t) order.emplace_back(cellOf(t), t);
+    std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const std::uint32_t slot = groupStart[g] + std::uint32_t(i);
+      if (i == 0 || order[i].first != order[i - 1].first)
+        clusters.push_back({.mask = std::uint32_t(g), .first = slot, .count = 0,
+                            .bounds = {vec3(std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::lowest())}});
+      Cluster& c = clusters.back();
+      ++c.count;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = mesh.indices[3 * std::size_t(order[i].second) + std::size_t(k)];
+        indices[3 * std::size_t(slot) + std::size_t(k)] = v;
+        c.bounds.min = glm::min(c.bounds.min, mesh.positions[v]);
+        c.bounds.max = glm::max(c.bounds.max, mesh.positions[v]);
+      }
+    }
+  }
+  // Vertices by first use in the new order: what the vertex fetch and cache like best.
+  std::vector<std::uint32_t> id(mesh.positions.size(), ~0u);
+  Mesh out;
+  std::vector<vec4> outColors;
+  for (std::uint32_t& v : indices) {
+    if (id[v] == ~0u) {
+      id[v] = std::uint32_t(out.positions.size());
+      out.positions.push_back(mesh.positions[v]);
+      if (!mesh.normals.empty()) out.normals.push_back(mesh.normals[v]);
+      if (!colors.empty()) outColors.push_back(colors[v]);
+    }
+    v = id[v];
+  }
+  out.indices = std::move(indices);
+  mesh = std::move(out);
+  colors = std::move(outColors);
+  return clusters;
+}
+
+std::size_t Renderer::drawClusters(const std::vector<Cluster>& clusters, std::uint32_t mask) {
+  // The view's side and near planes (the far plane is at infinity): a cluster whose box lies
+  // wholly behind one of them is not drawn.
+  const mat4 m = glm::transpose(m_camera.viewProjection());
+  const vec4 planes[5] = {m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[3] + m[2]};
+  m_drawOrder.clear();
+  for (std::size_t i = 0; i < clusters.size(); ++i) {
+    const Cluster& c = clusters[i];
+    if (c.mask != mask || c.count == 0) continue;
+    bool outside = false;
+    for (const vec4& p : planes) {
+      const vec3 far = glm::mix(c.bounds.min, c.bounds.max, glm::step(vec3(0.0f), vec3(p)));  // the corner furthest inside
+      if (glm::dot(vec3(p), far) + p.w < 0.0f) {
+        outside = true;
+        break;
+      }
+    }
+    if (outside) {
+      m_stats.staticCulled += c.count;
+      continue;
+    }
+    m_drawOrder.emplace_back(glm::length(c.bounds.center() - m_camera.position), i);
+  }
+  // Nearest first: what later clusters hide fails the depth test before it is shaded.
+  std::sort(m_drawOrder.begin(), m_drawOrder.end());
+  m_drawCounts.clear();
+  m_drawOffsets.clear();
+  std::size_t triangles = 0;
+  for (const auto& [distance, i] : m_drawOrder) {
+    m_drawCounts.push_back(GLsizei(3 * clusters[i].count));
+    m_drawOffsets.push_back(reinterpret_cast<const void*>(std::uintptr_t(3 * clusters[i].first) * sizeof(std::uint32_t)));
+    triangles += clusters[i].count;
+  }
+  if (!m_drawCounts.empty())
+    glMultiDrawElements(GL_TRIANGLES, m_drawCounts.data(), GL_UNSIGNED_INT, m_drawOffsets.data(), GLsizei(m_drawCounts.size()));
+  return triangles;
 }
 
 Renderer::Caster Renderer::makeCaster(const Mesh& mesh, const std::string& name) {
@@ -236,18 +334,19 @@ void Renderer::prepare(const MachinePose& pose, const Camera& camera, ivec2 size
   m_stats.balls = m_balls.size();
 }
 
-void Renderer::drawStaticGroups() const {
-  // One draw per light mask: pieces no light reaches take the cheaper shader.
+void Renderer::drawStaticGroups() {
+  // One draw per light mask: pieces no light reaches take the cheaper shader. Closed solids
+  // and the room (seen from inside) show only their front faces.
   m_static.vertexArray().bind();
+  glEnable(GL_CULL_FACE);
   for (std::size_t mask = 0; mask + 1 < m_maskStart.size(); ++mask) {
-    const std::uint32_t first = m_maskStart[mask], count = m_maskStart[mask + 1] - first;
-    if (count == 0) continue;
+    if (m_maskStart[mask + 1] == m_maskStart[mask]) continue;
     const gl::Program& p = mask == 0 ? m_shadowed : m_lit;
     p.use();
     p.set("uMask", int(mask));
-    glDrawElements(GL_TRIANGLES, GLsizei(3 * count), GL_UNSIGNED_INT,
-                   reinterpret_cast<const void*>(std::uintptr_t(3 * first) * sizeof(std::uint32_t)));
+    m_stats.sceneTriangles += drawClusters(m_staticClusters, std::uint32_t(mask));
   }
+  glDisable(GL_CULL_FACE);
   glBindVertexArray(0);
 }
 
@@ -299,7 +398,6 @@ void Renderer::drawScene() {
   m_lit.set("uMask", (1 << m_lights) - 1);
   drawDynamic(m_lit);
   drawMarkers();
-  m_stats.sceneTriangles += m_staticTriangles;
   for (const DynamicDraw& d : m_dynamic) m_stats.sceneTriangles += m_parts[d.mesh].triangleCount();
   if (m_mode == Mode::NoBlur) drawBalls(false);
 }
@@ -520,9 +618,13 @@ void Renderer::renderNaive() {
     m_lit.set("uNormalMatrix", mat3(1.0f));
     m_lit.set("uVertexAlbedo", true);
     m_lit.use();
-    m_uncut.draw();
+    // The uncut scene as the cut one is drawn: front faces, clusters in view, nearest first.
+    m_uncut.vertexArray().bind();
+    glEnable(GL_CULL_FACE);
+    m_stats.sceneTriangles += drawClusters(m_uncutClusters, 0);
+    glDisable(GL_CULL_FACE);
+    glBindVertexArray(0);
     drawDynamic(m_lit);
-    m_stats.sceneTriangles += m_uncutTriangles;
     for (const DynamicDraw& d : m_dynamic) m_stats.sceneTriangles += m_parts[d.mesh].triangleCount();
   };
   // Ambient everywhere.
@@ -591,9 +693,10 @@ std::string Renderer::describe() const {
     byMask[m] = m_maskStart[m + 1] - m_maskStart[m];
     if (m) lit += byMask[m];
   }
-  return fmt::format("{} cut triangles ({} reached by no light: the cheap shader; {} lit), {} uncut; "
-                     "{} lights; {} dynamic casters, {} balls",
-                     m_staticTriangles, byMask[0], lit, m_uncutTriangles, m_lights, m_stats.casters, m_stats.balls);
+  return fmt::format("{} cut triangles on {} vertices ({} reached by no light: the cheap shader; {} lit), {} uncut on {} "
+                     "vertices; {} lights; {} dynamic casters, {} balls",
+                     m_staticTriangles, m_staticVertices, byMask[0], lit, m_uncutTriangles, m_uncutVertices, m_lights,
+                     m_stats.casters, m_stats.balls);
 }
 
 }  // namespace glint::render::pipedream

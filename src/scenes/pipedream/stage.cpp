@@ -25,6 +25,9 @@ std::vector<cut::Light> cutLights(const InstrumentMachine& machine) {
 
 namespace {
 
+/// Normals closer than this are one (float rounding of the same interpolation).
+constexpr float kSameNormal = 1e-5f;
+
 /// Barycentric weights of `p` (on or near the plane of a, b, c), clamped into the
 /// triangle; a third each for a degenerate triangle.
 dvec3 barycentric(dvec3 p, dvec3 a, dvec3 b, dvec3 c) {
@@ -111,7 +114,8 @@ rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cu
   std::vector<std::uint32_t> next(g.maskStart.begin(), g.maskStart.end() - 1);
   for (std::size_t t = 0; t < n; ++t) order[next[cut.mask(t)]++] = std::uint32_t(t);
 
-  // One vertex per (cut vertex, input triangle): sort the corners by that pair.
+  // Each corner's normal and albedo come from its source triangle: one candidate vertex per
+  // (cut vertex, input triangle), found by sorting the corners by that pair.
   std::vector<std::pair<std::uint64_t, std::uint32_t>> corners(3 * n);  // (key, corner slot in output order)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t t = order[i];
@@ -121,20 +125,57 @@ rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cu
                                          std::uint32_t(3 * i + std::size_t(c))};
   }
   std::sort(corners.begin(), corners.end());
-  g.mesh.indices.resize(3 * n);
+  struct Candidate {
+    std::uint32_t vertex, material;
+    vec3 normal;
+  };
+  std::vector<Candidate> candidates;
+  std::vector<std::uint32_t> cornerCandidate(3 * n);
   for (std::size_t i = 0; i < corners.size();) {
     const std::uint64_t key = corners[i].first;
     const std::uint32_t source = std::uint32_t(key >> 32), vertex = std::uint32_t(key & 0xFFFFFFFFu);
-    const std::uint32_t id = std::uint32_t(g.mesh.positions.size());
     const vec3 p = cut.positions[vertex];
     const std::uint32_t* s = &input.indices[3 * std::size_t(source)];
     const dvec3 w = barycentric(dvec3(p), dvec3(input.positions[s[0]]), dvec3(input.positions[s[1]]), dvec3(input.positions[s[2]]));
-    const vec3 normal = vec3(w.x) * input.normals[s[0]] + vec3(w.y) * input.normals[s[1]] + vec3(w.z) * input.normals[s[2]];
-    const float len = glm::length(normal);
-    g.mesh.positions.push_back(p);
-    g.mesh.normals.push_back(len > 0.0f ? normal / len : input.normals[s[0]]);
-    g.colors.push_back(vec4(machineMaterialColor(machine.triangleMaterial[source]), 1.0f));
-    for (; i < corners.size() && corners[i].first == key; ++i) g.mesh.indices[corners[i].second] = id;
+    const dvec3 normal = w.x * dvec3(input.normals[s[0]]) + w.y * dvec3(input.normals[s[1]]) + w.z * dvec3(input.normals[s[2]]);
+    const double len = glm::length(normal);
+    candidates.push_back({vertex, std::uint32_t(machine.triangleMaterial[source]),
+                          len > 0.0 ? vec3(normal / len) : input.normals[s[0]]});
+    for (; i < corners.size() && corners[i].first == key; ++i)
+      cornerCandidate[corners[i].second] = std::uint32_t(candidates.size() - 1);
+  }
+  // Candidates at one cut vertex with one material and (to rounding) one normal are one
+  // vertex: a smooth surface's triangles meet with equal normals, so the cut mesh keeps the
+  // input's sharing and the vertex stage shades each point once, not once per triangle.
+  std::vector<std::uint32_t> byKey(candidates.size());
+  std::iota(byKey.begin(), byKey.end(), 0u);
+  const auto keyOf = [&](std::uint32_t c) { return std::make_pair(candidates[c].vertex, candidates[c].material); };
+  std::sort(byKey.begin(), byKey.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return keyOf(a) != keyOf(b) ? keyOf(a) < keyOf(b) : a < b;
+  });
+  std::vector<std::uint32_t> canonical(candidates.size());
+  for (std::size_t i = 0, run = 0; i < byKey.size(); ++i) {
+    if (i > 0 && keyOf(byKey[i]) != keyOf(byKey[i - 1])) run = i;
+    const std::uint32_t c = byKey[i];
+    canonical[c] = c;
+    for (std::size_t j = run; j < i; ++j)  // the first earlier one with this normal (a handful at most)
+      if (canonical[byKey[j]] == byKey[j] && glm::length(candidates[byKey[j]].normal - candidates[c].normal) < kSameNormal) {
+        canonical[c] = byKey[j];
+        break;
+      }
+  }
+  // Vertices numbered by first use in draw order: what a vertex cache and fetch like best.
+  std::vector<std::uint32_t> id(candidates.size(), ~0u);
+  g.mesh.indices.resize(3 * n);
+  for (std::size_t k = 0; k < 3 * n; ++k) {
+    const std::uint32_t c = canonical[cornerCandidate[k]];
+    if (id[c] == ~0u) {
+      id[c] = std::uint32_t(g.mesh.positions.size());
+      g.mesh.positions.push_back(cut.positions[candidates[c].vertex]);
+      g.mesh.normals.push_back(candidates[c].normal);
+      g.colors.push_back(vec4(machineMaterialColor(MachineMaterial(candidates[c].material)), 1.0f));
+    }
+    g.mesh.indices[k] = id[c];
   }
   if (edges) g.edges = cutEdges(cut);
   return g;

@@ -63,6 +63,7 @@
 #include "glint/render/pipedream/score.h"
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -99,12 +100,15 @@ struct RendererOptions {
   float lodScale = 1.5f;         ///< mip levels of blur per doubling of a ball's length
   float ambient = 0.1f;          ///< the ambient term (what a pixel no light reaches keeps)
   bool cullVolumes = true;       ///< skip casters beyond a light's range (exact; see above)
+  float clusterSize = 2.0f;      ///< static triangles are drawn in clusters of this cell size (m): culled
+                                 ///< outside the view, nearest first (0: one cluster per mask)
   int cubeSize = 128;            ///< the room's environment map (the balls' reflections)
 };
 
 /// What the last frame drew.
 struct FrameStats {
   std::size_t sceneTriangles = 0;   ///< triangles of the scene pass(es): static + dynamic + balls, per pass
+  std::size_t staticCulled = 0;     ///< static triangles left out (their cluster is outside the view), all passes
   std::size_t volumeTriangles = 0;  ///< shadow-volume triangles drawn, all lights
   std::size_t casters = 0;          ///< dynamic casters this frame (parts and balls)
   std::size_t castersDrawn = 0;     ///< (caster, light) pairs whose volume was drawn
@@ -193,6 +197,16 @@ private:
     mat4 model{1.0f};
     vec3 albedo{1.0f};
   };
+  /// A run of the static index buffer: the triangles of one light mask (0 for the uncut
+  /// scene) whose centroids fall in one cell of space, and their bounds.
+  struct Cluster {
+    std::uint32_t mask = 0, first = 0, count = 0;
+    Bounds bounds;
+  };
+  /// Reorders each group [groupStart[g], groupStart[g + 1]) of `mesh`'s triangles by cell
+  /// (stable) and its vertices by first use; returns the clusters, by group then cell.
+  static std::vector<Cluster> clusterTriangles(Mesh& mesh, std::vector<vec4>& colors,
+                                               std::span<const std::uint32_t> groupStart, float cell);
   struct BallDraw {
     BallState state;
     BallBlur blur;
@@ -201,7 +215,10 @@ private:
   Caster makeCaster(const Mesh& mesh, const std::string& name);
   void resize(ivec2 size);
   void setLights(const gl::Program& program) const;
-  void drawStaticGroups() const;
+  void drawStaticGroups();
+  /// The clusters of `mask` inside the view, nearest first, in one glMultiDrawElements
+  /// (the VAO and program set); returns the triangles drawn.
+  std::size_t drawClusters(const std::vector<Cluster>& clusters, std::uint32_t mask);
   void drawDynamic(const gl::Program& program) const;
   void drawMarkers() const;
   void drawBalls(bool translucent);
@@ -225,7 +242,12 @@ private:
   // Static geometry: the cut (groups by mask) and the uncut scene (naive, reflections).
   GpuMesh m_static, m_uncut, m_edges;
   std::vector<std::uint32_t> m_maskStart;
+  std::vector<Cluster> m_staticClusters, m_uncutClusters;
+  std::vector<GLsizei> m_drawCounts;         // drawClusters' scratch
+  std::vector<const void*> m_drawOffsets;
+  std::vector<std::pair<float, std::size_t>> m_drawOrder;
   std::size_t m_staticTriangles = 0, m_uncutTriangles = 0, m_edgeCount = 0;
+  std::size_t m_staticVertices = 0, m_uncutVertices = 0;
   // Dynamic parts: meshes to draw and their extrusion meshes.
   GpuMesh m_parts[3];
   Caster m_partCasters[3];

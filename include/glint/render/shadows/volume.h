@@ -80,7 +80,7 @@ ShadowVolume buildShadowVolume(const EdgeMap& map, vec3 light, CasterMode mode, 
 struct ExtrusionMesh {
   std::vector<vec3> positions;     ///< 3 per face (faces do not share vertices)
   std::vector<vec3> faceNormals;   ///< the face normal, stored in each of its vertices
-  std::vector<std::uint32_t> indices;
+  std::vector<std::uint32_t> indices;  ///< faces and quads interleaved: each quad after its later face
   std::size_t faceTriangles = 0;   ///< faces (doubled, reversed copies included, when two-sided)
   std::size_t quadTriangles = 0;   ///< 2 per degenerate quad
   bool twoSided = false;
