@@ -357,7 +357,11 @@ void Renderer::drawDynamic(const gl::Program& program) const {
     program.set("uModel", d.model);
     program.set("uNormalMatrix", normalMatrix(d.model));
     program.set("uAlbedo", d.albedo);
+    // Closed parts, not mirrored, show only their front faces.
+    const bool closed = !m_partCasters[d.mesh].twoSided && glm::determinant(mat3(d.model)) > 0.0f;
+    if (closed) glEnable(GL_CULL_FACE);
     m_parts[d.mesh].draw();
+    if (closed) glDisable(GL_CULL_FACE);
   }
 }
 
