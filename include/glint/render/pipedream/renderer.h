@@ -16,7 +16,9 @@
 //      weights. Static pieces come from the cut: each group of one light mask is drawn with
 //      that mask as a uniform, lit by exactly the lights that reach it; pieces no light
 //      reaches go through a cheaper shader (ambient only) — "we know none of our dominant
-//      lights hit those polygons". Dynamic parts (skins, cymbals, mallets) are lit by every
+//      lights hit those polygons". Static triangles are drawn front faces only, in clusters
+//      (RendererOptions::clusterSize): those outside the view are left out, the rest go
+//      nearest first in one glMultiDrawElements per mask. Dynamic parts (skins, cymbals, mallets) are lit by every
 //      light. Each pixel writes its colour and, in destination alpha, its *dim factor* for
 //      the first light: the share of its light that remains when that light is blocked,
 //      1 − w₀ with wₖ = (light k's diffuse here) / (ambient + all light here). Where no light
@@ -72,9 +74,10 @@ namespace glint::render::pipedream {
 /// Lights a renderer handles (one weight channel each in an RGBA buffer).
 constexpr int kMaxLights = 4;
 
-/// The cut static scene as a renderer draws it (no GL). Vertices are one per (cut vertex,
-/// input triangle): normals interpolated from the input triangle's vertex normals at the
-/// cut vertex, so a piece shades exactly as the part of the triangle it covers.
+/// The cut static scene as a renderer draws it (no GL). Each corner's normal is
+/// interpolated from its source triangle's vertex normals at the cut vertex, so a piece
+/// shades exactly as the part of the triangle it covers; corners at one cut vertex with one
+/// material and (to rounding) one normal share a vertex, as the input's do.
 struct StaticGeometry {
   Mesh mesh;                             ///< positions, normals, indices; triangles ordered by light mask
   std::vector<vec4> colors;              ///< albedo per vertex
