@@ -295,12 +295,16 @@ Mesh makeCymbalMesh(int segments) {
   return m;
 }
 
-/// A mallet: an arm from the pivot (origin) along −x to a head at (−1, 0, 0).
-Mesh makeMalletMesh(int segments) {
+/// Rings of a mallet head of `segments` segments.
+int malletRings(int segments) { return std::max(4, segments / 2); }
+
+/// A mallet: an arm from the pivot (origin) along −x to a head at (−1, 0, 0): the arm's
+/// box (the first 12 triangles), then the head.
+Mesh makeMalletMesh(int segments, float headRadius = 0.075f) {
   Mesh m;
   PartBuilder b(m);
   b.box({-0.93f, -0.012f, -0.012f}, {0.02f, 0.012f, 0.012f});
-  Mesh head = makeUvSphere(0.075f, segments, std::max(4, segments / 2));
+  Mesh head = makeUvSphere(headRadius, segments, malletRings(segments));
   head.uvs.clear();
   head.tangents.clear();
   head.transform(glm::translate(mat4(1.0f), vec3(-1.0f, 0.0f, 0.0f)));
@@ -485,7 +489,14 @@ InstrumentMachine makeInstrumentMachine(const InstrumentMachineOptions& options)
     skin.tube({0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 0.02f, 1.0f, round);
   }
   out.cymbal = makeCymbalMesh(round);
-  out.mallet = makeMalletMesh(std::max(8, round / 2));
+  const int malletSegments = std::max(8, round / 2);
+  out.mallet = makeMalletMesh(malletSegments);
+  // A third of the segments and rings: the proxy's vertices lie at every third of the
+  // head's angles (to rounding: the head's sphere is shrunk by 1e-4 so that rounding
+  // cannot put a vertex outside), so the proxy is inside the convex head.
+  const int proxy = malletSegments / 3;
+  const bool subset = malletSegments % 3 == 0 && proxy >= 8 && malletRings(malletSegments) == 3 * malletRings(proxy);
+  out.malletShadow = subset ? makeMalletMesh(proxy, 0.075f * (1.0f - 1e-4f)) : out.mallet;
   return out;
 }
 

@@ -63,6 +63,34 @@ TEST(InstrumentMachine, IsDeterministicAndEveryStaticPartIsClosed) {
   EXPECT_EQ(a.lights.size(), 2u);
 }
 
+TEST(InstrumentMachine, TheMalletsShadowCasterIsInsideTheMallet) {
+  // Detail 13 (the default): 30 × 15 head, a 10 × 5 proxy. Detail 1: an 8 × 4 head, no
+  // proxy small enough to divide it (the mallet casts its own shadow).
+  for (const int detail : {13, 1}) {
+    const InstrumentMachine m = makeInstrumentMachine({.detail = detail});
+    const Mesh& proxy = m.malletShadow;
+    EXPECT_TRUE(EdgeMap::build(proxy).isClosedManifold()) << detail;
+    // Every proxy vertex is inside the mallet's arm or its head (both convex: behind every
+    // face's plane), so the whole proxy is.
+    const auto inside = [&](vec3 p, std::size_t first, std::size_t last) {
+      for (std::size_t t = first; t < last; ++t) {
+        const vec3 a = m.mallet.positions[m.mallet.indices[3 * t]], b = m.mallet.positions[m.mallet.indices[3 * t + 1]],
+                   c = m.mallet.positions[m.mallet.indices[3 * t + 2]];
+        const vec3 n = glm::cross(b - a, c - a);
+        if (glm::length(n) > 0.0f && glm::dot(glm::normalize(n), p - a) > 1e-6f) return false;  // float rounding at ~1 m
+      }
+      return true;
+    };
+    const std::size_t arm = 12, all = m.mallet.triangleCount();
+    for (const vec3& p : proxy.positions) ASSERT_TRUE(inside(p, 0, arm) || inside(p, arm, all)) << detail;
+    if (detail == 13) {
+      EXPECT_LT(proxy.triangleCount() * 5, m.mallet.triangleCount());
+    } else {
+      EXPECT_EQ(proxy.triangleCount(), m.mallet.triangleCount());
+    }
+  }
+}
+
 TEST(InstrumentMachine, PolygonsGrowWithDetail) {
   std::size_t last = 0;
   for (int detail = 1; detail <= 6; ++detail) {

@@ -108,10 +108,14 @@ Renderer::Renderer(const InstrumentMachine& machine, const StaticGeometry& geome
   m_uncutVertices = uncut.positions.size();
 
   const Mesh* parts[3] = {&machine.skin, &machine.cymbal, &machine.mallet};
+  // What casts each part's shadow: the part itself, or a proxy inside it (the mallet's).
+  const Mesh* casters[3] = {&machine.skin, &machine.cymbal,
+                            machine.malletShadow.indices.empty() ? &machine.mallet : &machine.malletShadow};
   const char* names[3] = {"skin", "cymbal", "mallet"};
   for (int i = 0; i < 3; ++i) {
     m_parts[i] = GpuMesh(*parts[i], {}, std::string("pipedream-") + names[i]);
-    m_partCasters[i] = makeCaster(*parts[i], std::string("pipedream-") + names[i] + "-extrusion");
+    m_partCasters[i] = makeCaster(*casters[i], std::string("pipedream-") + names[i] + "-extrusion");
+    m_partClosed[i] = EdgeMap::build(*parts[i]).isClosedManifold();
   }
   m_ballCaster = makeCaster(makeIcosphere(1.0f, 2), "pipedream-ball-extrusion");
   m_marker = GpuMesh(makeIcosphere(kMarkerRadius, 2), {}, "pipedream-light-marker");
@@ -358,7 +362,7 @@ void Renderer::drawDynamic(const gl::Program& program) const {
     program.set("uNormalMatrix", normalMatrix(d.model));
     program.set("uAlbedo", d.albedo);
     // Closed parts, not mirrored, show only their front faces.
-    const bool closed = !m_partCasters[d.mesh].twoSided && glm::determinant(mat3(d.model)) > 0.0f;
+    const bool closed = m_partClosed[d.mesh] && glm::determinant(mat3(d.model)) > 0.0f;
     if (closed) glEnable(GL_CULL_FACE);
     m_parts[d.mesh].draw();
     if (closed) glDisable(GL_CULL_FACE);

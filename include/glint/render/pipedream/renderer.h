@@ -253,7 +253,8 @@ private:
   std::size_t m_staticVertices = 0, m_uncutVertices = 0;
   // Dynamic parts: meshes to draw and their extrusion meshes.
   GpuMesh m_parts[3];
-  Caster m_partCasters[3];
+  Caster m_partCasters[3];  // their shadows' casters (the mallet's a proxy inside it)
+  bool m_partClosed[3] = {};
   Caster m_ballCaster;
   Caster m_staticSolids, m_staticShell;  // naive only
   gl::VertexArray m_ballVao;
