@@ -343,6 +343,19 @@ std::vector<Light> loadGltfLights(const std::filesystem::path& path) {
     const nlohmann::json& defs = (*lightsIt)["KHR_lights_punctual"].value("lights", nlohmann::json::array());
     const nlohmann::json& nodes = gltf.value("nodes", nlohmann::json::array());
     const auto number = [](const nlohmann::json& v, double fallback) { return v.is_number() ? v.get<double>() : fallback; };
+    // A glTF index is a non-negative integer. nlohmann converts a JSON fraction, a negative
+    // or a number past 2^64 to std::size_t by a C++ cast, which is undefined for the last
+    // two: anything but an unsigned integer is the file's error, said in one line.
+    const auto gltfIndex = [&](const nlohmann::json& object, const char* key, std::size_t absent) {
+      if (!object.is_object())
+        fail(ErrorKind::Input, "'{}': a glTF object holding \"{}\" is {}", path.string(), key, printable(object.dump()));
+      const auto it = object.find(key);
+      if (it == object.end()) return absent;
+      if (!it->is_number_unsigned())
+        fail(ErrorKind::Input, "'{}': glTF \"{}\" is {}, not an index (a non-negative integer)", path.string(), key,
+             printable(it->dump()));
+      return it->get<std::size_t>();
+    };
     // World transforms down the default scene's node tree (depth-limited against cycles).
     const std::function<void(std::size_t, const glm::dmat4&, int)> visit = [&](std::size_t index, const glm::dmat4& parent,
                                                                                 int depth) {
@@ -364,7 +377,7 @@ std::vector<Light> loadGltfLights(const std::filesystem::path& path) {
       const glm::dmat4 world = parent * local;
       if (n.contains("extensions") && n["extensions"].contains("KHR_lights_punctual")) {
         const auto& ref = n["extensions"]["KHR_lights_punctual"];
-        const std::size_t li = ref.value("light", std::size_t(-1));
+        const std::size_t li = gltfIndex(ref, "light", std::size_t(-1));
         if (li < defs.size() && defs[li].value("type", "") != "directional") {
           const glm::dvec3 p(world[3]);
           out.push_back({vec3(p), defs[li].value("name", "")});
@@ -375,7 +388,7 @@ std::vector<Light> loadGltfLights(const std::filesystem::path& path) {
           if (c.is_number_unsigned()) visit(c.get<std::size_t>(), world, depth + 1);
     };
     const nlohmann::json& scenes = gltf.value("scenes", nlohmann::json::array());
-    const std::size_t scene = gltf.value("scene", std::size_t(0));
+    const std::size_t scene = gltfIndex(gltf, "scene", 0);
     if (scene < scenes.size() && scenes[scene].contains("nodes"))
       for (const auto& root : scenes[scene]["nodes"])
         if (root.is_number_unsigned()) visit(root.get<std::size_t>(), glm::dmat4(1.0), 0);

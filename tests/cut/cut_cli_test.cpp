@@ -3,6 +3,7 @@
 // one-line errors, the documented exit status, and no file left behind. Issue 21: the
 // memory estimate, warnings (grazing, the loader's, none about normals), exact
 // coordinates, glTF extras.
+#include "glint/core/error.h"
 #include "glint/core/log.h"
 #include "glint/cut/output.h"
 #include "glint/mesh/adjacency.h"
@@ -157,6 +158,34 @@ TEST(CutCli, LightsComeFromTheGltfScene) {
   const auto r = runGlint("cut " + q(d / "lit.glb") + " -o " + q(d / "again.ply") + " --json -");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("\"name\": \"fill\""), std::string::npos) << r.output;
+}
+
+// glTF indices ("scene", a node's "light") are non-negative integers. A fraction, a negative
+// or a number past 2^64 is the file's error, not a C++ cast (undefined past size_t's range:
+// fuzz/regressions/cut_files/gltf-light-index-past-size-t).
+TEST(CutCli, AGltfIndexThatIsNotAnIntegerIsAnInputError) {
+  const auto d = dir("gltf-index");
+  const auto gltf = [&](const std::string& scene, const std::string& light) {
+    const fs::path file = d / "lights.gltf";
+    std::ofstream(file) << R"({"asset":{"version":"2.0"},"extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","name":"key"}]}},)"
+                        << R"("scene":)" << scene << R"(,"scenes":[{"nodes":[0]}],)"
+                        << R"("nodes":[{"translation":[1,2,3],"extensions":{"KHR_lights_punctual":{"light":)" << light << "}}}]}";
+    return file;
+  };
+  const auto lights = cut::loadGltfLights(gltf("0", "0"));
+  ASSERT_EQ(lights.size(), 1u);
+  EXPECT_EQ(lights[0].name, "key");
+  EXPECT_EQ(lights[0].position, vec3(1.0f, 2.0f, 3.0f));
+  for (const auto& [scene, light] : std::vector<std::pair<std::string, std::string>>{
+           {"0", "1e300"}, {"0", "-1"}, {"0", "0.5"}, {"0", "\"0\""}, {"1e30", "0"}, {"-2", "0"}, {"0.0", "0"}}) {
+    try {
+      (void)cut::loadGltfLights(gltf(scene, light));
+      ADD_FAILURE() << "scene " << scene << ", light " << light << " was read";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
+      EXPECT_NE(std::string(e.what()).find("not an index"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(CutCli, BadInputIsAOneLineErrorAndLeavesNothing) {
