@@ -12,11 +12,16 @@ uniform mat4 uModel;
 uniform mat3 uNormalMatrix;
 uniform mat4 uViewProj;
 uniform vec3 uLightPos;  // world space
+// 0: faces turned away go to infinity. Else the distance from the light they go to instead:
+// a bounded volume, which the caller picks far enough that the difference lies wholly
+// outside everything the eye can see (render/pipedream/renderer.h, "bounded volumes").
+uniform float uExtrudeTo;
 
 void main() {
   vec3 p = (uModel * vec4(aPosition, 1.0)).xyz;
   vec3 n = uNormalMatrix * aFaceNormal;
   // w = 0: the direction away from the light, a point at infinity (see volume.vert).
-  vec4 world = dot(n, uLightPos - p) > 0.0 ? vec4(p, 1.0) : vec4(p - uLightPos, 0.0);
+  vec4 away = uExtrudeTo > 0.0 ? vec4(uLightPos + uExtrudeTo * normalize(p - uLightPos), 1.0) : vec4(p - uLightPos, 0.0);
+  vec4 world = dot(n, uLightPos - p) > 0.0 ? vec4(p, 1.0) : away;
   gl_Position = uViewProj * world;
 }

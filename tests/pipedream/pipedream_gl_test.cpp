@@ -338,6 +338,65 @@ TEST_F(GlTest, PipeDreamRangeCullingChangesNoPixel) {
   EXPECT_GT(culled, 0u) << "nothing was out of range: the test shows nothing";
 }
 
+TEST_F(GlTest, PipeDreamBoundedVolumesMatchVolumesToInfinity) {
+  // Volumes that end just past the box of the room and the eye count what volumes to
+  // infinity count at every visible surface: the same picture, both methods, from the
+  // named cameras and from far outside the room, with less fill. Tolerance: isolated
+  // single pixels, at most 8 a frame (0.014 %) — rounding at the infinite volumes' far
+  // ends, whose vertices sit at w = 0 (from the stage camera, outside the room's box, two
+  // pixels of Full and four of Naive differ at this size; there the ray tracer sides with
+  // the bounded volumes: PipeDreamShadowsAgreeWithTheRayTracer counts one more agreeing
+  // pair with them than without). A shadow moved or lost would differ in runs of pixels.
+  rp::Renderer& r = renderer();
+  gl::RenderTarget target(kSize);
+  std::size_t bounded = 0, differing = 0;
+  std::uint64_t fillBounded = 0, fillInfinite = 0;
+  const render::Camera outside = render::Camera::lookAt({-30.0f, 40.0f, 60.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
+                                                        30.0f, float(kSize.x) / float(kSize.y));
+  std::vector<std::pair<double, render::Camera>> views;
+  for (const View& v : kViews) views.emplace_back(v.time, camera(v.camera));
+  views.emplace_back(kViews[0].time, outside);
+  for (const auto& [time, cam] : views)
+    for (const rp::Mode mode : {rp::Mode::Full, rp::Mode::Naive}) {
+      const rp::MachinePose pose = poseAt(time);
+      r.options().boundVolumes = true;
+      r.render(pose, cam, target.target(), mode);
+      bounded += r.stats().castersBounded;
+      if (mode == rp::Mode::Full) fillBounded += r.measureVolumeFill();
+      const Image with = readFloat(r.colorTexture());
+      r.options().boundVolumes = false;
+      r.render(pose, cam, target.target(), mode);
+      EXPECT_EQ(r.stats().castersBounded, 0u);
+      if (mode == rp::Mode::Full) fillInfinite += r.measureVolumeFill();
+      const Image without = readFloat(r.colorTexture());
+      r.options().boundVolumes = true;
+      const auto differs = [&](int x, int y) {
+        if (x < 0 || y < 0 || x >= kSize.x || y >= kSize.y) return false;
+        for (int c = 0; c < 4; ++c)
+          if (with.at(x, y, c) != without.at(x, y, c)) return true;
+        return false;
+      };
+      std::size_t differ = 0, clustered = 0;
+      for (int y = 0; y < kSize.y; ++y)
+        for (int x = 0; x < kSize.x; ++x) {
+          if (!differs(x, y)) continue;
+          ++differ;
+          clustered += differs(x + 1, y) || differs(x - 1, y) || differs(x, y + 1) || differs(x, y - 1);
+        }
+      const std::string where = fmt::format("t = {}, eye ({}, {}, {}), mode {}", time, cam.position.x, cam.position.y,
+                                            cam.position.z, int(mode));
+      EXPECT_LE(differ, 8u) << where;
+      EXPECT_EQ(clustered, 0u) << where;
+      differing += differ;
+    }
+  EXPECT_GT(bounded, 0u) << "no volume was bounded: the test shows nothing";
+  EXPECT_LT(fillBounded, fillInfinite);
+  std::printf("[ bounded  ] %zu volumes bounded; stencil fragments %llu against %llu to infinity; %zu isolated pixels "
+              "differ in %zu frames\n",
+              bounded, static_cast<unsigned long long>(fillBounded), static_cast<unsigned long long>(fillInfinite),
+              differing, 2 * views.size());
+}
+
 TEST_F(GlTest, PipeDreamClustersChangeNoPixel) {
   // The static scene drawn in clusters (outside the view culled, the rest nearest first)
   // against one draw per light mask in the cut's order: the same picture, every mode that

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <limits>
 
@@ -116,7 +117,11 @@ Renderer::Renderer(const InstrumentMachine& machine, const StaticGeometry& geome
     m_parts[i] = GpuMesh(*parts[i], {}, std::string("pipedream-") + names[i]);
     m_partCasters[i] = makeCaster(*casters[i], std::string("pipedream-") + names[i] + "-extrusion");
     m_partClosed[i] = EdgeMap::build(*parts[i]).isClosedManifold();
+    const Bounds b = parts[i]->bounds();
+    m_partCentre[i] = b.center();
+    for (const vec3& p : parts[i]->positions) m_partRadius[i] = std::max(m_partRadius[i], glm::length(p - m_partCentre[i]));
   }
+  m_staticBox = machine.staticMesh.bounds();
   m_ballCaster = makeCaster(makeIcosphere(1.0f, 2), "pipedream-ball-extrusion");
   m_marker = GpuMesh(makeIcosphere(kMarkerRadius, 2), {}, "pipedream-light-marker");
 
@@ -336,6 +341,21 @@ void Renderer::prepare(const MachinePose& pose, const Camera& camera, ivec2 size
   std::stable_sort(m_balls.begin(), m_balls.end(), [](const BallDraw& a, const BallDraw& b) { return a.depth > b.depth; });
   m_stats.casters = m_dynamic.size() + m_balls.size();
   m_stats.balls = m_balls.size();
+
+  // The box of everything the depth buffer can hold this frame (a blurred ball's streak
+  // included) and of the eye, for bounded volumes.
+  m_frameBox = m_staticBox;
+  const auto grow = [&](const vec3& centre, float radius) {
+    m_frameBox.min = glm::min(m_frameBox.min, centre - radius);
+    m_frameBox.max = glm::max(m_frameBox.max, centre + radius);
+  };
+  for (const DynamicDraw& d : m_dynamic)
+    grow(vec3(d.model * vec4(m_partCentre[d.mesh], 1.0f)), m_partRadius[d.mesh] * maxScale(d.model));
+  for (const BallDraw& b : m_balls)
+    grow(b.state.position, m_machine.ballRadius + glm::length(b.state.velocity) * m_options.shutter);
+  for (const MachineLight& l : m_machine.lights) grow(l.position, kMarkerRadius);
+  // And the eye: every segment from it to a visible point then lies in the box.
+  grow(camera.position, 0.0f);
 }
 
 void Renderer::drawStaticGroups() {
@@ -451,7 +471,30 @@ bool Renderer::inRange(const Caster& caster, const mat4& model, int light) const
   return glm::length(centre - l.position) - caster.radius * maxScale(model) < l.range;
 }
 
-void Renderer::drawCaster(const Caster& caster, const mat4& model) const {
+float Renderer::extrusionDistance(const vec3& centre, float radius, const vec3& light) const {
+  if (!m_options.boundVolumes) return 0.0f;
+  const vec3 axis = centre - light;
+  const float distance = glm::length(axis);
+  // The light inside (or on) the caster's sphere: its volume spreads every way.
+  if (!(distance > 1.001f * radius + 1e-3f)) return 0.0f;
+  const vec3 u = axis / distance;
+  const float sine = radius / distance;
+  const float cosine = std::sqrt(1.0f - sine * sine);
+  // The box's furthest corner along the cone's axis.
+  float reach = 0.0f;
+  for (int k = 0; k < 8; ++k) {
+    const vec3 corner(k & 1 ? m_frameBox.max.x : m_frameBox.min.x, k & 2 ? m_frameBox.max.y : m_frameBox.min.y,
+                      k & 4 ? m_frameBox.max.z : m_frameBox.min.z);
+    reach = std::max(reach, glm::dot(corner - light, u));
+  }
+  // Past that corner by 1 % and 1 cm (far beyond float and depth rounding at room scale),
+  // and never short of the caster's own far side (every vertex moves away from the light).
+  const float t = std::max(reach / cosine, distance + radius) * 1.01f + 0.01f;
+  return std::isfinite(t) ? t : 0.0f;
+}
+
+void Renderer::drawCaster(const Caster& caster, const mat4& model, float extrudeTo) const {
+  m_extrude.set("uExtrudeTo", extrudeTo);
   m_extrude.set("uModel", model);
   m_extrude.set("uNormalMatrix", normalMatrix(model));
   caster.vao.bind();
@@ -491,9 +534,13 @@ bool Renderer::drawVolumesOf(int light, bool everything) {
       ++m_stats.castersCulled;
       return;
     }
-    drawCaster(c, model);
-    extendVolumeBounds(vec3(model * vec4(c.centre, 1.0f)), c.radius * maxScale(model),
-                       m_machine.lights[std::size_t(light)].position);
+    const vec3 centre = vec3(model * vec4(c.centre, 1.0f));
+    const float radius = c.radius * maxScale(model);
+    const vec3& position = m_machine.lights[std::size_t(light)].position;
+    const float extrudeTo = extrusionDistance(centre, radius, position);
+    m_stats.castersBounded += extrudeTo > 0.0f;
+    drawCaster(c, model, extrudeTo);
+    extendVolumeBounds(centre, radius, position);
     ++m_stats.castersDrawn;
     m_stats.volumeTriangles += std::size_t(c.indexCount / 3);
     any = true;

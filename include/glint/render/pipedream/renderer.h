@@ -32,6 +32,21 @@
 //      beyond the light's range are culled: everything such a caster could shadow is
 //      further still, where the light's attenuation is already zero, so nothing pops; and
 //      as a caster nears the end of the range its shadow fades with the light it blocks.
+//      Each volume is *bounded* (RendererOptions::boundVolumes): its turned-away faces
+//      go not to infinity but to a distance T from the light, chosen on the CPU per caster
+//      and light so that the part it leaves off lies wholly outside the box that holds the
+//      eye and every surface the depth buffer can hold (the room's box, grown to the eye
+//      when it stands outside): every segment from the eye to a visible point lies in that
+//      box, and so does every visible point's count. A caster
+//      inside the sphere (c, r) seen from the light fills a cone of half-angle α with
+//      sin α = r / |c − L|; every point of the volume's far end then lies at least
+//      T cos α along the cone's axis, so T cos α beyond the box's furthest corner along
+//      that axis puts the whole difference in a half-space the box does not meet, and
+//      every z-fail count (the volumes crossed behind a visible point) is the same. What
+//      is saved is fill: the sides below the floor and behind the walls, which each pixel
+//      counted up and down again. When a light is inside a caster's sphere, that volume
+//      goes to infinity as before. (Where the frame shows no surface at all, a bounded
+//      volume counts nothing, as it should.)
 //      Then (lights after the first) destination alpha is rewritten to that light's factor,
 //      and one full-screen quad is drawn under the stencil test with
 //      glBlendFunc(GL_ZERO, GL_DST_ALPHA): colour × factor, in linear light. The quad
@@ -103,6 +118,7 @@ struct RendererOptions {
   float lodScale = 1.5f;         ///< mip levels of blur per doubling of a ball's length
   float ambient = 0.1f;          ///< the ambient term (what a pixel no light reaches keeps)
   bool cullVolumes = true;       ///< skip casters beyond a light's range (exact; see above)
+  bool boundVolumes = true;      ///< end each volume just past the room's box, not at infinity (exact; see above)
   float clusterSize = 2.0f;      ///< static triangles are drawn in clusters of this cell size (m): culled
                                  ///< outside the view, nearest first (0: one cluster per mask)
   int cubeSize = 128;            ///< the room's environment map (the balls' reflections)
@@ -116,6 +132,7 @@ struct FrameStats {
   std::size_t casters = 0;          ///< dynamic casters this frame (parts and balls)
   std::size_t castersDrawn = 0;     ///< (caster, light) pairs whose volume was drawn
   std::size_t castersCulled = 0;    ///< (caster, light) pairs culled by the light's range
+  std::size_t castersBounded = 0;   ///< (caster, light) pairs whose volume was bounded (not to infinity)
   std::size_t balls = 0;            ///< balls in flight
   int lightsWithShadows = 0;        ///< lights that got a stencil pass and a quad
 };
@@ -225,7 +242,11 @@ private:
   void drawDynamic(const gl::Program& program) const;
   void drawMarkers() const;
   void drawBalls(bool translucent);
-  void drawCaster(const Caster& caster, const mat4& model) const;
+  void drawCaster(const Caster& caster, const mat4& model, float extrudeTo) const;
+  /// How far from `light` a volume of the world-space sphere (centre, radius) must reach
+  /// so that cutting it off there changes no count in the view: 0 (infinity) when the
+  /// volume cannot be bounded (see "bounded" above).
+  float extrusionDistance(const vec3& centre, float radius, const vec3& light) const;
   bool inRange(const Caster& caster, const mat4& model, int light) const;
   /// Every volume of `light` with the current state: in-range dynamic casters, and with
   /// `everything` the static scene too (Naive). Counts into m_stats.
@@ -255,6 +276,9 @@ private:
   GpuMesh m_parts[3];
   Caster m_partCasters[3];  // their shadows' casters (the mallet's a proxy inside it)
   bool m_partClosed[3] = {};
+  vec3 m_partCentre[3] = {};  // the parts' bounding spheres (what they put in the depth buffer)
+  float m_partRadius[3] = {};
+  Bounds m_staticBox;         // the static scene's box (the room)
   Caster m_ballCaster;
   Caster m_staticSolids, m_staticShell;  // naive only
   gl::VertexArray m_ballVao;
@@ -275,6 +299,9 @@ private:
   std::vector<DynamicDraw> m_dynamic;
   std::vector<BallDraw> m_balls;
   FrameStats m_stats;
+  /// This frame's box of the eye and of everything the depth buffer can hold (the static
+  /// scene, the dynamic parts, the balls and light markers): bounded volumes end past it.
+  Bounds m_frameBox;
   /// Normalized device rectangle holding this light's volumes (lo, hi); `whole` when a
   /// volume reaches behind the eye and its projection is unbounded.
   struct VolumeBounds {
