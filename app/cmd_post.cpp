@@ -60,7 +60,7 @@ losslessly with --concat (FFV1 parts at any frame; H.264 parts are written witho
 Frames are decoded, processed on the GPU (pixel buffer objects, a few frames in flight) and
 encoded on three overlapped threads. --backend auto (the default) runs the effects on the CPU
 instead (threaded, FFTW, OpenCV) when the GL renderer is a software one (llvmpipe: no GPU),
-as --backend cpu always does (spectrum has no CPU version); --backend gpu keeps OpenGL. On
+as --backend cpu always does (every effect has a CPU version); --backend gpu keeps OpenGL. On
 the CPU, sepia, sobel and the FFT filters (one effect) work on a video's YUV planes directly,
 skipping the RGB round trip; glint -v post says which backend ran. No frame of a file is ever dropped; a live source
 (camera, --realtime) drops what the GPU cannot keep up with and the report counts it.

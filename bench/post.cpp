@@ -140,6 +140,7 @@ void runEffects(Recorder& recorder) {
     post::Fft2d luma(size, 1), colour(size, 2);
     row("spectrum gpu", [&] { spectrum.run(in, out); }, "spectrum opencv", peers::opencvSpectrum(input),
         "cvtColor + cv::dft + magnitude + log, " + threads, pixels * (4 + 8) + fftBytes(luma) + pixels * (8 + 4));
+    cpuRow("spectrum", "spectrum opencv", peers::opencvSpectrum(input));
     post::FrequencyFilterPass lowpass;
     const FrequencyFilter filter{.kind = FilterKind::LowPass, .cutoff = 0.05f, .order = 2};
     row("lowpass gpu", [&] { lowpass.run(in, out, filter); }, "lowpass opencv", peers::opencvFrequencyFilter(input),

@@ -381,12 +381,68 @@ private:
   cpu::PlaneFilter m_filter;
 };
 
+// The spectrum view (image/fourier.h): log(1 + |F|) / log(1 + w·h) of the luma's DFT,
+// centred, as gray with alpha 1 — FFTW's real-to-complex transform (single precision,
+// threads) gives the half-spectrum; the other half is its mirror, |F(u, v)| =
+// |F(w − u, h − v)| for a real input.
+class SpectrumStage final : public RgbaStage {
+public:
+  explicit SpectrumStage(ivec2 size) : m_w(size.x), m_h(size.y), m_half(size.x / 2 + 1) {
+    std::call_once(cpu::fftwThreadsOnce, [] { fftwf_init_threads(); });
+    const std::size_t n = std::size_t(m_w) * std::size_t(m_h);
+    m_real = fftwf_alloc_real(n);
+    m_spectrum = fftwf_alloc_complex(std::size_t(m_half) * std::size_t(m_h));
+    std::lock_guard lock(cpu::fftwPlanMutex);
+    fftwf_plan_with_nthreads(int(std::max(1u, std::thread::hardware_concurrency())));
+    m_plan = fftwf_plan_dft_r2c_2d(m_h, m_w, m_real, m_spectrum, FFTW_ESTIMATE);
+    if (!m_plan) fail(ErrorKind::Internal, "FFTW could not plan a {}x{} transform", m_w, m_h);
+  }
+  ~SpectrumStage() override {
+    std::lock_guard lock(cpu::fftwPlanMutex);
+    fftwf_destroy_plan(m_plan);
+    fftwf_free(m_real);
+    fftwf_free(m_spectrum);
+  }
+  SpectrumStage(const SpectrumStage&) = delete;
+  SpectrumStage& operator=(const SpectrumStage&) = delete;
+
+  void run(const Image& in, Image& out) override {
+    lumaPlane(in, m_luma);
+    std::memcpy(m_real, m_luma.data(), m_luma.size() * sizeof(float));
+    fftwf_execute(m_plan);
+    const float denominator = float(std::log1p(double(m_w) * double(m_h)));
+    std::uint8_t* dst = out.pixels<std::uint8_t>().data();
+    parallelRows(m_h, [&](int begin, int end) {
+      for (int y = begin; y < end; ++y) {
+        const int v = (y - m_h / 2 + m_h) % m_h;  // output row y shows frequency row v
+        for (int x = 0; x < m_w; ++x) {
+          const int u = (x - m_w / 2 + m_w) % m_w;
+          const fftwf_complex& f = u < m_half ? m_spectrum[std::size_t(v) * std::size_t(m_half) + std::size_t(u)]
+                                              : m_spectrum[std::size_t((m_h - v) % m_h) * std::size_t(m_half) + std::size_t(m_w - u)];
+          const std::uint8_t g = toU8(std::log1p(std::hypot(f[0], f[1])) / denominator);
+          std::uint8_t* p = dst + 4 * (std::size_t(y) * std::size_t(m_w) + std::size_t(x));
+          p[0] = p[1] = p[2] = g;
+          p[3] = 255;
+        }
+      }
+    });
+  }
+
+private:
+  int m_w, m_h, m_half;
+  float* m_real = nullptr;
+  fftwf_complex* m_spectrum = nullptr;
+  fftwf_plan m_plan = nullptr;
+  std::vector<float> m_luma;
+};
+
 std::unique_ptr<RgbaStage> makeStage(const Effect& e, ivec2 size) {
   const std::string_view name = e.name();
   if (name == "sepia") return std::make_unique<SepiaStage>(e);
   if (name == "sobel") return std::make_unique<SobelStage>(e);
   if (name == "edges") return std::make_unique<EdgesStage>(e);
   if (name == "kuwahara") return std::make_unique<KuwaharaStage>(e);
+  if (name == "spectrum") return std::make_unique<SpectrumStage>(size);
   if (FrequencyFilter f; cpu::frequencyFilterOf(e, f)) return std::make_unique<FilterStage>(f, size);
   return nullptr;
 }
@@ -394,7 +450,8 @@ std::unique_ptr<RgbaStage> makeStage(const Effect& e, ivec2 size) {
 bool cpuHas(const Effect& e) {
   const std::string_view name = e.name();
   FrequencyFilter f;
-  return name == "sepia" || name == "sobel" || name == "edges" || name == "kuwahara" || cpu::frequencyFilterOf(e, f);
+  return name == "sepia" || name == "sobel" || name == "edges" || name == "kuwahara" || name == "spectrum" ||
+         cpu::frequencyFilterOf(e, f);
 }
 }  // namespace
 

@@ -134,7 +134,7 @@ const std::vector<EffectDef>& table() {
        .summary = "kuwahara then edges: the seed's NPR look (size, scale, threshold)",
        .expandsTo = {"kuwahara", "edges"}},
       {.name = "spectrum",
-       .summary = "log magnitude of the luma's DFT, centred (GPU FFT)",
+       .summary = "log magnitude of the luma's DFT, centred (GPU FFT; FFTW on the CPU)",
        .stage = [] {
          struct Stage final : EffectStage {
            SpectrumPass pass;

@@ -1,10 +1,11 @@
 #pragma once
-// glint/render/post/cpu.h — glint post's CPU backend: the effects of render/post/effects.h
-// on the CPU, threaded (OpenCV's parallel_for_) and vectorised, with FFTW (single
-// precision, threads) for the frequency-domain filters and OpenCV's box filter for
-// Kuwahara's statistics. `glint post --backend cpu` uses it, and `--backend auto` (the
-// default) whenever the GL renderer is a software one (Mesa's llvmpipe or softpipe,
-// SwiftShader): there a "GPU" pass is CPU work plus uploads and readbacks.
+// glint/render/post/cpu.h — glint post's CPU backend: every effect of
+// render/post/effects.h on the CPU, threaded (OpenCV's parallel_for_) and vectorised, with
+// FFTW (single precision, threads) for the spectrum view and the frequency-domain filters
+// and OpenCV's box filter for Kuwahara's statistics. `glint post --backend cpu` uses it,
+// and `--backend auto` (the default) whenever the GL renderer is a software one (Mesa's
+// llvmpipe or softpipe, SwiftShader): there a "GPU" pass is CPU work plus uploads and
+// readbacks.
 //
 /// ```cpp
 /// #include <glint/image/post.h>
@@ -66,8 +67,8 @@ const char* backendName(Backend backend);
 /// Whether a GL_RENDERER string names a software rasterizer: Mesa's llvmpipe and softpipe,
 /// SwiftShader, Microsoft's "GDI Generic" and Apple's "Software Renderer".
 bool isSoftwareRenderer(std::string_view glRenderer);
-/// The effects of `effects` the CPU backend lacks, comma-separated ("spectrum"); empty when
-/// it has them all.
+/// The effects of `effects` the CPU backend lacks, comma-separated; empty when it has them
+/// all (today it has every effect of render/post/effects.h).
 std::string cpuMissing(std::span<const Effect> effects);
 
 /// Whether a CpuChain of `effects` keeps Yuv420 frames in YUV (one effect with a YUV path;
