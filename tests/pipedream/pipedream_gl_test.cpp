@@ -370,9 +370,11 @@ TEST_F(GlTest, PipeDreamBoundedVolumesMatchVolumesToInfinity) {
       if (mode == rp::Mode::Full) fillInfinite += r.measureVolumeFill();
       const Image without = readFloat(r.colorTexture());
       r.options().boundVolumes = true;
+      // Colour only: after the composite, alpha is scratch (a later light's dim factor where
+      // its passes ran, inside the rectangle of its volumes, which bounded volumes shrink).
       const auto differs = [&](int x, int y) {
         if (x < 0 || y < 0 || x >= kSize.x || y >= kSize.y) return false;
-        for (int c = 0; c < 4; ++c)
+        for (int c = 0; c < 3; ++c)
           if (with.at(x, y, c) != without.at(x, y, c)) return true;
         return false;
       };

@@ -501,16 +501,23 @@ void Renderer::drawCaster(const Caster& caster, const mat4& model, float extrude
   glDrawElements(GL_TRIANGLES, caster.indexCount, GL_UNSIGNED_INT, nullptr);
 }
 
-void Renderer::extendVolumeBounds(const vec3& centre, float radius, const vec3& light) {
+void Renderer::extendVolumeBounds(const vec3& centre, float radius, const vec3& light, float extrudeTo) {
   // Every point of the volume is p + t (p − L), t ≥ 0, p in the box: in homogeneous terms a
-  // non-negative combination of the 8 corners (c, 1) and their directions (c − L, 0). When
-  // all 16 lie in front of the eye (clip w > 0), the volume's projection is inside the
-  // bounds of theirs.
+  // non-negative combination of the 8 corners (c, 1) and their directions (c − L, 0). A
+  // bounded volume (extrudeTo > 0) reaches no further from L than extrudeTo, so t ≤
+  // extrudeTo / d − 1 with d the box's distance from L: the corners pushed to L + s (c − L),
+  // s = extrudeTo / d, stand in for the directions. When all 16 lie in front of the eye
+  // (clip w > 0), the volume's projection is inside the bounds of theirs.
   if (m_volumeBounds.whole) return;
   const mat4 viewProj = m_camera.viewProjection();
+  const vec3 gap = glm::max(glm::abs(light - centre) - radius, vec3(0.0f));
+  const float nearest = glm::length(gap);  // from the light to the caster's box
+  const bool bounded = extrudeTo > 0.0f && nearest > 1e-4f * extrudeTo;
+  const float scale = bounded ? extrudeTo / nearest : 0.0f;
   for (int k = 0; k < 8; ++k) {
     const vec3 c = centre + radius * vec3(k & 1 ? 1.0f : -1.0f, k & 2 ? 1.0f : -1.0f, k & 4 ? 1.0f : -1.0f);
-    for (const vec4& clip : {viewProj * vec4(c, 1.0f), viewProj * vec4(c - light, 0.0f)}) {
+    const vec4 far = bounded ? vec4(light + scale * (c - light), 1.0f) : vec4(c - light, 0.0f);
+    for (const vec4& clip : {viewProj * vec4(c, 1.0f), viewProj * far}) {
       if (!(clip.w > 1e-6f)) {
         m_volumeBounds.whole = true;
         return;
@@ -540,7 +547,7 @@ bool Renderer::drawVolumesOf(int light, bool everything) {
     const float extrudeTo = extrusionDistance(centre, radius, position);
     m_stats.castersBounded += extrudeTo > 0.0f;
     drawCaster(c, model, extrudeTo);
-    extendVolumeBounds(centre, radius, position);
+    extendVolumeBounds(centre, radius, position, extrudeTo);
     ++m_stats.castersDrawn;
     m_stats.volumeTriangles += std::size_t(c.indexCount / 3);
     any = true;

@@ -252,8 +252,9 @@ private:
   /// `everything` the static scene too (Naive). Counts into m_stats.
   bool drawVolumesOf(int light, bool everything);
   /// Grows m_volumeBounds by the screen area a caster's shadow volume can cover: its
-  /// bounding sphere's box and that box pushed away from the light to infinity.
-  void extendVolumeBounds(const vec3& centre, float radius, const vec3& light);
+  /// bounding sphere's box and that box pushed away from the light, to infinity or (a
+  /// bounded volume) as far as `extrudeTo` from the light can reach.
+  void extendVolumeBounds(const vec3& centre, float radius, const vec3& light, float extrudeTo);
   void ensureNaiveCasters();
   void renderNaive();
   void drawVolumeWireframe();
