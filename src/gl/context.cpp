@@ -8,6 +8,7 @@
 #include <epoxy/gl.h>
 
 #include <cstring>
+#include <string_view>
 #include <vector>
 
 namespace glint::gl {
@@ -75,6 +76,28 @@ EGLContext tryCreate(EGLDisplay display, const ContextOptions& options) {
 }
 
 }  // namespace
+
+bool onlySoftwareDevices() {
+  if (!epoxy_has_egl()) return false;
+  const bool enumerate = hasClientExtension("EGL_EXT_device_base") || hasClientExtension("EGL_EXT_device_enumeration");
+  const bool query = hasClientExtension("EGL_EXT_device_base") || hasClientExtension("EGL_EXT_device_query");
+  if (!enumerate || !query) return false;
+  EGLDeviceEXT devices[16];
+  EGLint count = 0;
+  if (!eglQueryDevicesEXT(16, devices, &count) || count <= 0) return false;
+  constexpr std::string_view kSoftware = "EGL_MESA_device_software";
+  for (EGLint i = 0; i < count; ++i) {
+    const char* extensions = eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS);
+    bool software = false;
+    for (std::string_view rest = extensions ? extensions : ""; !rest.empty();) {
+      const std::size_t end = rest.find(' ');
+      software |= rest.substr(0, end) == kSoftware;
+      rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
+    }
+    if (!software) return false;
+  }
+  return true;
+}
 
 std::unique_ptr<HeadlessContext> HeadlessContext::create(const ContextOptions& options) {
   if (!epoxy_has_egl()) fail(ErrorKind::NoGpu, "no OpenGL 4.5 context: libEGL is not available ({})", kInstallHint);
