@@ -42,6 +42,11 @@ void addToolOptions(CLI::App& command, ToolSettings& settings, const std::string
 
 int main(int argc, char** argv) {
   using namespace glint;
+  // Whatever way main returns, a background load of the image module ends first: exit()
+  // would otherwise run handlers its libraries registered while they were still loading.
+  struct FinishPreload {
+    ~FinishPreload() { finishImageIoPreload(); }
+  } finishPreload;
   CLI::App cli{"glint — advanced real-time rendering on OpenGL 4.5.\n"
                "Every technique is a scene with variants (`glint list`); render them headless, "
                "build a gallery, or explore them in a window.",

@@ -48,9 +48,10 @@ const OiioApi& loadModule() {
 }
 
 // The module, loaded once: in the background by preload(), or by the first get().
-// A failed background load is retried by get(), which reports the error. The static
-// instance's destructor joins the background thread, so a process that exits while
-// the module is loading waits for the loader instead of racing it.
+// A failed background load is retried by get(), which reports the error. main() joins
+// the background thread before it returns (finishImageIoPreload): the libraries being
+// loaded register exit handlers as they load, and those run before this static's
+// destructor, which joins too for processes whose main does not.
 class ModuleLoader {
 public:
   ~ModuleLoader() {
@@ -77,6 +78,17 @@ public:
     } catch (const std::system_error&) {
       m_loading = false;  // no thread to spare: the first get() loads in the foreground
     }
+  }
+
+  // Joins the background load, if one was started (outside the lock, which the loader
+  // takes as it ends).
+  void finish() {
+    std::thread loader;
+    {
+      std::lock_guard lock(m_mutex);
+      loader = std::move(m_thread);
+    }
+    if (loader.joinable()) loader.join();
   }
 
   const OiioApi& get() {
@@ -199,6 +211,8 @@ void writePng(const Image& image, const fs::path& path, const fs::path& tmp) {
 }  // namespace
 
 void preloadImageIo() { theModule().preload(); }
+
+void finishImageIoPreload() { theModule().finish(); }
 
 void requireImageIo() {
   std::error_code ec;

@@ -108,6 +108,12 @@ void checkImageOutput(const std::filesystem::path& path, std::string_view format
 /// themselves when this was not called. Call it early in commands that touch images.
 void preloadImageIo();
 
+/// Waits for a background preloadImageIo() to finish (at once when none runs). main()
+/// calls it before returning: the libraries the module loads register exit handlers as
+/// they load, and exit() must not run those (OpenImageIO's GDCM, for one, tears down a
+/// global another of its libraries is still constructing) while the load goes on.
+void finishImageIoPreload();
+
 /// Fails at once (Error(Internal), one line) when the image I/O module is not where glint
 /// looks for it, without waiting for it to load: long commands call this before their
 /// work, so a broken install is not discovered only when the result is written.
