@@ -8,7 +8,6 @@
 #include <epoxy/gl.h>
 
 #include <cstring>
-#include <string_view>
 #include <vector>
 
 namespace glint::gl {
@@ -16,16 +15,18 @@ namespace {
 
 constexpr const char* kInstallHint = "install Mesa's EGL and drivers: apt-get install libegl-mesa0 libgl1-mesa-dri";
 
-bool hasClientExtension(const char* name) {
-  const char* exts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+// Whether the space-separated extension list `exts` (may be null) names `name`: whole
+// words, since one extension name can be a prefix of another.
+bool listsExtension(const char* exts, const char* name) {
   if (!exts) return false;
-  // Match whole words: one extension name can be a prefix of another.
   const std::size_t n = std::strlen(name);
   for (const char* p = std::strstr(exts, name); p; p = std::strstr(p + 1, name)) {
     if ((p == exts || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
   }
   return false;
 }
+
+bool hasClientExtension(const char* name) { return listsExtension(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), name); }
 
 struct Candidate {
   EGLDisplay display;
@@ -85,16 +86,8 @@ bool onlySoftwareDevices() {
   EGLDeviceEXT devices[16];
   EGLint count = 0;
   if (!eglQueryDevicesEXT(16, devices, &count) || count <= 0) return false;
-  constexpr std::string_view kSoftware = "EGL_MESA_device_software";
   for (EGLint i = 0; i < count; ++i) {
-    const char* extensions = eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS);
-    bool software = false;
-    for (std::string_view rest = extensions ? extensions : ""; !rest.empty();) {
-      const std::size_t end = rest.find(' ');
-      software |= rest.substr(0, end) == kSoftware;
-      rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
-    }
-    if (!software) return false;
+    if (!listsExtension(eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software")) return false;
   }
   return true;
 }

@@ -11,9 +11,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 namespace glint::render::pipedream {
 
@@ -70,6 +72,14 @@ Mesh uncutMesh(const InstrumentMachine& machine, std::vector<vec4>& colors) {
   return mesh;
 }
 
+/// A bounding sphere: the box's centre and the furthest vertex from it.
+std::pair<vec3, float> boundingSphere(const Mesh& mesh) {
+  const vec3 centre = mesh.bounds().center();
+  float radius = 0.0f;
+  for (const vec3& p : mesh.positions) radius = std::max(radius, glm::length(p - centre));
+  return {centre, radius};
+}
+
 /// The triangles [first, first + count) of `mesh`, positions kept whole.
 Mesh subMesh(const Mesh& mesh, std::size_t first, std::size_t count) {
   Mesh out;
@@ -117,9 +127,7 @@ Renderer::Renderer(const InstrumentMachine& machine, const StaticGeometry& geome
     m_parts[i] = GpuMesh(*parts[i], {}, std::string("pipedream-") + names[i]);
     m_partCasters[i] = makeCaster(*casters[i], std::string("pipedream-") + names[i] + "-extrusion");
     m_partClosed[i] = EdgeMap::build(*parts[i]).isClosedManifold();
-    const Bounds b = parts[i]->bounds();
-    m_partCentre[i] = b.center();
-    for (const vec3& p : parts[i]->positions) m_partRadius[i] = std::max(m_partRadius[i], glm::length(p - m_partCentre[i]));
+    std::tie(m_partCentre[i], m_partRadius[i]) = boundingSphere(*parts[i]);
   }
   m_staticBox = machine.staticMesh.bounds();
   m_ballCaster = makeCaster(makeIcosphere(1.0f, 2), "pipedream-ball-extrusion");
@@ -256,9 +264,7 @@ Renderer::Caster Renderer::makeCaster(const Mesh& mesh, const std::string& name)
   c.vao.vertexBuffer(1, c.vertices, GLintptr(extrusion.positions.size() * sizeof(vec3)), sizeof(vec3));
   c.vao.indexBuffer(c.indices);
   c.indexCount = GLsizei(extrusion.indices.size());
-  const Bounds b = mesh.bounds();
-  c.centre = 0.5f * (b.min + b.max);
-  for (const vec3& p : mesh.positions) c.radius = std::max(c.radius, glm::length(p - c.centre));
+  std::tie(c.centre, c.radius) = boundingSphere(mesh);
   return c;
 }
 

@@ -85,10 +85,18 @@ void sobelRows(const float* luma, int w, int h, const std::function<void(int, co
 namespace {
 std::once_flag fftwThreadsOnce;
 std::mutex fftwPlanMutex;  // FFTW's planner is not thread-safe
+
+// The single-precision planner, for plans on every hardware thread: FFTW's threads set up
+// once, the planner held while the returned lock lives.
+std::unique_lock<std::mutex> lockFloatPlanner() {
+  std::call_once(fftwThreadsOnce, [] { fftwf_init_threads(); });
+  std::unique_lock lock(fftwPlanMutex);
+  fftwf_plan_with_nthreads(int(std::max(1u, std::thread::hardware_concurrency())));
+  return lock;
+}
 }  // namespace
 
 PlaneFilter::PlaneFilter(int w, int h, int planes, const FrequencyFilter& filter) : m_w(w), m_h(h), m_planes(planes) {
-  std::call_once(fftwThreadsOnce, [] { fftwf_init_threads(); });
   const int half = w / 2 + 1;
   const std::size_t n = std::size_t(w) * std::size_t(h), spectrum = std::size_t(half) * std::size_t(h);
   m_real = fftwf_alloc_real(n * std::size_t(planes));
@@ -113,8 +121,7 @@ PlaneFilter::PlaneFilter(int w, int h, int planes, const FrequencyFilter& filter
     for (int v = 0; v < h; ++v)
       for (int u = 0; u < half; ++u) m_gain[std::size_t(v) * half + u] = float(filterGain(filter, u, v, w, h) * scale);
   }
-  std::lock_guard lock(fftwPlanMutex);
-  fftwf_plan_with_nthreads(int(std::max(1u, std::thread::hardware_concurrency())));
+  const auto lock = lockFloatPlanner();
   const int dims[2] = {h, w};
   auto* spec = static_cast<fftwf_complex*>(m_spectrum);
   // FFTW_ESTIMATE: at 1920×1080 FFTW_MEASURE spent 9 s planning for a transform no faster
@@ -388,12 +395,10 @@ private:
 class SpectrumStage final : public RgbaStage {
 public:
   explicit SpectrumStage(ivec2 size) : m_w(size.x), m_h(size.y), m_half(size.x / 2 + 1) {
-    std::call_once(cpu::fftwThreadsOnce, [] { fftwf_init_threads(); });
     const std::size_t n = std::size_t(m_w) * std::size_t(m_h);
     m_real = fftwf_alloc_real(n);
     m_spectrum = fftwf_alloc_complex(std::size_t(m_half) * std::size_t(m_h));
-    std::lock_guard lock(cpu::fftwPlanMutex);
-    fftwf_plan_with_nthreads(int(std::max(1u, std::thread::hardware_concurrency())));
+    const auto lock = cpu::lockFloatPlanner();
     m_plan = fftwf_plan_dft_r2c_2d(m_h, m_w, m_real, m_spectrum, FFTW_ESTIMATE);
     if (!m_plan) fail(ErrorKind::Internal, "FFTW could not plan a {}x{} transform", m_w, m_h);
   }
