@@ -20,7 +20,9 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <set>
 
@@ -36,10 +38,14 @@ namespace {
 namespace fs = std::filesystem;
 
 struct FarmArgs {
-  std::string partition, time, mem, workDir;
+  std::string partition, time, mem, workDir, scheduler = "slurm";
   int cpusPerTask = 0, pieces = 0;
   bool dryRun = false, wait = false;
 };
+
+/// Set by Ctrl-C while `--wait` follows the jobs: stop following, say that they go on.
+std::atomic<bool> stopFollowing{false};
+void onFarmInterrupt(int) { stopFollowing.store(true); }
 
 /// An option of the tool as given on the command line: its name (empty for a positional)
 /// and values; flags have no values.
@@ -107,8 +113,11 @@ Farm options (every `glint farm` subcommand):
   --work-dir DIR   intermediates, scripts and logs, on a filesystem every node sees
                    (default: the output's directory); the job's directory is
                    DIR/<tool>-<key>, named by a hash of the inputs and options
+  --scheduler S    slurm (the default) or local: this machine runs the tasks as child
+                   processes, with the same scripts, dependencies and resubmit rules
   --dry-run        print the batch scripts (plain glint calls) and submit nothing
-  --wait           follow the tasks with a progress bar; exit 0 only when the output exists
+  --wait           follow the tasks with a progress bar; exit 0 only when the output exists;
+                   Ctrl-C stops following (the jobs go on)
 
 Pieces are named by a hash of their command line and of each input's path, size and time:
 running the same command again submits only the pieces that are missing or failed (a
@@ -122,7 +131,8 @@ SLURM_CONF says which cluster. docs/farm.md has a studio set-up.)";
 std::set<const CLI::Option*> addFarmOptions(CLI::App& cmd, FarmArgs& a, const char* piecesName, const char* piecesHelp) {
   // A tool option of the same name gives way (render's --time, a scene time, means nothing
   // for a video, which --frames and --fps time).
-  for (const char* name : {"--partition", "--time", "--mem", "--cpus-per-task", "--work-dir", "--dry-run", "--wait"})
+  for (const char* name : {"--partition", "--time", "--mem", "--cpus-per-task", "--work-dir", "--dry-run", "--wait",
+                           "--scheduler"})
     if (CLI::Option* clash = cmd.get_option_no_throw(name)) cmd.remove_option(clash);
   std::set<const CLI::Option*> options;
   if (piecesName)
@@ -136,6 +146,10 @@ std::set<const CLI::Option*> addFarmOptions(CLI::App& cmd, FarmArgs& a, const ch
                      ->check(CLI::Range(1, 4096)));
   options.insert(cmd.add_option("--work-dir", a.workDir, "Directory for intermediates, scripts and logs, seen by every "
                                                          "node (default: the output's directory)"));
+  options.insert(cmd.add_option("--scheduler", a.scheduler, "slurm, or local: run the tasks on this machine as child "
+                                                            "processes (same scripts and rules)")
+                     ->check(CLI::IsMember({"slurm", "local"}))
+                     ->capture_default_str());
   options.insert(cmd.add_flag("--dry-run", a.dryRun, "Print the batch scripts and submit nothing"));
   options.insert(cmd.add_flag("--wait", a.wait, "Follow the tasks to the end; exit 0 only when the joined output exists"));
   return options;
@@ -162,6 +176,13 @@ void addLimits(std::vector<std::string>& argv, CLI::App& cmd, const std::vector<
   }
 }
 
+/// Error(Input) when the scheduler cannot be used here (sbatch missing): before any work.
+void checkScheduler(const FarmArgs& a) {
+  if (a.dryRun) return;
+  const auto scheduler = a.scheduler == "local" ? farm::localScheduler("/") : farm::slurmScheduler();
+  if (auto missing = scheduler->unavailable()) throw Error(ErrorKind::Input, *missing);
+}
+
 /// Submits (or prints) the plan and reports; the exit status.
 int runFarm(farm::Plan plan, const FarmArgs& a, std::int64_t mib) {
   farm::Resources resources{.partition = a.partition, .time = a.time, .memoryMiB = mib, .cpusPerTask = a.cpusPerTask};
@@ -169,7 +190,10 @@ int runFarm(farm::Plan plan, const FarmArgs& a, std::int64_t mib) {
                                                              : fs::path(a.workDir);
   // The outputs' folders must exist and be writable: found now, not after the cluster's work.
   for (const auto& output : plan.outputs) checkWritable(output);
-  farm::Farm job(std::move(plan), resources);
+  const fs::path localSpool = fs::path(plan.workDir) / "local-jobs";
+  std::shared_ptr<farm::Scheduler> scheduler =
+      a.scheduler == "local" ? std::shared_ptr<farm::Scheduler>(farm::localScheduler(localSpool)) : farm::slurmScheduler();
+  farm::Farm job(std::move(plan), resources, scheduler);
   if (a.dryRun) {
     fmt::print("{}", job.scripts());
     return 0;
@@ -201,13 +225,31 @@ int runFarm(farm::Plan plan, const FarmArgs& a, std::int64_t mib) {
   }
   Progress progress("farm " + job.plan().tool, job.plan().pieces.size());
   std::string last;
-  const farm::WaitResult result = job.wait([&](int done, int, const std::string& line) {
-    if (std::uint64_t(done) > progress.done()) progress.advance(std::uint64_t(done) - progress.done());
-    progress.setDetail(line);
-    if (!progress.enabled() && line != last) log::info("farm {}: {}", job.plan().tool, line);
-    last = line;
-  });
+  stopFollowing.store(false);
+  struct sigaction action {}, oldInt {}, oldTerm {};
+  action.sa_handler = onFarmInterrupt;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, &oldInt);
+  sigaction(SIGTERM, &action, &oldTerm);
+  const farm::WaitResult result = job.wait(
+      [&](int done, int, const std::string& line) {
+        if (std::uint64_t(done) > progress.done()) progress.advance(std::uint64_t(done) - progress.done());
+        progress.setDetail(line);
+        if (!progress.enabled() && line != last) log::info("farm {}: {}", job.plan().tool, line);
+        last = line;
+      },
+      &stopFollowing);
+  sigaction(SIGINT, &oldInt, nullptr);
+  sigaction(SIGTERM, &oldTerm, nullptr);
   progress.finish();
+  if (result.stopped) {
+    std::string ids = job.arrayJob();
+    if (!job.joinJob().empty()) ids += (ids.empty() ? "" : " ") + job.joinJob();
+    log::warn("farm {}: stopped following; the jobs keep running ({}{}): the same command with --wait follows them "
+              "again{}", job.plan().tool, a.scheduler == "local" ? "on this machine, local jobs " : "", ids,
+              a.scheduler == "local" ? "" : fmt::format("; scancel {} cancels them", ids));
+    return exitCode(ErrorKind::Interrupted);
+  }
   if (result.joined) {
     log::info("farm {}: done: {}", job.plan().tool, outputs);
     return 0;
@@ -419,9 +461,7 @@ Command farmCommand(CLI::App& app, const GlobalOptions& global) {
 
   return Command{.run = [parsed, bakeCmd, bakeArgs, bakeFile] {
                    if (bakeCmd->parsed()) {
-                     if (!bakeArgs->dryRun) {
-                       if (auto missing = farm::slurmMissing()) throw Error(ErrorKind::Input, *missing);
-                     }
+                     checkScheduler(*bakeArgs);
                      std::int64_t mib = 0;
                      farm::Plan plan = bakePlan(*bakeFile, mib, *bakeArgs);
                      return runFarm(std::move(plan), *bakeArgs, mib);
@@ -429,9 +469,7 @@ Command farmCommand(CLI::App& app, const GlobalOptions& global) {
                    for (Parsed& p : *parsed) {
                      if (!p.cmd->parsed()) continue;
                      const FarmArgs& a = *p.args;
-                     if (!a.dryRun) {
-                       if (auto missing = farm::slurmMissing()) throw Error(ErrorKind::Input, *missing);
-                     }
+                     checkScheduler(a);
                      const auto given = givenOptions(*p.cmd, p.farmOptions);
                      std::int64_t mib = 0;
                      farm::Plan plan = p.tool == "cut"    ? cutPlan(*p.cmd, given, a.pieces, mib, a)

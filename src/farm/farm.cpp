@@ -5,14 +5,19 @@
 #include "glint/core/hash.h"
 #include "glint/core/text.h"
 #include "process.h"
+#include "script.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <set>
@@ -23,13 +28,7 @@ namespace fs = std::filesystem;
 
 namespace glint::farm {
 
-using detail::runProcess;
-
 namespace {
-
-constexpr const char* kMissingSlurm =
-    "sbatch not found: glint farm submits through Slurm's client commands; install Debian's slurm-client "
-    "(apt install slurm-client) and point SLURM_CONF at the cluster's slurm.conf";
 
 std::string hex(std::uint64_t value) { return fmt::format("{:016x}", value); }
 
@@ -59,60 +58,7 @@ fs::path selfExecutable() {
 
 std::string quoteCommand(const std::vector<std::string>& argv) {
   std::string line;
-  for (const auto& a : argv) line += (line.empty() ? "" : " ") + shellWord(a);
-  return line;
-}
-
-/// "0-3,5,7-8%2" → {0,1,2,3,5,7,8}.
-std::set<int> parseTaskRange(const std::string& text) {
-  std::set<int> tasks;
-  const std::string body = text.substr(0, text.find('%'));
-  std::stringstream parts(body);
-  std::string part;
-  while (std::getline(parts, part, ',')) {
-    if (part.empty()) continue;
-    const auto dash = part.find('-');
-    try {
-      const int lo = std::stoi(part.substr(0, dash));
-      const int hi = dash == std::string::npos ? lo : std::stoi(part.substr(dash + 1));
-      for (int t = lo; t <= hi && t - lo < 1000000; ++t) tasks.insert(t);
-    } catch (const std::exception&) {
-    }
-  }
-  return tasks;
-}
-
-/// One job record of `scontrol show job -o`: its Key=Value fields.
-using JobRecord = std::map<std::string, std::string>;
-
-std::vector<JobRecord> showJobs(const std::string& jobId) {
-  std::vector<JobRecord> records;
-  if (jobId.empty()) return records;
-  const auto result = runProcess({"scontrol", "show", "job", "-o", jobId});
-  if (result.exitCode != 0) return records;  // unknown (purged) or no controller: nothing known
-  std::stringstream lines(result.output);
-  std::string line;
-  while (std::getline(lines, line)) {
-    JobRecord record;
-    std::stringstream fields(line);
-    std::string field;
-    while (fields >> field) {
-      const auto eq = field.find('=');
-      if (eq != std::string::npos) record[field.substr(0, eq)] = field.substr(eq + 1);
-    }
-    if (record.count("JobId")) records.push_back(std::move(record));
-  }
-  return records;
-}
-
-bool liveState(const std::string& s) {
-  return s == "PENDING" || s == "CONFIGURING" || s == "RUNNING" || s == "COMPLETING" || s == "SUSPENDED" ||
-         s == "REQUEUED" || s == "RESIZING" || s == "SIGNALING" || s == "STAGE_OUT";
-}
-
-std::string firstLine(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  for (const auto& a : argv) line += (line.empty() ? "" : " ") + detail::scriptWord(a);
   return line;
 }
 
@@ -123,12 +69,63 @@ std::string readSmall(const fs::path& path) {
   return text;
 }
 
-}  // namespace
-
-std::optional<std::string> slurmMissing() {
-  if (!detail::onPath("sbatch")) return std::string(kMissingSlurm);
-  return std::nullopt;
+std::string readAll(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
+
+/// A file as the markers record it: "SIZE SECONDS.NANOSECONDS" (what `stat -c '%s %.9Y'`
+/// prints), "" when it is missing or empty.
+std::string fingerprint(const fs::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || st.st_size <= 0) return {};
+  return fmt::format("{} {}.{:09}", std::int64_t(st.st_size), std::int64_t(st.st_mtim.tv_sec),
+                     std::int64_t(st.st_mtim.tv_nsec));
+}
+
+/// Whether `record` (a marker: its key, then one fingerprint line per file) is `key`'s and
+/// every file is still the one it recorded.
+bool recordMatches(const std::string& record, const std::string& key, const std::vector<fs::path>& files) {
+  std::stringstream lines(record);
+  std::string line;
+  if (!std::getline(lines, line) || line != key) return false;
+  for (const auto& file : files) {
+    if (!std::getline(lines, line)) return false;
+    const std::string now = fingerprint(file);
+    if (now.empty() || now != line) return false;
+  }
+  return true;
+}
+
+/// The bash lines that record `key` and the files of the array `files` into `path`
+/// (a marker), atomically.
+std::string recordLines(const std::string& key, const std::string& array, const std::string& path) {
+  return fmt::format("{{ echo {}; for f in \"${{{}[@]}}\"; do stat -c '%s %.9Y' -- \"$f\"; done; }} > \"{}.tmp\" && "
+                     "mv -f \"{}.tmp\" \"{}\"\n", key, array, path, path, path);
+}
+
+/// An exclusive lock on a file, released when destroyed.
+class FileLock {
+public:
+  explicit FileLock(const fs::path& path) {
+    m_fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (m_fd < 0) fail(ErrorKind::Output, "farm: cannot open the lock '{}': {}", path.string(), std::strerror(errno));
+    while (::flock(m_fd, LOCK_EX) != 0 && errno == EINTR) {
+    }
+  }
+  ~FileLock() {
+    if (m_fd >= 0) ::close(m_fd);
+  }
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+
+private:
+  int m_fd = -1;
+};
+
+}  // namespace
 
 std::vector<std::pair<std::int64_t, std::int64_t>> splitEvenly(std::int64_t first, std::int64_t end, int chunks) {
   std::vector<std::pair<std::int64_t, std::int64_t>> ranges;
@@ -161,11 +158,17 @@ std::vector<std::pair<std::int64_t, std::int64_t>> splitAtKeyframes(const std::v
   return ranges;
 }
 
-Farm::Farm(Plan plan, Resources resources) : m_plan(std::move(plan)), m_resources(std::move(resources)) {
+Farm::Farm(Plan plan, Resources resources, std::shared_ptr<Scheduler> scheduler)
+    : m_plan(std::move(plan)), m_resources(std::move(resources)), m_scheduler(std::move(scheduler)) {
+  if (!m_scheduler) m_scheduler = slurmScheduler();
   if (m_plan.pieces.empty()) fail(ErrorKind::Usage, "farm {}: nothing to do (no pieces)", m_plan.tool);
   if (m_resources.glint.empty()) m_resources.glint = selfExecutable().string();
   if (m_plan.workDir.empty()) m_plan.workDir = fs::current_path();
   m_plan.workDir = fs::absolute(m_plan.workDir).lexically_normal();
+  // What goes into #SBATCH lines, checked before anything is written (script.h).
+  (void)detail::directiveValue(m_plan.workDir.string(), "the work directory");
+  if (!m_resources.partition.empty()) (void)detail::directiveValue(m_resources.partition, "--partition");
+  if (!m_resources.time.empty()) (void)detail::directiveValue(m_resources.time, "--time");
   keyPieces();
   m_directory = m_plan.workDir / fmt::format("{}-{}", m_plan.tool, m_key.substr(0, 12));
   m_pieceJobs.assign(m_plan.pieces.size(), "");
@@ -209,28 +212,32 @@ fs::path markerOf(const fs::path& dir, const std::string& key) { return dir / (k
 fs::path rcOf(const fs::path& dir, const std::string& key) { return dir / (key + ".rc"); }
 }  // namespace
 
+namespace {
+/// The files a piece's marker records: its output in the work directory, or the final
+/// outputs it writes itself.
+std::vector<fs::path> recordedFiles(const fs::path& pieceOutput, const Piece& piece) {
+  if (!pieceOutput.empty()) return {pieceOutput};
+  std::vector<fs::path> files;
+  for (const auto& o : piece.outputs) files.push_back(fs::absolute(o).lexically_normal());
+  return files;
+}
+}  // namespace
+
 bool Farm::pieceDone(int i) const {
-  const auto key = m_pieceKeys[std::size_t(i)];
-  std::error_code ec;
-  if (readSmall(markerOf(m_directory, key)) != key) return false;
-  const fs::path out = pieceOutput(i);
-  if (!out.empty()) return fs::file_size(out, ec) > 0 && !ec;
-  for (const auto& output : m_plan.pieces[std::size_t(i)].outputs)
-    if (!(fs::file_size(output, ec) > 0 && !ec)) return false;
-  return true;
+  const auto& key = m_pieceKeys[std::size_t(i)];
+  return recordMatches(readAll(markerOf(m_directory, key)), key,
+                       recordedFiles(pieceOutput(i), m_plan.pieces[std::size_t(i)]));
 }
 
 bool Farm::joinedBefore() const {
-  std::error_code ec;
   if (m_plan.join.empty()) {
     for (int i = 0; i < int(m_plan.pieces.size()); ++i)
       if (!pieceDone(i)) return false;
     return true;
   }
-  if (readSmall(m_directory / "joined") != m_key) return false;
-  for (const auto& output : m_plan.outputs)
-    if (!(fs::file_size(output, ec) > 0 && !ec)) return false;
-  return true;
+  std::vector<fs::path> outputs;
+  for (const auto& o : m_plan.outputs) outputs.push_back(fs::absolute(o).lexically_normal());
+  return recordMatches(readAll(m_directory / "joined"), m_key, outputs);
 }
 
 std::vector<std::string> Farm::pieceCommand(int i) const {
@@ -253,32 +260,40 @@ std::vector<std::string> Farm::joinCommand() const {
 }
 
 namespace {
-std::string directives(const Resources& r, const std::string& name, const fs::path& log) {
+std::string directives(const Resources& r, const std::string& name, const fs::path& directory, const std::string& log) {
   std::string text = fmt::format("#SBATCH --job-name={}\n#SBATCH --output={}\n#SBATCH --chdir={}\n", name,
-                                 shellWord(log.string()), shellWord(fs::current_path().string()));
-  if (!r.partition.empty()) text += fmt::format("#SBATCH --partition={}\n", r.partition);
-  if (!r.time.empty()) text += fmt::format("#SBATCH --time={}\n", r.time);
+                                 detail::outputPattern(directory.string() + "/logs", log, "the work directory"),
+                                 detail::directiveValue(directory.string(), "the work directory"));
+  if (!r.partition.empty()) text += fmt::format("#SBATCH --partition={}\n", detail::directiveValue(r.partition, "--partition"));
+  if (!r.time.empty()) text += fmt::format("#SBATCH --time={}\n", detail::directiveValue(r.time, "--time"));
   if (r.memoryMiB > 0) text += fmt::format("#SBATCH --mem={}M\n", r.memoryMiB);
   if (r.cpusPerTask > 0) text += fmt::format("#SBATCH --cpus-per-task={}\n", r.cpusPerTask);
   return text;
+}
+
+/// The body's first lines: where the files are, and the folder the command was given in
+/// (tasks get absolute paths; a folder a node lacks is not an error).
+std::string bodyStart(const fs::path& directory) {
+  return fmt::format("set -u\ndir={}\ncd -- {} 2>/dev/null || true\n", detail::scriptWord(directory.string()),
+                     detail::scriptWord(fs::current_path().string()));
 }
 }  // namespace
 
 std::string Farm::pieceScript(const std::vector<int>& indices) const {
   std::string text = "#!/bin/bash\n";
   text += fmt::format("# glint farm {}: {} — piece $SLURM_ARRAY_TASK_ID of {} (task i runs piece i).\n", m_plan.tool,
-                      m_plan.title, m_plan.pieces.size());
-  text += "# Each piece is a plain glint call; the marker <key>.done says it finished (exit 0).\n";
-  text += directives(m_resources, "glint-" + m_plan.tool, m_directory / "logs" / "piece-%a.log");
-  text += fmt::format("set -u\ndir={}\n", shellWord(m_directory.string()));
+                      detail::commentText(m_plan.title), m_plan.pieces.size());
+  text += "# Each piece is a plain glint call; the marker <key>.done says it finished (exit 0) and what it wrote.\n";
+  text += directives(m_resources, "glint-" + m_plan.tool, m_directory, "piece-%a.log");
+  text += bodyStart(m_directory);
   text += "case \"${SLURM_ARRAY_TASK_ID:?this script runs as a task of sbatch --array}\" in\n";
   for (int i : indices) {
     const Piece& piece = m_plan.pieces[std::size_t(i)];
     std::vector<std::string> outputs;
-    if (!piece.extension.empty()) outputs.push_back(pieceOutput(i).string());
-    for (const auto& o : piece.outputs) outputs.push_back(fs::absolute(o).lexically_normal().string());
-    text += fmt::format("  {})  # {}\n    key={}\n    outputs=({})\n    cmd=({})\n    ;;\n", i, piece.label,
-                        m_pieceKeys[std::size_t(i)], quoteCommand(outputs), quoteCommand(pieceCommand(i)));
+    for (const auto& o : recordedFiles(pieceOutput(i), piece)) outputs.push_back(o.string());
+    text += fmt::format("  {})  # {}\n    key={}\n    outputs=({})\n    cmd=({})\n    ;;\n", i,
+                        detail::commentText(piece.label), m_pieceKeys[std::size_t(i)], quoteCommand(outputs),
+                        quoteCommand(pieceCommand(i)));
   }
   text += "  *) echo \"glint farm: no piece $SLURM_ARRAY_TASK_ID in this script\" >&2; exit 2 ;;\nesac\n";
   text += "rm -f \"$dir/$key.done\" \"$dir/$key.rc\"\n";
@@ -288,17 +303,18 @@ std::string Farm::pieceScript(const std::vector<int>& indices) const {
           "  if [ \"$rc\" -eq 0 ] && [ ! -s \"$f\" ]; then echo \"glint farm: exit 0 but no output '$f'\" >&2; rc=1; fi\n"
           "done\n";
   text += "echo \"$rc\" > \"$dir/$key.rc\"\n";
-  text += "if [ \"$rc\" -eq 0 ]; then echo \"$key\" > \"$dir/$key.done.tmp\" && mv \"$dir/$key.done.tmp\" \"$dir/$key.done\"; fi\n";
+  text += "if [ \"$rc\" -eq 0 ]; then\n  " + recordLines("\"$key\"", "outputs", "$dir/$key.done") + "fi\n";
   text += "exit \"$rc\"\n";
   return text;
 }
 
 std::string Farm::joinScript() const {
   std::string text = "#!/bin/bash\n";
-  text += fmt::format("# glint farm {}: {} — the join, after every piece succeeded (afterok).\n", m_plan.tool, m_plan.title);
-  text += "# The intermediates are removed only after the join command succeeded.\n";
-  text += directives(m_resources, "glint-" + m_plan.tool + "-join", joinLog());
-  text += fmt::format("set -u\ndir={}\n", shellWord(m_directory.string()));
+  text += fmt::format("# glint farm {}: {} — the join, after every piece succeeded (afterok).\n", m_plan.tool,
+                      detail::commentText(m_plan.title));
+  text += "# The intermediates are removed only after the join command succeeded; joined records the outputs.\n";
+  text += directives(m_resources, "glint-" + m_plan.tool + "-join", m_directory, "join.log");
+  text += bodyStart(m_directory);
   std::vector<std::string> outputs, pieces;
   for (const auto& o : m_plan.outputs) outputs.push_back(fs::absolute(o).lexically_normal().string());
   for (int i = 0; i < int(m_plan.pieces.size()); ++i) {
@@ -311,7 +327,7 @@ std::string Farm::joinScript() const {
   text += "echo \"glint farm: $(hostname): ${cmd[*]}\"\n";
   text += "\"${cmd[@]}\" || exit $?\n";
   text += "for f in \"${outputs[@]}\"; do [ -s \"$f\" ] || { echo \"glint farm: the join wrote no '$f'\" >&2; exit 1; }; done\n";
-  text += fmt::format("echo {} > \"$dir/joined.tmp\" && mv \"$dir/joined.tmp\" \"$dir/joined\"\n", m_key);
+  text += recordLines(m_key, "outputs", "$dir/joined");
   text += "rm -f \"${pieces[@]}\"\n";
   return text;
 }
@@ -319,12 +335,12 @@ std::string Farm::joinScript() const {
 std::string Farm::scripts() const {
   std::vector<int> all(m_plan.pieces.size());
   for (int i = 0; i < int(all.size()); ++i) all[std::size_t(i)] = i;
-  std::string text = fmt::format("# {}/pieces.sh — sbatch --array=0-{} {}/pieces.sh\n", m_directory.string(),
-                                 all.size() - 1, m_directory.string());
+  const std::string dir = detail::commentText(m_directory.string());
+  std::string text = fmt::format("# {}/pieces.sh — sbatch --array=0-{} {}/pieces.sh\n", dir, all.size() - 1, dir);
   text += pieceScript(all);
   if (!m_plan.join.empty()) {
     text += fmt::format("\n# {}/join.sh — sbatch --dependency=afterok:ARRAY_JOB --kill-on-invalid-dep=yes {}/join.sh\n",
-                        m_directory.string(), m_directory.string());
+                        dir, dir);
     text += joinScript();
   }
   return text;
@@ -352,22 +368,13 @@ void Farm::saveRecord() const {
 
 std::vector<PieceStatus> Farm::status() {
   std::vector<PieceStatus> states(m_plan.pieces.size());
-  // Ask Slurm first, then look at the markers: a task that ends in between is then seen as
-  // done rather than as completed without its marker.
+  // Ask the scheduler first, then look at the markers: a task that ends in between is then
+  // seen as done rather than as completed without its marker.
   std::set<std::string> arrays;
   for (const auto& job : m_pieceJobs)
     if (!job.empty()) arrays.insert(job.substr(0, job.find('_')));
-  std::map<std::string, std::pair<std::string, std::string>> known;  // "A_T" → (state, exit code)
-  for (const auto& array : arrays) {
-    for (const auto& record : showJobs(array)) {
-      const auto a = record.find("ArrayJobId");
-      const auto t = record.find("ArrayTaskId");
-      if (a == record.end() || t == record.end()) continue;
-      const std::string state = record.count("JobState") ? record.at("JobState") : "";
-      const std::string exit = record.count("ExitCode") ? record.at("ExitCode") : "";
-      for (int task : parseTaskRange(t->second)) known[a->second + "_" + std::to_string(task)] = {state, exit};
-    }
-  }
+  std::map<std::string, TaskRecord> known;  // "A_T" → record
+  for (const auto& array : arrays) known.merge(m_scheduler->query(array));
   for (int i = 0; i < int(states.size()); ++i) {
     PieceStatus& s = states[std::size_t(i)];
     s.jobId = m_pieceJobs[std::size_t(i)];
@@ -379,13 +386,15 @@ std::vector<PieceStatus> Farm::status() {
     if (s.jobId.empty()) continue;  // Missing: never submitted
     const std::string rc = readSmall(rcOf(m_directory, m_pieceKeys[std::size_t(i)]));
     if (const auto it = known.find(s.jobId); it != known.end()) {
-      s.slurmState = it->second.first;
-      s.exitCode = it->second.second;
+      s.slurmState = it->second.state;
+      s.exitCode = it->second.exitCode;
+      s.reason = it->second.reason;
       if (s.slurmState == "PENDING" || s.slurmState == "CONFIGURING") s.state = PieceState::Queued;
       else if (liveState(s.slurmState)) s.state = PieceState::Running;
       else s.state = PieceState::Failed;
+      if (s.slurmState == "COMPLETED") s.reason = "its output is missing or was changed since";
     } else {
-      s.state = PieceState::Failed;  // Slurm no longer knows the task and it left no marker
+      s.state = PieceState::Failed;  // the scheduler no longer knows the task and it left no marker
       s.slurmState = "ENDED";
     }
     if (s.state == PieceState::Failed && !rc.empty() && rc != "0") s.exitCode = rc;
@@ -395,14 +404,18 @@ std::vector<PieceStatus> Farm::status() {
 
 Submission Farm::submit() {
   Submission result;
+  std::error_code ec;
+  fs::create_directories(m_directory / "logs", ec);
+  if (ec) fail(ErrorKind::Output, "farm: cannot create the work directory '{}': {}", m_directory.string(), ec.message());
+  // One submission at a time per plan: a second identical command waits here, then sees the
+  // first one's jobs in the record and follows them.
+  const FileLock lock(m_directory / "lock");
+  loadRecord();
   if (joinedBefore()) {
     result.alreadyJoined = true;
     return result;
   }
-  if (auto missing = slurmMissing()) throw Error(ErrorKind::Input, *missing);
-  std::error_code ec;
-  fs::create_directories(m_directory / "logs", ec);
-  if (ec) fail(ErrorKind::Output, "farm: cannot create the work directory '{}': {}", m_directory.string(), ec.message());
+  if (auto missing = m_scheduler->unavailable()) throw Error(ErrorKind::Input, *missing);
 
   const auto states = status();
   std::vector<int> needed;
@@ -418,124 +431,154 @@ Submission Farm::submit() {
       needed.push_back(i);
     }
   }
-  const auto sbatch = [&](std::vector<std::string> argv, const fs::path& script, const std::string& what) {
-    argv.insert(argv.begin(), {"sbatch", "--parsable"});
-    argv.push_back(script.string());
-    const auto r = runProcess(argv);
-    if (r.exitCode != 0) fail(ErrorKind::Input, "farm: Slurm refused the {}: {}", what, firstLine(r.output));
-    std::string id = firstLine(r.output);
-    id = id.substr(0, id.find(';'));  // "1234;cluster"
-    if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
-      fail(ErrorKind::Input, "farm: sbatch answered '{}' instead of a job id", firstLine(r.output));
-    return id;
-  };
   if (!needed.empty()) {
     const fs::path script = m_directory / "pieces.sh";
     writeTextAtomically(script, pieceScript(needed));
-    std::string array;
     for (int i : needed) {
-      array += (array.empty() ? "" : ",") + std::to_string(i);
       fs::remove(markerOf(m_directory, m_pieceKeys[std::size_t(i)]), ec);
       fs::remove(rcOf(m_directory, m_pieceKeys[std::size_t(i)]), ec);
     }
-    m_arrayJob = sbatch({"--array=" + array}, script, "pieces");
+    m_arrayJob = m_scheduler->submit({.script = script, .arrayTasks = needed});
     for (int i : needed) m_pieceJobs[std::size_t(i)] = m_arrayJob + "_" + std::to_string(i);
     dependencies.insert(dependencies.begin(), m_arrayJob);
     result.arrayJob = m_arrayJob;
+    saveRecord();  // before the join: a failure below still leaves the pieces known
   }
   result.submitted = needed;
   // A join from the last submission that is still waiting: kept when nothing was resubmitted
   // (it waits for exactly these pieces), else cancelled (it would wait for a failed one).
   std::string oldJoinState;
   if (!m_joinJob.empty())
-    for (const auto& record : showJobs(m_joinJob))
-      if (record.count("JobState")) oldJoinState = record.at("JobState");
+    for (const auto& [id, record] : m_scheduler->query(m_joinJob)) oldJoinState = record.state;
   if (!m_plan.join.empty() && liveState(oldJoinState)) {
     if (needed.empty()) {
       result.joinJob = m_joinJob;
       saveRecord();
       return result;
     }
-    runProcess({"scancel", m_joinJob});
+    m_scheduler->cancel(m_joinJob);
   }
   if (!m_plan.join.empty()) {
     const fs::path script = m_directory / "join.sh";
     writeTextAtomically(script, joinScript());
     fs::remove(m_directory / "joined", ec);
-    std::vector<std::string> argv;
-    if (!dependencies.empty()) {
-      std::string dep = "--dependency=afterok";
-      for (const auto& d : dependencies) dep += ":" + d;
-      argv = {dep, "--kill-on-invalid-dep=yes"};
-    }
-    m_joinJob = sbatch(argv, script, "join");
+    m_joinJob = m_scheduler->submit({.script = script, .afterOk = dependencies});
     result.joinJob = m_joinJob;
   }
   saveRecord();
   return result;
 }
 
-WaitResult Farm::wait(const std::function<void(int, int, const std::string&)>& progress) {
+WaitResult Farm::wait(const std::function<void(int, int, const std::string&)>& progress, const std::atomic<bool>* stop) {
   WaitResult result;
   const int total = int(m_plan.pieces.size());
   std::string lastLine;
+  const auto stopped = [&] { return stop && stop->load(); };
   while (true) {
     if (joinedBefore()) {
       result.joined = true;
       if (progress) progress(total, total, "joined");
       return result;
     }
+    if (stopped()) {
+      result.stopped = true;
+      return result;
+    }
     const auto states = status();
     int done = 0, running = 0, queued = 0;
-    std::vector<int> failed;
+    std::vector<int> failed, neverStart;
+    std::map<std::string, int> reasons;  // why the queued ones wait
     for (int i = 0; i < total; ++i) {
-      switch (states[std::size_t(i)].state) {
+      const PieceStatus& s = states[std::size_t(i)];
+      switch (s.state) {
         case PieceState::Done: ++done; break;
         case PieceState::Running: ++running; break;
-        case PieceState::Queued: ++queued; break;
+        case PieceState::Queued:
+          ++queued;
+          if (!s.reason.empty()) ++reasons[s.reason];
+          if (reasonIsPermanent(s.reason)) neverStart.push_back(i);
+          break;
         case PieceState::Failed: failed.push_back(i); break;
         case PieceState::Missing: failed.push_back(i); break;
       }
     }
-    std::string joinState;
-    std::string joinExit;
-    if (!m_plan.join.empty() && !m_joinJob.empty()) {
-      for (const auto& record : showJobs(m_joinJob)) {
-        joinState = record.count("JobState") ? record.at("JobState") : "";
-        joinExit = record.count("ExitCode") ? record.at("ExitCode") : "";
+    TaskRecord join;
+    if (!m_plan.join.empty() && !m_joinJob.empty())
+      for (const auto& [id, record] : m_scheduler->query(m_joinJob)) join = record;
+    // A task that can never start as submitted (more CPUs than any node has): said, and
+    // cancelled, instead of "queued" forever.
+    const bool joinNeverStarts = done == total && join.state == "PENDING" && reasonIsPermanent(join.reason);
+    if (!neverStart.empty() || joinNeverStarts) {
+      for (int i : neverStart) {
+        const PieceStatus& s = states[std::size_t(i)];
+        result.failures.push_back(fmt::format("piece {} ({}): can never start: {}", i,
+                                              m_plan.pieces[std::size_t(i)].label, explainReason(s.reason)));
       }
+      if (joinNeverStarts) result.failures.push_back(fmt::format("join: can never start: {}", explainReason(join.reason)));
+      if (!m_arrayJob.empty()) m_scheduler->cancel(m_arrayJob);
+      for (const auto& job : m_pieceJobs)
+        if (!job.empty() && job.substr(0, job.find('_')) != m_arrayJob) m_scheduler->cancel(job);
+      if (!m_joinJob.empty()) m_scheduler->cancel(m_joinJob);
+      result.failures.push_back("the queued tasks were cancelled: change the request (--cpus-per-task, --mem, --time, "
+                                "--partition) and run again");
+      result.exitCode = 2;
+      return result;
     }
     const bool live = running + queued > 0;
-    const bool joinEnded = !m_plan.join.empty() && (m_joinJob.empty() || (!liveState(joinState)));
+    const bool joinEnded = !m_plan.join.empty() && (m_joinJob.empty() || !liveState(join.state));
     if (!live && (!failed.empty() || joinEnded)) {
       if (joinedBefore()) continue;  // the join finished between the two looks
       for (int i : failed) {
         const PieceStatus& s = states[std::size_t(i)];
-        result.failures.push_back(fmt::format(
-            "piece {} ({}): {}{}; log: {}", i, m_plan.pieces[std::size_t(i)].label,
-            s.state == PieceState::Missing ? "never submitted" : (s.slurmState.empty() ? "failed" : s.slurmState),
-            s.exitCode.empty() ? "" : ", exit code " + s.exitCode, pieceLog(i).string()));
+        std::string what = s.state == PieceState::Missing ? "never submitted" : (s.slurmState.empty() ? "failed" : s.slurmState);
+        if (s.slurmState == "COMPLETED" || (!s.reason.empty() && s.reason != "NonZeroExitCode"))
+          what += fmt::format(" ({})", s.reason);
+        result.failures.push_back(fmt::format("piece {} ({}): {}{}; log: {}", i, m_plan.pieces[std::size_t(i)].label,
+                                              what, s.exitCode.empty() ? "" : ", exit code " + s.exitCode,
+                                              pieceLog(i).string()));
         if (result.exitCode == 0) {
-          const int code = std::atoi(s.exitCode.c_str());
+          int code = 0;
+          try {
+            code = parseInt(s.exitCode.substr(0, s.exitCode.find(':')), "an exit code", 0, 255);
+          } catch (const Error&) {
+          }
           result.exitCode = code > 0 ? code : 1;
         }
       }
       if (failed.empty()) {
-        result.failures.push_back(fmt::format("join: {}{}; log: {}", joinState.empty() ? "ended" : joinState,
-                                              joinExit.empty() ? "" : ", exit code " + joinExit, joinLog().string()));
-        const int code = std::atoi(joinExit.c_str());
+        result.failures.push_back(fmt::format("join: {}{}; log: {}", join.state.empty() ? "ended" : join.state,
+                                              join.exitCode.empty() ? "" : ", exit code " + join.exitCode,
+                                              joinLog().string()));
+        int code = 0;
+        try {
+          code = parseInt(join.exitCode.substr(0, join.exitCode.find(':')), "an exit code", 0, 255);
+        } catch (const Error&) {
+        }
         result.exitCode = code > 0 ? code : 1;
-      } else if (!m_joinJob.empty() && liveState(joinState)) {
-        runProcess({"scancel", m_joinJob});  // its dependency can never be satisfied
+      } else if (!m_joinJob.empty() && liveState(join.state)) {
+        m_scheduler->cancel(m_joinJob);  // its dependency can never be satisfied
       }
       return result;
     }
-    std::string line = fmt::format("{}/{} pieces done, {} running, {} queued{}", done, total, running, queued,
-                                   failed.empty() ? "" : fmt::format(", {} failed", failed.size()));
-    if (done == total && !m_plan.join.empty()) line += joinState == "RUNNING" ? " · joining" : " · join queued";
+    std::string line = fmt::format("{}/{} pieces done, {} running, {} queued", done, total, running, queued);
+    if (!reasons.empty()) {
+      const auto most = std::max_element(reasons.begin(), reasons.end(),
+                                         [](const auto& a, const auto& b) { return a.second < b.second; });
+      line += fmt::format(" ({})", explainReason(most->first));
+    }
+    if (!failed.empty()) line += fmt::format(", {} failed", failed.size());
+    if (done == total && !m_plan.join.empty()) {
+      line += join.state == "RUNNING" ? " · joining"
+                                      : fmt::format(" · join queued{}", join.reason.empty() || join.reason == "Dependency"
+                                                                            ? ""
+                                                                            : " (" + explainReason(join.reason) + ")");
+    }
+    if ((queued > 0 && running == 0) || (done == total && join.state == "PENDING")) {
+      for (const auto& problem : m_scheduler->nodeProblems()) line += "; " + problem;
+    }
     if (progress && line != lastLine) progress(done, total, line);
     lastLine = line;
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    for (int i = 0; i < 6 && !stopped(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
 }
 

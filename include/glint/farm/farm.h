@@ -7,26 +7,35 @@
 // `glint post --concat`, one `glint bake --batch F --job i` per bake. A Plan is such a job
 // written down: the pieces (plain glint command lines, each writing its own files) and the
 // join (one command line that reads every piece's output and writes the final output).
-// A Farm submits a plan to Slurm as one job array (task i = piece i) and one join job that
-// depends on the whole array (`afterok`, killed when a dependency fails), through the
-// standard client commands — sbatch, squeue, scontrol, scancel — so nothing links Slurm and
-// any Slurm version with those commands works.
+// A Farm submits a plan to a Scheduler (farm/scheduler.h: Slurm, or this machine) as one job
+// array (task i = piece i) and one join job that depends on the whole array (`afterok`,
+// cancelled when a dependency fails).
 //
 //   pieces named     every piece has a key: a hash of its command line (glint's own
 //   by their inputs  options, the piece's index) and of each input file's absolute path, size
 //                    and modification time. Its output is `<work dir>/<key>.<ext>`, and a
-//                    piece counts as done when its output and its marker (`<key>.done`,
-//                    written by the task after glint exits 0) are both there.
+//                    piece counts as done when its marker (`<key>.done`, written by the task
+//                    after glint exits 0) is there and its outputs are the ones the marker
+//                    recorded (size and modification time): a file put there since does not
+//                    count.
+//   already made     the join records the final outputs' size and modification time; a plan
+//                    counts as joined only while its outputs are those very files.
 //   resubmit rule    running the same plan again submits only the pieces that are not done
 //                    and not still queued or running (a live task from the last submission is
 //                    waited for, not doubled), then the join; a plan whose join already
-//                    succeeded submits nothing.
+//                    succeeded submits nothing. Submissions hold a lock on the plan's
+//                    directory, so a second identical command at the same time follows the
+//                    first's jobs instead of submitting them again.
 //   atomic outputs   each piece and the join write through glint's own atomic writes, so a
 //                    cancelled task leaves no half file under the final name; the join job
 //                    removes the intermediates only after the join command succeeded.
-//   faults           wait() follows the tasks (squeue, then scontrol for tasks that ended)
-//                    and reports every failed or cancelled one with its state, exit code
-//                    and log file; the join does not run.
+//   faults           wait() follows the tasks and reports every failed or cancelled one with
+//                    its state, exit code and log file; the join does not run. A task that
+//                    can never start (Slurm's PartitionConfig: more CPUs than a node has) is
+//                    reported and cancelled instead of being waited for.
+//   scripts          every string in a batch script is a quoted shell word, an escaped
+//                    comment or a checked #SBATCH value (docs/farm.md, "What reaches a batch
+//                    script"): no file name runs as a command or cuts the directives short.
 //
 /// ```cpp
 /// glint::farm::Plan plan;
@@ -46,15 +55,18 @@
 /// plan.outputs = {"/shared/graded.mkv"};
 /// glint::farm::Resources resources;
 /// resources.memoryMiB = 2048;
-/// glint::farm::Farm farm(plan, resources);   // finds sbatch, keys the pieces, reads the work dir
+/// glint::farm::Farm farm(plan, resources);   // Slurm; keys the pieces, reads the work dir
 /// std::string scripts = farm.scripts();      // what --dry-run prints: the two batch scripts
 /// // farm.submit() submits what is missing; farm.wait() follows it (see below).
 /// ```
 //
-// Errors are glint::Error with one line: Usage for a plan without pieces or an option
-// Slurm would refuse, Input for a missing `sbatch` ("install slurm-client") or a
-// submission Slurm refused (its own message), Output for a work directory that cannot be
-// written.
+// Errors are glint::Error with one line: Usage for a plan without pieces or a string no
+// #SBATCH line can hold (a line break in the work directory's name), Input for a missing
+// `sbatch` ("install slurm-client") or a submission Slurm refused (its own message), Output
+// for a work directory that cannot be written.
+#include "glint/farm/scheduler.h"
+
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -106,13 +118,16 @@ struct PieceStatus {
   std::string slurmState;  ///< "COMPLETED", "FAILED", "CANCELLED", "TIMEOUT", ... (empty when unknown)
   std::string exitCode;    ///< Slurm's "code:signal", e.g. "3:0", "0:15"; or the rc the task wrote
   std::string jobId;       ///< "1234_2" once submitted
+  std::string reason;      ///< why it is queued or ended ("Resources", "PartitionConfig"); empty for none
 };
 
 /// The outcome of wait().
 struct WaitResult {
   bool joined = false;           ///< the join succeeded: the outputs exist
+  bool stopped = false;          ///< the stop flag was set: the jobs go on without being followed
   std::vector<std::string> failures;  ///< one line per failed or cancelled task: label, state, exit code, log
-  int exitCode = 0;              ///< 0 when joined; else the first failed task's exit code, or 1
+  int exitCode = 0;              ///< 0 when joined; else the first failed task's exit code, or 1; 2 for a
+                                 ///< task that can never start (cancelled)
 };
 
 /// What submit() did.
@@ -127,8 +142,9 @@ struct Submission {
 class Farm {
 public:
   /// Keys the pieces (reads the inputs' size and time) and loads the work directory's
-  /// record of an earlier submission. Error(Usage) for a plan without pieces.
-  Farm(Plan plan, Resources resources);
+  /// record of an earlier submission. Error(Usage) for a plan without pieces, or for a work
+  /// directory, partition or time no #SBATCH line can hold. `scheduler`: Slurm when null.
+  Farm(Plan plan, Resources resources, std::shared_ptr<Scheduler> scheduler = nullptr);
 
   /// The plan's directory: `<workDir>/<tool>-<plan key>`.
   const std::filesystem::path& directory() const { return m_directory; }
@@ -143,16 +159,27 @@ public:
   /// headed by its `sbatch` line: what `glint farm --dry-run` prints. Submits nothing.
   std::string scripts() const;
 
-  /// Submits the pieces that are neither done nor live, and the join. Error(Input) when
-  /// sbatch is missing or refuses.
+  /// Submits the pieces that are neither done nor live, and the join, under a lock on the
+  /// plan's directory. Error(Input) when the scheduler is missing or refuses.
   Submission submit();
 
   /// Follows the submission until the join has ended or a task failed and nothing is left
-  /// running; `progress(done, total, line)` is called whenever something changes.
-  WaitResult wait(const std::function<void(int done, int total, const std::string& line)>& progress = {});
+  /// running; `progress(done, total, line)` is called whenever something changes (the line
+  /// names a queued task's reason and nodes that are down). Returns early, `stopped`, once
+  /// `*stop` is set (Ctrl-C): the jobs go on.
+  WaitResult wait(const std::function<void(int done, int total, const std::string& line)>& progress = {},
+                  const std::atomic<bool>* stop = nullptr);
 
-  /// Each piece's state now (markers, then squeue and scontrol).
+  /// Each piece's state now (markers, then the scheduler).
   std::vector<PieceStatus> status();
+
+  /// Whether the plan's outputs are the files its join (or, without a join, its pieces)
+  /// recorded: "already made by this very job".
+  bool joinedBefore() const;
+  /// The array's and the join's job ids of the latest submission ("" when none).
+  const std::string& arrayJob() const { return m_arrayJob; }
+  const std::string& joinJob() const { return m_joinJob; }
+  Scheduler& scheduler() { return *m_scheduler; }
 
 private:
   void keyPieces();
@@ -163,10 +190,10 @@ private:
   std::vector<std::string> pieceCommand(int i) const;
   std::vector<std::string> joinCommand() const;
   bool pieceDone(int i) const;
-  bool joinedBefore() const;
 
   Plan m_plan;
   Resources m_resources;
+  std::shared_ptr<Scheduler> m_scheduler;
   std::string m_key;                   ///< the plan's key (all piece keys and the join)
   std::vector<std::string> m_pieceKeys;
   std::filesystem::path m_directory;
@@ -174,10 +201,6 @@ private:
   std::vector<std::string> m_pieceJobs;  ///< per piece, "ARRAY_TASK" of its latest submission
 };
 
-/// Whether Slurm's client commands are on PATH; when not, the one-line reason ("sbatch not
-/// found: install Debian's slurm-client (apt install slurm-client) and point SLURM_CONF at the
-/// cluster's slurm.conf").
-std::optional<std::string> slurmMissing();
 
 /// Splits frames [first, end) into at most `chunks` ranges whose starts are keyframes (so
 /// each range decodes on its own), as even as the keyframes allow. `keyframes` are frame
