@@ -9,6 +9,7 @@
 // GLINT_COMMANDS in app/CMakeLists.txt. main.cpp declares and registers every command from
 // that one list (the generated commands.inc); nothing else changes.
 #include "glint/core/math.h"
+#include "glint/core/options.h"
 #include "glint/core/text.h"
 #include "glint/core/tool.h"
 
@@ -32,21 +33,5 @@ struct Command {
   bool readsImages = true;   ///< start loading the image I/O module in the background at once
 };
 
-/// Binds the options every offline tool takes to `settings`: --threads, -q/--quiet and
-/// --json FILE ('-' for stdout). `reportContents` completes the --json help text ("texels,
-/// rays, hit ratio"); the common fields (phase times, peak memory, ...) are listed for it.
-void addToolOptions(CLI::App& command, ToolSettings& settings, const std::string& reportContents);
-
-/// One bake of a batch file (`glint bake --batch`), as `glint farm bake` plans it: where it
-/// is for messages ("bake: jobs.json job 2 (crate_low.obj)"), the files it reads and writes
-/// (relative paths already resolved against the batch file's folder), its memory estimate.
-struct BatchBake {
-  std::string where;
-  std::vector<std::string> inputs, outputs;
-  double memoryMiB = 0.0;
-};
-/// The bakes of a batch file, parsed and checked as `glint bake --batch` does (Error(Usage)
-/// naming the job, Error(Input) for an unreadable file). cmd_bake.cpp.
-std::vector<BatchBake> batchBakes(const std::string& file);
 
 }  // namespace glint::app

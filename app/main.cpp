@@ -4,6 +4,7 @@
 
 #include "glint/core/error.h"
 #include "glint/core/log.h"
+#include "glint/core/options.h"
 #include "glint/image/image.h"
 
 #include <charconv>
@@ -19,24 +20,6 @@ namespace glint::app {
 #define GLINT_COMMAND(name) Command name##Command(CLI::App& app, const GlobalOptions& global);
 #include "commands.inc"
 #undef GLINT_COMMAND
-
-void addToolOptions(CLI::App& command, ToolSettings& settings, const std::string& reportContents) {
-  command.add_option("--threads", settings.threads, "Worker threads (default: all cores); the output does not depend on it")
-      ->check(CLI::Validator(
-          [](const std::string& text) {
-            int value = -1;
-            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-            if (ec != std::errc() || end != text.data() + text.size() || value < 0) return fmt::format("'{}' is not 0 (every core) or a number of threads", text);
-            return std::string();
-          },
-          "N"));
-  command.add_flag("-q,--quiet", settings.quiet, "No progress bar or info messages, only warnings and errors");
-  command.add_option("--max-memory", settings.maxMemory,
-                     "Refuse a job estimated to need more memory than this (MiB, or 512M, 4G) with a clear error, before it starts");
-  command.add_option("--json", settings.json,
-                     "Write a JSON report (" + reportContents + "; phase times, peak memory, threads, warnings) to "
-                     "this file, '-' for stdout");
-}
 
 }  // namespace glint::app
 
@@ -101,8 +84,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "glint: %s\n", e.what());
     return exitCode(e.kind());
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "glint: out of memory (the job needs more than this machine has; see --max-memory)\n");
-    return 1;
+    std::fprintf(stderr, "glint: out of memory: the job needed more than this machine could give (a smaller job, or "
+                 "--max-memory to be told before it starts)\n");
+    return exitCode(ErrorKind::OutOfMemory);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint: internal error: %s\n", e.what());
     return 1;

@@ -53,7 +53,7 @@ set(glint_optional_components cut=GLINT_BUILD_CUT bench=GLINT_BUILD_BENCH window
 set(glint_dependency_names
   fmt::fmt=fmt glm::glm=glm nlohmann_json::nlohmann_json=nlohmann_json Threads::Threads=Threads TBB::tbb=TBB
   assimp::assimp=assimp tinyobjloader::tinyobjloader=tinyobjloader draco::draco=draco embree=embree
-  CGAL::CGAL=CGAL TinyGLTF::TinyGLTF=TinyGLTF glfw=glfw3
+  CGAL::CGAL=CGAL TinyGLTF::TinyGLTF=TinyGLTF glfw=glfw3 CLI11::CLI11=CLI11
   PkgConfig::EPOXY=epoxy PkgConfig::EGL=egl PkgConfig::SPNG=spng
   PkgConfig::FFTW=peers glint_deps::fftw_threads=peers glint_deps::opencv=peers)
 

@@ -8,28 +8,34 @@
 
 namespace glint::bake {
 
-PixelType outputType(const std::filesystem::path& path, int bits) {
+namespace {
+struct Format {
+  const char* ext;
+  int defaultBits;
+  bool allows8, allows16, allows32;
+};
+constexpr Format kFormats[] = {
+    {".png", 8, true, true, false},  {".tga", 8, true, false, false},  {".tif", 16, true, true, false},
+    {".tiff", 16, true, true, false}, {".exr", 32, false, false, true},
+};
+const Format& formatOf(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  struct Format {
-    const char* ext;
-    int defaultBits;
-    bool allows8, allows16, allows32;
-  };
-  static const Format kFormats[] = {
-      {".png", 8, true, true, false},  {".tga", 8, true, false, false},  {".tif", 16, true, true, false},
-      {".tiff", 16, true, true, false}, {".exr", 32, false, false, true},
-  };
-  for (const Format& f : kFormats) {
-    if (ext != f.ext) continue;
-    const int b = bits == 0 ? f.defaultBits : bits;
-    if ((b == 8 && f.allows8) || (b == 16 && f.allows16) || (b == 32 && f.allows32)) {
-      return b == 8 ? PixelType::U8 : b == 16 ? PixelType::U16 : PixelType::F32;
-    }
-    fail(ErrorKind::Usage, "'{}': {} cannot hold {}-bit maps (PNG 8/16, TGA 8, TIFF 8/16, EXR 32 float)",
-         path.string(), ext, b);
-  }
+  for (const Format& f : kFormats)
+    if (ext == f.ext) return f;
   fail(ErrorKind::Usage, "'{}': unknown map format '{}' (use .png, .tga, .tif or .exr)", path.string(), ext);
+}
+bool allows(const Format& f, int bits) {
+  return (bits == 8 && f.allows8) || (bits == 16 && f.allows16) || (bits == 32 && f.allows32);
+}
+}  // namespace
+
+bool holdsBits(const std::filesystem::path& path, int bits) { return allows(formatOf(path), bits); }
+
+PixelType outputType(const std::filesystem::path& path, int bits) {
+  const Format& f = formatOf(path);
+  const int b = bits != 0 && allows(f, bits) ? bits : f.defaultBits;
+  return b == 8 ? PixelType::U8 : b == 16 ? PixelType::U16 : PixelType::F32;
 }
 
 Image forOutput(const Image& image, PixelType type) { return image.converted(type); }

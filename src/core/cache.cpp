@@ -80,7 +80,7 @@ CacheEntry cachedFile(const fs::path& directory, const std::string& name, const 
   // Another process may have built it while this one waited for the lock: a file is there
   // and (when rebuilding) it is not the one the caller found bad.
   if (fs::is_regular_file(path, ec) && (!rebuild || identity(path) != seen)) return {path, false};
-  writeAtomically(path, build);
+  writeAtomically(path, build, Commit::Now);  // read back by the caller at once
   return {path, true};
 }
 

@@ -9,6 +9,7 @@ int exitCode(ErrorKind kind) {
     case ErrorKind::Input: return 3;
     case ErrorKind::Output: return 4;
     case ErrorKind::NoGpu: return 5;
+    case ErrorKind::OutOfMemory: return 6;
     case ErrorKind::Interrupted: return 130;
   }
   return 1;

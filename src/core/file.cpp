@@ -4,6 +4,7 @@
 
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -19,6 +20,8 @@
 namespace glint {
 namespace fs = std::filesystem;
 
+// ---------------------------------------------------------------------------- output sets
+
 namespace {
 // Temporary files are named ".<stem>.tmp<pid>-<n><extension>": hidden, saying what they
 // are, and naming the process that writes them.
@@ -29,6 +32,158 @@ fs::path temporarySibling(const fs::path& destination) {
   return destination.parent_path() / name;
 }
 
+}  // namespace
+
+struct OutputSet::Impl {
+  struct Staged {
+    fs::path destination;  ///< as written
+    fs::path key;          ///< absolute, normalized
+    fs::path temporary;
+  };
+  std::mutex mutex;
+  std::vector<Staged> staged;
+  Impl* previous = nullptr;  ///< the set that was open before this one
+};
+
+namespace {
+std::mutex g_setsMutex;
+OutputSet::Impl* g_openSet = nullptr;  ///< the innermost open set
+
+fs::path keyOf(const fs::path& p) {
+  std::error_code ec;
+  const fs::path a = fs::absolute(p, ec);
+  return (ec ? p : a).lexically_normal();
+}
+
+/// Stages `temporary` (complete) for `destination` in the open set; false when none is open.
+bool stageInOpenSet(const fs::path& destination, const fs::path& temporary) {
+  const std::lock_guard lock(g_setsMutex);
+  if (!g_openSet) return false;
+  const std::lock_guard setLock(g_openSet->mutex);
+  const fs::path key = keyOf(destination);
+  for (auto& s : g_openSet->staged) {
+    if (s.key != key) continue;
+    std::error_code ignored;  // written twice in one run: the later file wins
+    fs::remove(s.temporary, ignored);
+    s.temporary = temporary;
+    return true;
+  }
+  g_openSet->staged.push_back({destination, key, temporary});
+  return true;
+}
+
+/// Whether the filesystem holding `path`'s folder is (nearly) full: under 64 KiB for us.
+bool filesystemFull(const fs::path& path) {
+  const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  struct statvfs st {};
+  if (::statvfs(dir.c_str(), &st) != 0) return false;
+  return double(st.f_bavail) * double(st.f_frsize) < 64.0 * 1024.0;
+}
+}  // namespace
+
+std::string writeFailure(const fs::path& destination, int error) {
+  const fs::path dir = destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
+  if (error == ENOSPC || error == EDQUOT || filesystemFull(destination)) {
+    struct statvfs st {};
+    const bool known = ::statvfs(dir.c_str(), &st) == 0;
+    const double freeKiB = known ? double(st.f_bavail) * double(st.f_frsize) / 1024.0 : 0.0;
+    return fmt::format("no space left on device{}", known ? fmt::format(" ({:.0f} KiB free on its filesystem)", freeKiB) : "");
+  }
+  return error ? std::string(std::strerror(error)) : std::string("write error");
+}
+
+OutputSet::OutputSet() : m_impl(std::make_unique<Impl>()) {
+  const std::lock_guard lock(g_setsMutex);
+  m_impl->previous = g_openSet;
+  g_openSet = m_impl.get();
+}
+
+OutputSet::~OutputSet() {
+  {
+    const std::lock_guard lock(g_setsMutex);
+    // Unlink this set from the chain (sets close in the reverse order of opening, but be safe).
+    if (g_openSet == m_impl.get()) {
+      g_openSet = m_impl->previous;
+    } else {
+      for (Impl* s = g_openSet; s; s = s->previous)
+        if (s->previous == m_impl.get()) s->previous = m_impl->previous;
+    }
+  }
+  discard();
+}
+
+void OutputSet::discard() {
+  const std::lock_guard lock(m_impl->mutex);
+  for (const auto& s : m_impl->staged) {
+    std::error_code ignored;
+    fs::remove(s.temporary, ignored);
+  }
+  m_impl->staged.clear();
+}
+
+bool OutputSet::staged(const fs::path& destination) const {
+  const std::lock_guard lock(m_impl->mutex);
+  const fs::path key = keyOf(destination);
+  for (const auto& s : m_impl->staged)
+    if (s.key == key) return true;
+  return false;
+}
+
+void OutputSet::redirect(const fs::path& destination, const fs::path& other) {
+  const std::lock_guard lock(m_impl->mutex);
+  const fs::path key = keyOf(destination);
+  for (auto& s : m_impl->staged) {
+    if (s.key != key) continue;
+    // The temporary sits beside `destination`; `other` is a name in the same folder.
+    s.destination = other;
+    s.key = keyOf(other);
+    return;
+  }
+  fail(ErrorKind::Internal, "OutputSet::redirect: nothing staged for '{}'", destination.string());
+}
+
+void OutputSet::commit() {
+  const std::lock_guard lock(m_impl->mutex);
+  auto& staged = m_impl->staged;
+  // Keep each file about to be replaced as a hard link, so a failed rename can put it back.
+  std::vector<fs::path> backups(staged.size());
+  for (std::size_t i = 0; i < staged.size(); ++i) {
+    struct stat st {};
+    if (::lstat(staged[i].destination.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
+    const fs::path backup = temporarySibling(staged[i].destination);
+    if (::link(staged[i].destination.c_str(), backup.c_str()) == 0) backups[i] = backup;
+  }
+  const auto removeAll = [](const std::vector<fs::path>& paths) {
+    for (const auto& p : paths) {
+      std::error_code ignored;
+      if (!p.empty()) fs::remove(p, ignored);
+    }
+  };
+  for (std::size_t i = 0; i < staged.size(); ++i) {
+    if (::rename(staged[i].temporary.c_str(), staged[i].destination.c_str()) == 0) continue;
+    const int error = errno;
+    // Put back what was renamed, newest first: the previous file, or none where there was none.
+    for (std::size_t j = i; j-- > 0;) {
+      std::error_code ignored;
+      if (!backups[j].empty()) fs::rename(backups[j], staged[j].destination, ignored);
+      else fs::remove(staged[j].destination, ignored);
+      backups[j].clear();
+    }
+    for (std::size_t j = i; j < staged.size(); ++j) {
+      std::error_code ignored;
+      fs::remove(staged[j].temporary, ignored);
+    }
+    removeAll(backups);
+    const fs::path failed = staged[i].destination;
+    staged.clear();
+    fail(ErrorKind::Output, "cannot write '{}': {}; no output of this run was written", failed.string(),
+         writeFailure(failed, error));
+  }
+  removeAll(backups);
+  staged.clear();
+}
+
+namespace {
 /// The writer's process id in a temporary file's name, or 0 when it is not one of ours.
 pid_t temporaryOwner(const std::string& name) {
   if (name.size() < 2 || name[0] != '.') return 0;
@@ -138,19 +293,32 @@ void checkWritable(const fs::path& destination) {
   }
 }
 
-void writeAtomically(const fs::path& destination, const std::function<void(const fs::path&)>& write) {
+void writeAtomically(const fs::path& destination, const std::function<void(const fs::path&)>& write, Commit when) {
   checkWritable(destination);
   removeStaleTemporaries(destination.parent_path().empty() ? fs::path(".") : destination.parent_path());
   const fs::path tmp = temporarySibling(destination);
   try {
     write(tmp);
-    std::error_code ec;
-    fs::rename(tmp, destination, ec);
-    if (ec) fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ec.message());
+  } catch (const std::exception& e) {
+    const int error = errno;
+    // A writer that failed for want of space says so, whatever its own words were.
+    const bool full = error == ENOSPC || filesystemFull(tmp);
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    if (full) fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeFailure(destination, ENOSPC));
+    throw;
   } catch (...) {
     std::error_code ignored;
     fs::remove(tmp, ignored);
     throw;
+  }
+  if (when == Commit::WithRun && stageInOpenSet(destination, tmp)) return;  // renamed with the run's other outputs
+  std::error_code ec;
+  fs::rename(tmp, destination, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ec.message());
   }
 }
 
@@ -171,6 +339,10 @@ AtomicFile::AtomicFile(AtomicFile&& other) noexcept
       m_committed(other.m_committed) {}
 
 void AtomicFile::commit() {
+  if (stageInOpenSet(m_destination, m_temporary)) {  // the open OutputSet renames it with the rest
+    m_committed = true;
+    return;
+  }
   std::error_code ec;
   fs::rename(m_temporary, m_destination, ec);
   if (ec) fail(ErrorKind::Output, "cannot write '{}': {}", m_destination.string(), ec.message());
@@ -182,7 +354,7 @@ void writeTextAtomically(const fs::path& destination, std::string_view contents)
     std::ofstream out(tmp, std::ios::binary);
     out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
     out.close();
-    if (!out) fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), std::strerror(errno));
+    if (!out) fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeFailure(destination, errno));
   });
 }
 

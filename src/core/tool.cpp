@@ -6,12 +6,14 @@
 #include "glint/core/text.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 
 #ifndef GLINT_VERSION
 #error "GLINT_VERSION must be defined by the build"
@@ -32,6 +34,7 @@ extern "C" void onInterrupt(int signal) {
 }  // namespace
 
 struct ToolRun::Impl {
+  OutputSet outputs;  ///< opened with the run: its outputs stage here until finish()
   void (*previousInt)(int) = SIG_DFL;
   void (*previousTerm)(int) = SIG_DFL;
   std::unique_ptr<tbb::global_control> threadLimit;
@@ -96,16 +99,35 @@ void ToolRun::warn(const std::string& message) {
   m_warnings.push_back(message);
 }
 
+const char* ToolRun::version() { return GLINT_VERSION; }
+
+double ToolRun::physicalMemoryMiB() {
+  if (const char* fake = std::getenv("GLINT_PHYSICAL_MEMORY_MIB")) {  // tests: a machine of another size
+    try {
+      return parseMemorySize(fake, "GLINT_PHYSICAL_MEMORY_MIB");
+    } catch (const Error&) {
+    }
+  }
+  return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)) / (1024.0 * 1024.0);
+}
+
 void ToolRun::checkMemory(double estimateMiB, const std::string& what) {
   m_report["memory_estimate_mib"] = std::round(estimateMiB);
+  const auto size = [](double mib) {
+    return mib >= 10240.0 ? fmt::format("{:.1f} GiB", mib / 1024.0)
+           : mib >= 1.0   ? fmt::format("{:.0f} MiB", mib)
+                          : fmt::format("{:.0f} KiB", mib * 1024.0);
+  };
   if (m_maxMemoryMiB > 0.0 && estimateMiB > m_maxMemoryMiB) {
-    const auto size = [](double mib) {
-      return mib >= 10240.0 ? fmt::format("{:.1f} GiB", mib / 1024.0)
-             : mib >= 1.0   ? fmt::format("{:.0f} MiB", mib)
-                            : fmt::format("{:.0f} KiB", mib * 1024.0);
-    };
     fail(ErrorKind::Usage, "{}: {} needs about {}, more than --max-memory {} ({}) allows", m_tool, what,
          size(estimateMiB), m_settings.maxMemory, size(m_maxMemoryMiB));
+  }
+  // Without --max-memory, the machine itself is the limit: a job it cannot hold is refused
+  // now rather than killed (or swapping) hours in. --max-memory above it overrides.
+  const double physical = physicalMemoryMiB();
+  if (m_maxMemoryMiB <= 0.0 && physical > 0.0 && estimateMiB > physical) {
+    fail(ErrorKind::Usage, "{}: {} needs about {}, more than this machine's {} of memory; a smaller job, or "
+         "--max-memory {:.0f} to try anyway", m_tool, what, size(estimateMiB), size(physical), std::ceil(estimateMiB));
   }
 }
 
@@ -130,16 +152,17 @@ nlohmann::ordered_json ToolRun::completedReport() const {
   return out;
 }
 
+OutputSet& ToolRun::outputs() { return m_impl->outputs; }
+
 nlohmann::ordered_json ToolRun::finish() {
   nlohmann::ordered_json out = completedReport();
-  if (m_settings.json.empty()) return out;
   // Non-finite numbers have no JSON spelling: nlohmann writes them as null.
   const std::string text = out.dump(2) + "\n";
+  if (!m_settings.json.empty() && m_settings.json != "-") writeTextAtomically(m_settings.json, text);
+  m_impl->outputs.commit();  // every output of the run, the report included, or none
   if (m_settings.json == "-") {
     std::fputs(text.c_str(), stdout);
     std::fflush(stdout);
-  } else {
-    writeTextAtomically(m_settings.json, text);
   }
   return out;
 }

@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/hash.h"
+#include "glint/core/options.h"
 #include "glint/core/text.h"
 #include "process.h"
 #include "script.h"
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -126,6 +128,22 @@ private:
 };
 
 }  // namespace
+
+std::int64_t taskMemoryMiB(const Split& split, double estimateMiB) {
+  if (split.memoryMiB > 0) return split.memoryMiB;
+  return (std::int64_t(std::ceil(estimateMiB * 1.25)) + 63) / 64 * 64;
+}
+
+std::vector<std::string> pieceSettings(const ToolSettings& given, const Split& split, std::int64_t taskMiB) {
+  ToolSettings s{.threads = given.threads > 0 ? given.threads : split.cpusPerTask, .quiet = given.quiet,
+                 .maxMemory = !given.maxMemory.empty() ? given.maxMemory : taskMiB > 0 ? std::to_string(taskMiB) : ""};
+  return toolArguments(s);
+}
+
+std::string absolutePath(const std::string& path) {
+  if (path.empty() || path == "-") return path;
+  return fs::absolute(path).lexically_normal().string();
+}
 
 std::vector<std::pair<std::int64_t, std::int64_t>> splitEvenly(std::int64_t first, std::int64_t end, int chunks) {
   std::vector<std::pair<std::int64_t, std::int64_t>> ranges;

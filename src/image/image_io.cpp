@@ -333,18 +333,10 @@ void checkImageOutput(const fs::path& path, std::string_view format) {
   if (path != "-") checkWritable(path);
 }
 
-void saveImage(const Image& image, const fs::path& path, std::string_view format) {
-  if (path == "-") {  // encoded to a temporary file, then copied to stdout
-    TemporaryFile file(outputExtension(path, format));
-    saveImage(image, file.path());
-    const std::string bytes = readTextFile(file.path());
-    if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0) {
-      fail(ErrorKind::Output, "cannot write the image to stdout: {}", std::strerror(errno));
-    }
-    return;
-  }
-  if (image.empty()) fail(ErrorKind::Internal, "cannot save an empty image to '{}'", path.string());
-  const std::string ext = lowerExtension(path);
+namespace {
+/// Encodes `image` into the file `target` (written directly), in the format of `ext`;
+/// messages name `path`.
+void encodeImage(const Image& image, const fs::path& path, const std::string& ext, const fs::path& target) {
   const PixelType widest = widestTypeFor(ext);
   const Image* toWrite = &image;
   Image convertedImage;
@@ -353,23 +345,38 @@ void saveImage(const Image& image, const fs::path& path, std::string_view format
     toWrite = &convertedImage;
   }
   if (ext == ".png") {
-    writeAtomically(path, [&](const fs::path& tmp) { writePng(*toWrite, path, tmp); });
+    writePng(*toWrite, path, target);
     return;
   }
-  writeAtomically(path, [&](const fs::path& tmp) {
-    const OiioApi& oiio = theModule().get();
-    std::array<char, kErrorSize> error{};
-    const int status = oiio.write(tmp.c_str(), toWrite->width(), toWrite->height(), toWrite->channels(),
-                                  static_cast<int>(toWrite->type()), toWrite->bytes().data(),
-                                  toWrite->channels() == 4, error.data(), error.size());
-    switch (status) {
-      case GLINT_OIIO_OK: return;
-      case GLINT_OIIO_UNKNOWN_FORMAT:
-        fail(ErrorKind::Output, "cannot write '{}': unknown image format '{}'", path.string(), ext);
-      case GLINT_OIIO_EXCEPTION: throw std::runtime_error(error.data());
-      default: fail(ErrorKind::Output, "cannot write '{}': {}", path.string(), error.data());
+  const OiioApi& oiio = theModule().get();
+  std::array<char, kErrorSize> error{};
+  const int status = oiio.write(target.c_str(), toWrite->width(), toWrite->height(), toWrite->channels(),
+                                static_cast<int>(toWrite->type()), toWrite->bytes().data(), toWrite->channels() == 4,
+                                error.data(), error.size());
+  switch (status) {
+    case GLINT_OIIO_OK: return;
+    case GLINT_OIIO_UNKNOWN_FORMAT:
+      fail(ErrorKind::Output, "cannot write '{}': unknown image format '{}'", path.string(), ext);
+    case GLINT_OIIO_EXCEPTION: throw std::runtime_error(error.data());
+    default: fail(ErrorKind::Output, "cannot write '{}': {}", path.string(), error.data());
+  }
+}
+}  // namespace
+
+void saveImage(const Image& image, const fs::path& path, std::string_view format) {
+  if (image.empty()) fail(ErrorKind::Internal, "cannot save an empty image to '{}'", path.string());
+  if (path == "-") {  // encoded into a temporary file (codecs write files), then copied to stdout
+    const std::string ext = outputExtension(path, format);
+    TemporaryFile file(ext);
+    encodeImage(image, "stdout", ext, file.path());
+    const std::string bytes = readTextFile(file.path());
+    if (std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size() || std::fflush(stdout) != 0) {
+      fail(ErrorKind::Output, "cannot write the image to stdout: {}", std::strerror(errno));
     }
-  });
+    return;
+  }
+  const std::string ext = lowerExtension(path);
+  writeAtomically(path, [&](const fs::path& tmp) { encodeImage(image, path, ext, tmp); });
 }
 
 }  // namespace glint

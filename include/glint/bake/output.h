@@ -21,9 +21,12 @@
 
 namespace glint::bake {
 
-/// Pixel type for `path` given the requested bits (0: the format's default). Error(Usage)
-/// for an unknown extension or a depth the format cannot hold.
+/// Pixel type for `path` given the requested bits: `bits` when the format holds that depth,
+/// else the format's default (8 PNG/TGA, 16 TIFF, 32 float EXR), as `--bits` applies to the
+/// maps whose format has it. Error(Usage) for an unknown extension.
 PixelType outputType(const std::filesystem::path& path, int bits = 0);
+/// Whether the format of `path` holds `bits`-bit channels (PNG 8/16, TGA 8, TIFF 8/16, EXR 32).
+bool holdsBits(const std::filesystem::path& path, int bits);
 
 /// `image` (F32) converted to `type`, values clamped to 0..1 for integer types.
 Image forOutput(const Image& image, PixelType type);

@@ -30,6 +30,8 @@ enum class ErrorKind {
   Input,      ///< unreadable, corrupt or unsuitable input data (exit 3)
   Output,     ///< output cannot be written (exit 4)
   NoGpu,      ///< no suitable OpenGL context (exit 5)
+  OutOfMemory,  ///< the allocator could not satisfy the job (exit 6); jobs estimated above the
+                ///< machine's memory are refused before they start (Usage, exit 2)
   Interrupted ///< the user pressed Ctrl-C (exit 130)
 };
 

@@ -8,6 +8,14 @@
 // leaves its temporary, named ".<stem>.tmp<pid>-<n><ext>"; the next write into that
 // directory removes such files whose process is gone.
 //
+// A run with several outputs writes all of them or none: while an OutputSet is open (every
+// ToolRun opens one, core/tool.h), the files written through this header are staged — each
+// complete in its temporary — and renamed into place together by OutputSet::commit(), which
+// ToolRun::finish() calls after the last output. A run that fails or is interrupted before
+// then (a full disk at its third output, an error, Ctrl-C) removes its temporaries: every
+// existing output is left as it was. A write that fails for want of space says so: "cannot
+// write 'x.png': no space left on device".
+//
 /// ```cpp
 /// #include <fstream>
 /// glint::writeAtomically("out.txt", [&](const std::filesystem::path& tmp) {
@@ -17,18 +25,26 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace glint {
 
+/// When a file written atomically is renamed into place.
+enum class Commit {
+  WithRun,  ///< with the open OutputSet's other files (at once when none is open): outputs
+  Now       ///< at once: files the run itself reads back (caches)
+};
+
 /// Calls write(tmp) with a temporary path next to `destination` (same extension),
-/// then renames it to `destination`. Throws Error(Output) with a one-line reason
-/// when the directory does not exist or is not writable; removes the temporary
-/// file if `write` throws, and rethrows.
+/// then renames it to `destination` (staged in the open OutputSet, if any: see above).
+/// Throws Error(Output) with a one-line reason when the directory does not exist or is
+/// not writable, or the filesystem is full; removes the temporary file if `write`
+/// throws, and rethrows.
 void writeAtomically(const std::filesystem::path& destination,
-                     const std::function<void(const std::filesystem::path& tmp)>& write);
+                     const std::function<void(const std::filesystem::path& tmp)>& write, Commit when = Commit::WithRun);
 
 /// The same for output produced over time (a video encoded frame by frame): write to
 /// temporary(), then commit() renames it to the destination. Destroyed without commit(),
@@ -60,6 +76,48 @@ private:
   std::filesystem::path m_destination, m_temporary;
   bool m_committed = false;
 };
+
+/// A run's outputs, committed together (see the top of this header). Opening one makes it
+/// the set the writes above stage into, until it is destroyed (sets nest: the innermost
+/// open one receives the writes). Thread-safe: outputs written in parallel stage into one set.
+///
+/// ```cpp
+/// {
+///   glint::OutputSet outputs;
+///   glint::writeTextAtomically("a.txt", "first\n");   // staged: a.txt is not touched yet
+///   glint::writeTextAtomically("b.txt", "second\n");
+///   outputs.commit();                                // both renamed into place now
+/// }  // without commit(): both temporaries removed, a.txt and b.txt as they were
+/// ```
+class OutputSet {
+public:
+  OutputSet();
+  /// Removes the temporaries of everything not committed.
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  /// Renames every staged file into place. When a rename fails, the files already renamed
+  /// are put back as they were (the previous ones were kept as hard links until then) and
+  /// Error(Output) names the file. Files staged after a commit wait for the next one.
+  void commit();
+  /// Removes every staged temporary now.
+  void discard();
+  /// Whether a file for `destination` is staged (by its absolute, normalized path).
+  bool staged(const std::filesystem::path& destination) const;
+  /// Commits `destination`'s staged file under `other` instead (a partial video written
+  /// beside a complete one). Error(Internal) when nothing is staged for `destination`.
+  void redirect(const std::filesystem::path& destination, const std::filesystem::path& other);
+
+  struct Impl;
+
+private:
+  std::unique_ptr<Impl> m_impl;
+};
+
+/// The one-line reason a write to `destination` failed: "no space left on device (12 KiB
+/// free)" when its filesystem is full (or `error` is ENOSPC), else strerror(error).
+std::string writeFailure(const std::filesystem::path& destination, int error);
 
 /// Writes `contents` to `destination` atomically.
 void writeTextAtomically(const std::filesystem::path& destination, std::string_view contents);

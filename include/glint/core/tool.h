@@ -18,6 +18,10 @@
 //   --json F      report(): the tool's own fields; finish() adds tool, version, threads,
 //                 seconds (per phase and total), peak memory and warnings, and writes the
 //                 report atomically to F, or to stdout for "-".
+//   all or none   the run's outputs (every file written through core/file.h, the report
+//                 included) are staged in its OutputSet and renamed into place together by
+//                 finish(); a run that ends without finish() (an error, Ctrl-C, a full disk)
+//                 leaves every existing output as it was.
 //
 /// ```cpp
 /// #include <vector>
@@ -37,6 +41,8 @@
 /// ```
 //
 // One ToolRun at a time per process (it owns the signal handlers).
+
+#include "glint/core/file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -109,19 +115,27 @@ public:
   void warn(const std::string& message);
   /// A warning the library already logged (e.g. bake::BakeResult::warnings): report only.
   void recordWarning(const std::string& message) { m_warnings.push_back(message); }
-  /// Completes the report (tool, version, threads, seconds, peak_memory_mib, warnings) and
-  /// writes it where --json said. Call once, after the outputs are written. Returns the
-  /// completed report (also without --json: `glint bake --batch` lists its jobs' reports).
+  /// Completes the report (tool, version, threads, seconds, peak_memory_mib, warnings),
+  /// writes it where --json said and commits the run's outputs together (outputs()). Call
+  /// once, after the outputs are written. Returns the completed report (also without --json:
+  /// `glint bake --batch` lists its jobs' reports).
   nlohmann::ordered_json finish();
+  /// The run's outputs, staged until finish() (core/file.h).
+  OutputSet& outputs();
   /// The report as finish() would write it now (a failed job's, in a batch report).
   nlohmann::ordered_json completedReport() const;
 
   /// The process's peak resident set size so far, in MiB.
   static double peakMemoryMiB();
-  /// Records the job's estimated peak memory (memory_estimate_mib in the report) and, under
-  /// --max-memory, throws Error(Usage) naming `what` ("a 16384² bake") and both sizes when
-  /// the estimate is over the limit. Call before the big allocations.
+  /// Records the job's estimated peak memory (memory_estimate_mib in the report) and throws
+  /// Error(Usage) naming `what` ("a 16384² bake") and both sizes when the estimate is over
+  /// --max-memory or, without it, over the machine's physical memory (--max-memory above it
+  /// overrides). Call before the big allocations.
   void checkMemory(double estimateMiB, const std::string& what);
+  /// glint's version, as every report gives it ("0.1.0").
+  static const char* version();
+  /// This machine's physical memory in MiB (GLINT_PHYSICAL_MEMORY_MIB overrides it, for tests).
+  static double physicalMemoryMiB();
 
 private:
   struct Impl;

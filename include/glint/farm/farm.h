@@ -64,6 +64,7 @@
 // #SBATCH line can hold (a line break in the work directory's name), Input for a missing
 // `sbatch` ("install slurm-client") or a submission Slurm refused (its own message), Output
 // for a work directory that cannot be written.
+#include "glint/core/tool.h"
 #include "glint/farm/scheduler.h"
 
 #include <atomic>
@@ -99,7 +100,28 @@ struct Plan {
   std::vector<std::string> join;       ///< glint's arguments for the join (kAllPieceOutputs); empty: no join
   std::vector<std::filesystem::path> outputs;  ///< the final outputs (written by the join, or by the pieces)
   std::filesystem::path workDir;       ///< intermediates, scripts, logs (on a filesystem every node sees)
+  std::int64_t memoryMiB = 0;          ///< what each task asks for (the tool's estimate or --mem); 0: the cluster's default
 };
+
+/// What `glint farm TOOL` gives a tool's plan function (cut::farmPlan, ...) besides the job.
+struct Split {
+  int pieces = 1;               ///< --shards or --chunks
+  std::int64_t memoryMiB = 0;   ///< --mem in MiB; 0: the tool's estimate for the job
+  int cpusPerTask = 0;          ///< --cpus-per-task, also each piece's --threads; 0: Slurm's default
+  std::filesystem::path workDir;  ///< --work-dir; empty: the first output's folder
+};
+
+/// The memory each task asks for: `split.memoryMiB`, or `estimateMiB` with a quarter more,
+/// rounded up to 64 MiB.
+std::int64_t taskMemoryMiB(const Split& split, double estimateMiB);
+
+/// The tool options of a plan's commands: the user's --threads, else --cpus-per-task; the
+/// user's --max-memory, else the task's memory (`taskMiB`); -q as given. No --json: the join
+/// (or a piece that writes final outputs) gets the report's path itself.
+std::vector<std::string> pieceSettings(const ToolSettings& given, const Split& split, std::int64_t taskMiB);
+
+/// `path` absolute and normalized: what a task on another node is given.
+std::string absolutePath(const std::string& path);
 
 /// What each task asks Slurm for.
 struct Resources {

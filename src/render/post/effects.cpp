@@ -283,6 +283,13 @@ std::string Effect::describe() const {
   return s + ")";
 }
 
+std::string Effect::spec() const {
+  std::string s = def->name;
+  for (std::size_t i = 0; i < def->params.size(); ++i)
+    s += (i ? "," : ":") + std::string(def->params[i].name) + "=" + valueText(def->params[i], values[i]);
+  return s;
+}
+
 std::vector<std::string> effectNames() {
   std::vector<std::string> names;
   for (const auto& d : table()) names.push_back(d.name);

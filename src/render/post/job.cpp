@@ -9,8 +9,10 @@
 #include "glint/image/srgb.h"
 #include "glint/render/post/chain.h"
 #include "glint/video/source.h"
+#include "glint/core/options.h"
 #include "glint/video/transcode.h"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <chrono>
@@ -110,8 +112,9 @@ private:
   CpuChain& m_chain;
 };
 
-// The checks that need nothing opened: Error(Usage) or Error(Output).
-void checkJob(const PostJob& job, const ToolRun& run) {
+}  // namespace
+
+void checkJob(const PostJob& job, const ToolSettings& settings) {
   if (!job.parts.empty()) {
     if (job.output.empty()) fail(ErrorKind::Usage, "--concat needs -o OUTPUT");
     if (!job.effects.empty() || !job.input.empty() || !job.camera.empty() || !job.lavfi.empty()) {
@@ -147,13 +150,15 @@ void checkJob(const PostJob& job, const ToolRun& run) {
   if (inputKind(job) == InputKind::Image || inputKind(job) == InputKind::Video) inputs.push_back({job.input, "the input"});
   if (!job.camera.empty()) inputs.push_back({job.camera, "the camera"});
   for (const std::string& part : job.parts) inputs.push_back({part, "the part"});
-  const std::string& json = run.settings().json;
+  const std::string& json = settings.json;
   checkDistinctFiles(inputs, {{job.output, "-o"}, {json, "--json"}});
   if (!job.format.empty() && job.output != "-") fail(ErrorKind::Usage, "--format is for -o - (stdout); a file's format follows its extension");
   if (imageOutput(job)) checkImageOutput(job.output, job.format);
   else if (job.output != "-") checkWritable(job.output);
   if (!json.empty() && json != "-") checkWritable(json);
 }
+
+namespace {
 
 PostStats runParts(const PostJob& job, ToolRun& run) {
   const std::vector<std::filesystem::path> parts(job.parts.begin(), job.parts.end());
@@ -456,7 +461,7 @@ nlohmann::ordered_json PostStats::toJson() const {
 
 PostStats runJob(const PostJob& job, ToolRun& run) {
   // Usage errors first: fail in a millisecond, before opening anything.
-  checkJob(job, run);
+  checkJob(job, run.settings());
   const InputKind kind = inputKind(job);
   if (kind == InputKind::Parts) return runParts(job, run);
   if (kind == InputKind::Image || imageOutput(job)) preloadImageIo();  // while the GPU starts
@@ -480,6 +485,175 @@ int finishJob(const PostStats& stats, ToolRun& run) {
               stats.droppedFrames ? fmt::format(", {} dropped", stats.droppedFrames) : "");
   }
   return 0;
+}
+
+// ---------------------------------------------------------------------------- options
+
+namespace {
+constexpr const char* kFooter = R"(Examples:
+  glint post photo.jpg -o sepia.png -e sepia
+  glint post street.png -o npr.png -e posterize --set size=4
+  glint post clip.mp4 -o clip-edges.mp4 -e kuwahara -e edges
+  glint post clip.mp4 -o part2.mkv --codec ffv1 --frames 250:500 -e sepia:i=0.25
+  glint post clip.mp4 -o sepia.mp4 -e sepia --backend cpu
+  glint post --concat part1.mkv part2.mkv -o whole.mkv
+  glint post --camera /dev/video0 --size 640x480 -o live.mp4 -e sobel
+  glint post --input lavfi:testsrc2=size=1280x720:duration=5 -o test.mp4 -e spectrum
+  glint post - -o - -e sobel < photo.png > edges.png
+  ffmpeg -i clip.mp4 -f nut - | glint post - -o - --format nut -e sepia | ffplay -
+
+Inputs: an image (.png .jpg .tga .tif .exr .hdr .bmp .webp, through OpenImageIO), any video
+file FFmpeg reads, a V4L2 camera (--camera), or a lavfi filter graph (--input lavfi:GRAPH, or
+as IN). Frames are processed as 8-bit RGB (sRGB-encoded values, like the seed's camera); a
+float image (EXR, HDR: linear light) is processed in float on the GPU and a float output
+holds linear values again. A video's rotation (a phone's display matrix) is kept on the
+output and named in the report; --apply-rotation turns the frames upright instead.
+Outputs: an image for an image (for a video: its first frame, or the first of --frames);
+a video for a video: H.264 (--crf, --preset; .mp4 .mkv .mov)
+or FFV1, lossless (.mkv .avi .nut). Audio is copied when the output container holds its
+codec, else dropped with a warning. Timestamps are kept: parts made with --frames join
+losslessly with --concat (FFV1 parts at any frame; H.264 parts are written without B-frames).
+
+Frames are decoded, processed on the GPU (pixel buffer objects, a few frames in flight) and
+encoded on three overlapped threads. --backend auto (the default) runs the effects on the CPU
+instead (threaded, FFTW, OpenCV) when the GL renderer is a software one (llvmpipe: no GPU),
+as --backend cpu always does (every effect has a CPU version); --backend gpu keeps OpenGL. On
+the CPU, sepia, sobel and the FFT filters (one effect) work on a video's YUV planes directly,
+skipping the RGB round trip; glint -v post says which backend ran. No frame of a file is ever dropped; a live source
+(camera, --realtime) drops what the GPU cannot keep up with and the report counts it.
+
+Exit status: 0 done, 2 bad option or effect, 3 unreadable input (or an input that broke off:
+the video written so far is complete), 4 output not writable (a full disk: "no space left on
+device"), 5 no OpenGL 4.5, 6 out of memory, 130 interrupted (Ctrl-C: a video is finished and
+playable up to the last frame processed, reported as partial; when -o already existed it is
+left as it was and the partial video is written beside it, OUT.partial.EXT; an image is not
+written).)";
+}  // namespace
+
+void addOptions(CLI::App& cmd, PostArgs& a) {
+  cmd.add_option("file", a.input, "Image or video file to read (or lavfi:GRAPH; '-': stdin, an image when the "
+                                  "output is one, else a video stream)");
+  cmd.add_option("-o,--output", a.output, "Image or video to write; format from the extension ('-': stdout, see --format)");
+  cmd.add_option("--format", a.format, "The format of -o - (stdout): an image (png, the default; jpg, tga, tif, exr) "
+                                       "or a video container that streams (mkv, nut, ts)");
+  cmd.add_option("-e,--effect", a.effects, "An effect, in chain order: NAME or NAME:param=value,... (list below)");
+  cmd.add_option("--set", a.settings, "param=value (every effect that has it) or effect.param=value");
+  cmd.add_option("--camera", a.camera, "Read a V4L2 camera, e.g. /dev/video0 (a live source)");
+  cmd.add_option("--input", a.lavfi, "An FFmpeg source: lavfi:GRAPH, e.g. lavfi:testsrc2=size=1280x720:duration=5");
+  cmd.add_option("--size", a.size, "Camera: the size to ask for, WIDTHxHEIGHT (the seed's camera: 640x480)");
+  cmd.add_option("--fps", a.rate, "Camera: the frame rate to ask for");
+  cmd.add_flag("--realtime", a.realtime, "Pace a file or lavfi source at its frame rate and treat it as live "
+                                         "(frames the GPU cannot keep up with are dropped and counted)");
+  cmd.add_option("--backend", a.backend, "Where the effects run: auto (the CPU on a software GL renderer such as "
+                 "llvmpipe, else the GPU), gpu (OpenGL) or cpu (threads, FFTW, OpenCV)")->capture_default_str();
+  cmd.add_option("--codec", a.codec, "h264 (libx264, yuv420p) or ffv1 (lossless RGB)")->capture_default_str();
+  cmd.add_option("--crf", a.crf, "H.264 quality: 0 (lossless) .. 51; 18 is visually lossless")->capture_default_str();
+  cmd.add_option("--preset", a.preset, "H.264 speed/size trade-off: ultrafast .. placebo")->capture_default_str();
+  cmd.add_option("--frames", a.frames, "Only frames FIRST:END (END excluded; 250: = to the end): split a long video "
+                                       "over machines, join the parts with --concat");
+  cmd.add_option("--concat", a.concat, "Join parts made with --frames (in order) into -o, copying packets");
+  cmd.add_flag("--no-audio", a.noAudio, "Do not copy the input's audio");
+  cmd.add_option("--channels", a.channels, "Image output: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA (default: the "
+                                           "input's; colour when an effect colours a grey input)");
+  cmd.add_flag("--effects", a.listEffects, "List the effects and their parameters, and exit");
+}
+
+std::string helpFooter() { return std::string(kFooter) + "\n\n" + effectHelp(); }
+
+PostJob makeJob(const PostArgs& a, bool glDebug) {
+  PostJob job{.input = a.input, .camera = a.camera, .lavfi = a.lavfi, .parts = a.concat, .output = a.output,
+              .crf = a.crf, .preset = a.preset, .realtime = a.realtime, .keepAudio = !a.noAudio,
+              .channels = a.channels, .glDebug = glDebug};
+  job.format = a.format;
+  job.effects = parseEffects(a.effects, a.settings);
+  job.codec = video::parseCodec(a.codec);
+  job.backend = parseBackend(a.backend);
+  if (!a.frames.empty()) job.frames = parseFrameRange(a.frames, "--frames");
+  if (!a.size.empty()) job.cameraSize = parseSize(a.size);
+  if (!a.rate.empty()) job.cameraRate = parseFloat(a.rate, "--fps");
+  return job;
+}
+
+std::vector<std::string> arguments(const PostJob& job) {
+  std::vector<std::string> argv;
+  if (!job.parts.empty()) {
+    argv.push_back("--concat");
+    argv.insert(argv.end(), job.parts.begin(), job.parts.end());
+  }
+  if (!job.input.empty()) argv.push_back(job.input);
+  if (!job.camera.empty()) argv.insert(argv.end(), {"--camera", job.camera});
+  if (!job.lavfi.empty()) argv.insert(argv.end(), {"--input", job.lavfi});
+  argv.insert(argv.end(), {"-o", job.output});
+  if (!job.format.empty()) argv.insert(argv.end(), {"--format", job.format});
+  for (const Effect& e : job.effects) argv.insert(argv.end(), {"-e", e.spec()});
+  if (job.parts.empty()) {
+    argv.insert(argv.end(), {"--codec", video::codecName(job.codec)});
+    if (job.codec == video::Codec::H264) argv.insert(argv.end(), {"--crf", std::to_string(job.crf), "--preset", job.preset});
+    argv.insert(argv.end(), {"--backend", backendName(job.backend)});
+  }
+  if (job.frames) {
+    argv.insert(argv.end(), {"--frames", job.frames->end >= 0 ? fmt::format("{}:{}", job.frames->first, job.frames->end)
+                                                              : fmt::format("{}:", job.frames->first)});
+  }
+  if (job.cameraSize) argv.insert(argv.end(), {"--size", fmt::format("{}x{}", job.cameraSize->x, job.cameraSize->y)});
+  if (job.cameraRate) argv.insert(argv.end(), {"--fps", fmt::format("{}", *job.cameraRate)});
+  if (job.realtime) argv.push_back("--realtime");
+  if (!job.keepAudio) argv.push_back("--no-audio");
+  if (job.channels > 0) argv.insert(argv.end(), {"--channels", std::to_string(job.channels)});
+  return argv;
+}
+
+farm::Plan farmPlan(const PostJob& given, const ToolSettings& settings, const farm::Split& split) {
+  if (!given.camera.empty() || !given.lavfi.empty() || given.input.starts_with("lavfi:"))
+    fail(ErrorKind::Usage, "farm post: a camera or lavfi source cannot be split over machines; farm a video file");
+  if (!given.parts.empty()) fail(ErrorKind::Usage, "farm post: --concat is what the farm's join runs; farm a video file");
+  if (given.realtime) fail(ErrorKind::Usage, "farm post: --realtime cannot be split over machines; farm a video file");
+  if (given.input.empty() || given.input == "-") fail(ErrorKind::Usage, "farm post: give a video file every node can read");
+  if (given.output.empty() || given.output == "-") fail(ErrorKind::Usage, "farm post: give -o, a video file");
+  checkJob(given, settings);  // the command's own checks, before anything is submitted
+  if (inputKind(given) == InputKind::Image) fail(ErrorKind::Usage, "farm post: '{}' is an image; farm a video", given.input);
+  if (imageOutput(given)) fail(ErrorKind::Usage, "farm post: -o '{}' is an image; farm a video into a video", given.output);
+  PostJob job = given;
+  job.input = farm::absolutePath(job.input);
+  job.output = farm::absolutePath(job.output);
+  const video::FrameIndex index = video::indexFrames(job.input);
+  std::int64_t first = job.frames ? job.frames->first : 0;
+  std::int64_t end = job.frames ? job.frames->end : -1;
+  if (end < 0 || end > index.frameCount) end = index.frameCount;
+  if (first >= end)
+    fail(ErrorKind::Usage, "farm post: frames {}:{} of '{}' ({} frames) select none", first, end, given.input, index.frameCount);
+  const auto ranges = farm::splitAtKeyframes(index.keyframes, first, end, split.pieces);
+  if (int(ranges.size()) < split.pieces)
+    log::warn("farm post: '{}' has keyframes for only {} chunk{} of frames {}:{} (asked for {})", given.input,
+              ranges.size(), ranges.size() == 1 ? "" : "s", first, end, split.pieces);
+  farm::Plan plan{.tool = "post"};
+  {
+    const video::Source source = video::Source::open(job.input);
+    plan.memoryMiB = farm::taskMemoryMiB(split, estimatePeakMemoryMiB(source.info().size, false));
+  }
+  plan.title = fmt::format("{} → {}", std::filesystem::path(job.input).filename().string(),
+                           std::filesystem::path(job.output).filename().string());
+  plan.outputs = {job.output};
+  const std::vector<std::string> limits = farm::pieceSettings(settings, split, plan.memoryMiB);
+  const std::string extension = std::filesystem::path(job.output).extension().string();
+  for (const auto& [a, b] : ranges) {
+    PostJob piece = job;
+    piece.output = farm::kPieceOutput;
+    piece.frames = FrameRange{a, b};
+    farm::Piece p{.label = fmt::format("frames {}:{}", a, b), .command = {"post"}, .extension = extension};
+    const auto args = arguments(piece);
+    p.command.insert(p.command.end(), args.begin(), args.end());
+    p.command.insert(p.command.end(), limits.begin(), limits.end());
+    p.inputs = {job.input};
+    plan.pieces.push_back(std::move(p));
+  }
+  plan.join = {"post", "--concat", farm::kAllPieceOutputs, "-o", job.output};
+  if (settings.quiet) plan.join.push_back("-q");
+  if (!settings.json.empty()) {
+    plan.join.insert(plan.join.end(), {"--json", farm::absolutePath(settings.json)});
+    if (settings.json != "-") plan.outputs.push_back(farm::absolutePath(settings.json));
+  }
+  return plan;
 }
 
 }  // namespace glint::render::post

@@ -112,6 +112,9 @@ struct Effect {
   bool set(std::string_view param, std::string_view text);
   /// "kuwahara(size=3)": the name and every parameter's value, for reports.
   std::string describe() const;
+  /// "kuwahara:size=3": the name and every parameter's value as `-e` takes them
+  /// (parseEffects gives this effect back).
+  std::string spec() const;
 };
 
 /// Parses effect specs ("NAME" or "NAME:param=value,...") in chain order, then applies

@@ -31,12 +31,18 @@
 #include "glint/render/post/effects.h"
 #include "glint/video/sink.h"
 
+#include "glint/farm/farm.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace CLI {
+class App;
+}
 
 namespace glint::render::post {
 
@@ -80,6 +86,36 @@ struct PostJob {
   /// renderer (llvmpipe) when it has every effect of the chain.
   Backend backend = Backend::Auto;
 };
+
+/// `glint post`'s options as typed (the command, `glint farm post` and the Python module
+/// bind them with addOptions and make the job with makeJob).
+struct PostArgs {
+  std::string input, output, format, camera, lavfi, codec = "h264", preset = "medium", frames, size, rate,
+      backend = "auto";
+  std::vector<std::string> effects, settings, concat;
+  int crf = 18, channels = 0;
+  bool realtime = false, noAudio = false, listEffects = false;
+};
+
+/// The options of `glint post` (the tool options are addToolOptions'), bound to `args`.
+void addOptions(CLI::App& command, PostArgs& args);
+/// `glint post --help`'s footer: examples, inputs and outputs, backends, exit codes.
+std::string helpFooter();
+/// The job the options describe (parsed: effects, codec, frames, camera size and rate).
+/// Error(Usage) for a bad value.
+PostJob makeJob(const PostArgs& args, bool glDebug = false);
+/// The job as `glint post` arguments (every effect with all its parameters: Effect::spec).
+std::vector<std::string> arguments(const PostJob& job);
+
+/// The checks that need nothing opened (the list at the top of this header): Error(Usage)
+/// or Error(Output), one line. runJob makes them first; so does farmPlan.
+void checkJob(const PostJob& job, const ToolSettings& settings);
+
+/// A video job split into `split.pieces` chunks of frames starting on keyframes (`glint post
+/// --frames a:b`, each decodable on its own) and their join (`glint post --concat`): the
+/// command's checks first, then a video file every node can read (no camera, lavfi source,
+/// stdin or image). Reads the file's index for the keyframes.
+farm::Plan farmPlan(const PostJob& job, const ToolSettings& settings, const farm::Split& split);
 
 /// The one place the kind of input is worked out (after the one-input check).
 InputKind inputKind(const PostJob& job);

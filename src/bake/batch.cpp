@@ -1,0 +1,399 @@
+// Batches of bakes (bake/job.h): a JSON file's jobs parsed by the command's own option
+// definitions (a key is an option's long name), checked together, run one after another
+// with their high meshes shared, or planned for a farm (one task per bake).
+#include "glint/bake/job.h"
+
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+#include "glint/core/log.h"
+#include "glint/core/text.h"
+#include "job_internal.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+
+namespace glint::bake {
+
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+/// Inside a catch block: the same Error, its message prefixed with `where` ("bake: jobs.json job 2 (crate_low.obj)").
+[[noreturn]] void rethrowIn(const std::string& where) {
+  try {
+    throw;
+  } catch (const Error& e) {
+    throw Error(e.kind(), fmt::format("{}: {}", where, e.what()));
+  }
+}
+
+/// A batch file: the defaults and one object per job, in order.
+struct BatchFile {
+  Json defaults = Json::object();
+  std::vector<Json> jobs;
+};
+
+BatchFile readBatchFile(const std::string& path) {
+  const std::string text = readTextFile(path);  // Error(Input): exit 3, like every unreadable input
+  Json doc;
+  try {
+    doc = Json::parse(text);
+  } catch (const Json::parse_error& e) {
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..."
+    std::string what = e.what();
+    if (const auto end = what.find("] "); what.starts_with("[json.exception") && end != std::string::npos)
+      what.erase(0, end + 2);
+    fail(ErrorKind::Usage, "bake: {}: not valid JSON: {}", path, printable(what));
+  }
+  if (!doc.is_object())
+    fail(ErrorKind::Usage, "bake: {}: a batch file is an object {{\"defaults\": {{...}}, \"bakes\": [...]}}, got {}", path,
+         doc.type_name());
+  BatchFile batch;
+  for (const auto& [key, value] : doc.items()) {
+    if (key == "defaults") {
+      if (!value.is_object()) fail(ErrorKind::Usage, "bake: {}: \"defaults\" must be an object of options, got {}", path, value.type_name());
+      batch.defaults = value;
+    } else if (key == "bakes") {
+      if (!value.is_array()) fail(ErrorKind::Usage, "bake: {}: \"bakes\" must be a list of jobs, got {}", path, value.type_name());
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        if (!value[i].is_object())
+          fail(ErrorKind::Usage, "bake: {} job {}: a job must be an object of options, got {}", path, i, value[i].type_name());
+        batch.jobs.push_back(value[i]);
+      }
+    } else {
+      fail(ErrorKind::Usage, "bake: {}: unknown key '{}' (a batch file has \"defaults\" and \"bakes\")", path, printable(key));
+    }
+  }
+  if (batch.jobs.empty()) fail(ErrorKind::Usage, "bake: {}: no jobs: \"bakes\" is missing or empty", path);
+  return batch;
+}
+
+/// The option a batch file's key stands for: its long name without the dashes ("size",
+/// "output"), or a positional's name ("low"). Null when there is none (help included).
+const CLI::Option* optionForKey(const CLI::App& app, const std::string& key) {
+  for (const CLI::Option* option : app.get_options()) {
+    if (option == app.get_help_ptr()) continue;
+    const auto& names = option->get_lnames();
+    if (std::find(names.begin(), names.end(), key) != names.end()) return option;
+    if (option->get_positional() && names.empty() && option->get_single_name() == key) return option;
+  }
+  return nullptr;
+}
+
+/// `settings` with each key replaced by its option's first name; Error(Usage) naming a key
+/// that is no option.
+Json canonicalKeys(const CLI::App& app, const Json& settings) {
+  Json out = Json::object();
+  for (const auto& [key, value] : settings.items()) {
+    const CLI::Option* option = optionForKey(app, key);
+    if (!option) fail(ErrorKind::Usage, "unknown key '{}': not an option of glint bake (see glint bake --help)", printable(key));
+    out[option->get_single_name()] = value;
+  }
+  return out;
+}
+
+/// The argument list `glint bake` gets for settings (canonical keys, later layers winning):
+/// positionals first, then the options in the command's order; a flag appears when true;
+/// a number is written as JSON writes it; a relative path (a FILE option) is made relative
+/// to `base`, the batch file's folder.
+std::vector<std::string> argumentsFor(const CLI::App& app, const std::vector<const Json*>& layers, const fs::path& base) {
+  Json merged = Json::object();
+  for (const Json* layer : layers)
+    for (const auto& [key, value] : layer->items()) merged[key] = value;
+  std::vector<std::string> positionals, named;
+  for (const CLI::Option* option : app.get_options()) {
+    const std::string& key = option->get_single_name();
+    if (option == app.get_help_ptr() || !merged.contains(key)) continue;
+    const Json& value = merged[key];
+    const std::string spelling = option->get_snames().empty() ? "--" + key : "-" + option->get_snames().front();
+    if (option->get_expected_max() == 0) {  // a flag
+      if (!value.is_boolean()) fail(ErrorKind::Usage, "'{}' is a flag: true or false, got {}", key, printable(value.dump()));
+      if (value.get<bool>()) named.push_back(spelling);
+      continue;
+    }
+    std::string text;
+    if (value.is_string()) text = value.get<std::string>();
+    else if (value.is_number()) text = value.dump();
+    else fail(ErrorKind::Usage, "'{}' takes a value (a string or a number), got {}", key, printable(value.dump()));
+    if (option->get_type_name() == kFile && !text.empty() && text != "-") {
+      fs::path path(text);
+      if (path.is_relative() && !base.empty()) path = base / path;
+      text = path.string();
+      if (text.starts_with('-')) text = "./" + text;  // a file, not an option
+    }
+    if (option->get_positional()) {
+      positionals.push_back(text);
+    } else if (text.starts_with('-')) {  // a negative number: one word, not taken for an option
+      named.push_back("--" + key + "=" + text);
+    } else {
+      named.push_back(spelling);
+      named.push_back(text);
+    }
+  }
+  const bool dashed = std::any_of(positionals.begin(), positionals.end(), [](const std::string& p) { return p.starts_with('-'); });
+  if (dashed) {  // after "--", where nothing is an option
+    named.push_back("--");
+    named.insert(named.end(), positionals.begin(), positionals.end());
+    return named;
+  }
+  positionals.insert(positionals.end(), named.begin(), named.end());
+  return positionals;
+}
+
+/// Parses a job's argument list exactly as the command line is parsed: a fresh CLI::App with
+/// the bake command's options. Error(Usage) with CLI11's message.
+BakeJob parseJob(const std::vector<std::string>& arguments) {
+  CLI::App app{"glint bake", "bake"};
+  BakeJob args;
+  addOptions(app, args, Meshes::Required);
+  std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    fail(ErrorKind::Usage, "{}", e.what());
+  }
+  return args;
+}
+
+/// Every job of a batch through the command line's option parsing: its argument list
+/// (defaults, then the job, then `commandLine`, later layers winning) and its parsed options.
+std::vector<BatchJob> parseBatchJobs(const BatchFile& batch, const std::string& file, const Json& commandLine) {
+  const int count = int(batch.jobs.size());
+  CLI::App prototype{"glint bake", "bake"};
+  BakeJob unused;
+  addOptions(prototype, unused, Meshes::Required);
+  const fs::path base = fs::path(file).parent_path();
+  Json defaults;
+  try {
+    defaults = canonicalKeys(prototype, batch.defaults);
+  } catch (const Error&) {
+    rethrowIn(fmt::format("bake: {} defaults", file));
+  }
+  std::vector<BatchJob> jobs(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    BatchJob& job = jobs[std::size_t(i)];
+    const Json& raw = batch.jobs[std::size_t(i)];
+    const Json* low = raw.contains("low") ? &raw["low"] : batch.defaults.contains("low") ? &batch.defaults["low"] : nullptr;
+    job.where = fmt::format("bake: {} job {}", file, i);
+    if (low && low->is_string()) job.where += fmt::format(" ({})", printable(low->get<std::string>()));
+    try {
+      const Json settings = canonicalKeys(prototype, raw);
+      job.arguments = argumentsFor(prototype, {&defaults, &settings, &commandLine}, base);
+      job.job = parseJob(job.arguments);
+    } catch (const Error&) {
+      rethrowIn(job.where);
+    }
+  }
+  return jobs;
+}
+
+/// The whole batch's checks (loadBatch's): distinct files across every job, the report
+/// writable, each job's own checks.
+void checkBatch(const std::string& file, const std::vector<BatchJob>& jobs, const ToolSettings& batch) {
+  // No output is an input or another output of any job (also with --job, so that every farm
+  // task agrees on whether the file is valid).
+  std::vector<FileUse> inputs{{file, "the batch file"}}, outputs;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const auto named = [i](const FileUse& f) {
+      return FileUse{f.path, f.role.starts_with("the ") ? fmt::format("job {}'s {}", i, f.role.substr(4))
+                                                        : fmt::format("job {} {}", i, f.role)};
+    };
+    for (const FileUse& f : inputFiles(jobs[i].job)) inputs.push_back(named(f));
+    for (const FileUse& f : outputFiles(jobs[i].job)) outputs.push_back(named(f));
+  }
+  outputs.push_back({batch.json, "--json"});
+  try {
+    checkDistinctFiles(inputs, outputs);
+    if (!batch.json.empty() && batch.json != "-") checkWritable(batch.json);
+  } catch (const Error&) {
+    rethrowIn(fmt::format("bake: {}", file));
+  }
+  // Every job's own checks (options, folders, memory), each as its bake will make them.
+  for (const BatchJob& job : jobs) {
+    try {
+      ToolRun check("bake", job.job.tool);
+      checkJob(job.job, check);
+    } catch (const Error&) {
+      rethrowIn(job.where);
+    }
+  }
+}
+
+}  // namespace
+
+Json givenOptions(const CLI::App& cmd, const std::vector<const CLI::Option*>& except) {
+  Json given = Json::object();
+  for (const CLI::Option* option : cmd.get_options()) {
+    if (option == cmd.get_help_ptr() || option->count() == 0 || option->get_positional() ||
+        std::find(except.begin(), except.end(), option) != except.end())
+      continue;
+    if (option->get_expected_max() == 0) given[option->get_single_name()] = true;
+    else given[option->get_single_name()] = option->results().back();
+  }
+  return given;
+}
+
+std::vector<BatchJob> loadBatch(const std::string& file, const Json& overrides) {
+  std::vector<BatchJob> jobs = parseBatchJobs(readBatchFile(file), file, overrides.is_object() ? overrides : Json::object());
+  checkBatch(file, jobs, {});
+  return jobs;
+}
+
+int runBatch(const BatchRequest& request) {
+  // Every job through the command line's option parsing, before anything runs.
+  const std::vector<BatchJob> jobs = parseBatchJobs(readBatchFile(request.file), request.file, request.overrides);
+  const int count = int(jobs.size());
+  if (request.job >= count || request.job < -1)
+    fail(ErrorKind::Usage, "bake: --job {} is out of range: {} has {} job{} (0 to {})", request.job, request.file, count,
+         count == 1 ? "" : "s", count - 1);
+  std::vector<int> selected;
+  for (int i = 0; i < count; ++i)
+    if (request.job < 0 || request.job == i) selected.push_back(i);
+
+  if (request.list) {
+    for (int i : selected) {
+      std::string line = "glint bake";
+      for (const std::string& word : jobs[std::size_t(i)].arguments) line += " " + shellWord(word);
+      std::printf("%s\n", line.c_str());
+    }
+    std::fflush(stdout);
+    return 0;
+  }
+  checkBatch(request.file, jobs, request.tool);
+
+  // One job after another: each bake already uses every core.
+  const auto start = std::chrono::steady_clock::now();
+  const log::Level level = log::level();
+  if (request.tool.quiet && level < log::Level::Warn) log::setLevel(log::Level::Warn);
+  struct Outcome {
+    int job = 0;
+    double seconds = 0.0;
+    int status = 0;
+    std::string error;
+  };
+  std::vector<Outcome> outcomes;
+  Json reports = Json::array();
+  HighMeshCache highCache;  // jobs sharing a high poly read it and build its BVH once
+  for (int i : selected) ++highCache.usesLeft[jobs[std::size_t(i)].job.high];
+  std::optional<ErrorKind> firstFailure;
+  for (std::size_t k = 0; k < selected.size(); ++k) {
+    const int i = selected[k];
+    const BatchJob& job = jobs[std::size_t(i)];
+    const std::string step = fmt::format("{}/{}", k + 1, selected.size());
+    log::info("bake {}: job {}: {} → {}", step, i, job.job.low, job.job.output);
+    Outcome outcome{.job = i};
+    Json entry = Json::object();
+    entry["job"] = i;
+    ToolRun run("bake", job.job.tool);
+    try {
+      highCache.progressLabel = "bake " + step;
+      runJob(job.job, run, &highCache);
+      entry["status"] = "ok";
+      entry.update(run.finish());
+    } catch (const Error& e) {
+      if (e.kind() == ErrorKind::Interrupted) {
+        log::setLevel(level);
+        throw;  // Ctrl-C stops the batch: exit 130, no partial file
+      }
+      outcome.status = exitCode(e.kind());
+      outcome.error = fmt::format("{}: {}", job.where, e.what());
+      log::error("{}", outcome.error);
+      if (!firstFailure) firstFailure = e.kind();
+      entry["status"] = "failed";
+      entry["exit_status"] = outcome.status;
+      entry["error"] = outcome.error;
+      entry.update(run.completedReport());
+    }
+    highCache.done(job.job.high);
+    outcome.seconds = run.elapsed();
+    outcomes.push_back(outcome);
+    reports.push_back(std::move(entry));
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const std::size_t failed = std::size_t(std::count_if(outcomes.begin(), outcomes.end(), [](const Outcome& o) { return o.status != 0; }));
+  log::info("bake: {}: {} job{} in {:.2f} s, {} ok, {} failed", request.file, outcomes.size(),
+            outcomes.size() == 1 ? "" : "s", seconds, outcomes.size() - failed, failed);
+  for (const Outcome& o : outcomes) {
+    log::info("  job {:<3} {:<40} {:7.2f} s  {}", o.job, jobs[std::size_t(o.job)].job.output, o.seconds,
+              o.status == 0 ? std::string("ok") : fmt::format("failed (exit {})", o.status));
+  }
+  log::setLevel(level);
+
+  if (!request.tool.json.empty()) {
+    Json report;
+    report["tool"] = "bake";
+    report["version"] = ToolRun::version();
+    report["batch"] = request.file;
+    report["jobs"] = std::move(reports);
+    report["failed"] = failed;
+    report["seconds"] = {{"total", seconds}};
+    report["peak_memory_mib"] = ToolRun::peakMemoryMiB();
+    const std::string text = report.dump(2) + "\n";
+    if (request.tool.json == "-") {
+      std::fputs(text.c_str(), stdout);
+      std::fflush(stdout);
+    } else {
+      writeTextAtomically(request.tool.json, text);
+    }
+  }
+  if (firstFailure) {  // each failure was printed when it happened; the exit status is the first one's
+    std::string which;
+    std::size_t named = 0;
+    for (const Outcome& o : outcomes) {
+      if (o.status == 0) continue;
+      if (++named > 10) {
+        which += ", ...";
+        break;
+      }
+      which += fmt::format("{}{}", named == 1 ? "" : ", ", o.job);
+    }
+    fail(*firstFailure, "bake: {}: {} of {} job{} failed (job{} {})", request.file, failed, outcomes.size(),
+         outcomes.size() == 1 ? "" : "s", failed == 1 ? "" : "s", which);
+  }
+  return 0;
+}
+
+farm::Plan farmPlan(const BatchRequest& request, const farm::Split& split) {
+  const std::vector<BatchJob> jobs = loadBatch(request.file, request.overrides);  // every check a bake makes
+  double most = 0.0;
+  for (const BatchJob& b : jobs) most = std::max(most, estimateMemoryMiB(b.job));
+  farm::Plan plan{.tool = "bake"};
+  plan.memoryMiB = farm::taskMemoryMiB(split, most);
+  const std::string file = farm::absolutePath(request.file);
+  plan.title = fmt::format("{} ({} bake{})", fs::path(file).filename().string(), jobs.size(), jobs.size() == 1 ? "" : "s");
+  plan.workDir = split.workDir.empty() ? fs::path(file).parent_path() : split.workDir;
+  // The options given with the farm command, for every job, as `glint bake` takes them.
+  std::vector<std::string> overrides;
+  {
+    CLI::App prototype{"glint bake", "bake"};
+    BakeJob unused;
+    addOptions(prototype, unused, Meshes::Required);
+    overrides = argumentsFor(prototype, {&request.overrides}, fs::path(file).parent_path());
+  }
+  const std::vector<std::string> limits = farm::pieceSettings(request.tool, split, plan.memoryMiB);
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const BatchJob& b = jobs[i];
+    farm::Piece piece{.label = b.where.substr(b.where.find(" job ") + 1),
+                      .command = {"bake", "--batch", file, "--job", std::to_string(i)}};
+    piece.command.insert(piece.command.end(), overrides.begin(), overrides.end());
+    piece.command.insert(piece.command.end(), limits.begin(), limits.end());
+    piece.inputs.push_back(file);
+    for (const FileUse& in : inputFiles(b.job))
+      if (!in.path.empty()) piece.inputs.push_back(farm::absolutePath(in.path.string()));
+    for (const FileUse& out : outputFiles(b.job)) {
+      if (out.path.empty() || out.path == "-") continue;
+      piece.outputs.push_back(farm::absolutePath(out.path.string()));
+      plan.outputs.push_back(farm::absolutePath(out.path.string()));
+    }
+    plan.pieces.push_back(std::move(piece));
+  }
+  return plan;
+}
+
+}  // namespace glint::bake

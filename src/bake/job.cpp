@@ -1,0 +1,543 @@
+// glint bake's job (bake/job.h): the command's options, the checks a bake makes before it
+// reads an input, and the bake itself: meshes in, every map written (staged until the run
+// finishes: all of a bake's maps or none), the report filled.
+#include "glint/bake/job.h"
+
+#include "glint/bake/baker.h"
+#include "glint/bake/groups.h"
+#include "glint/bake/output.h"
+#include "glint/bake/udim.h"
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+#include "glint/core/log.h"
+#include "glint/core/options.h"
+#include "glint/core/text.h"
+#include "glint/image/image.h"
+#include "job_internal.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <tbb/parallel_for_each.h>
+
+#include <algorithm>
+#include <cctype>
+#include <exception>
+#include <fstream>
+#include <functional>
+#include <future>
+#include <iterator>
+#include <optional>
+#include <sstream>
+
+namespace glint::bake {
+
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+/// Whether a file's bytes contain `text` (names are stored as plain strings in OBJ, PLY, FBX
+/// and glTF alike): a millisecond's check before reading a low poly as parts.
+bool mentionsText(const std::string& path, const std::string& text) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return bytes.find(text) != std::string::npos;
+}
+
+/// "5%" → 5 % of the low poly's diagonal; "0.2" → 0.2 scene units.
+Distance parseDistance(const std::string& text, const char* option) {
+  std::string number = text;
+  const bool relative = !number.empty() && number.back() == '%';
+  if (relative) number.pop_back();
+  float value = -1.0f;
+  try {
+    value = parseFloat(number, option);  // the whole text, finite, no locale
+  } catch (const Error&) {
+    value = -1.0f;
+  }
+  if (!(value >= 0.0f)) {
+    fail(ErrorKind::Usage, "{} must be a distance like 0.2 (scene units) or 5% (of the low poly's size), got '{}'",
+         option, text);
+  }
+  return {relative ? value / 100.0f : value, relative};
+}
+
+mat4 parseMatrix(const std::string& text) {
+  std::vector<float> v;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    v.push_back(parseFloat(item, "--world-matrix"));
+  }
+  if (v.size() != 16) fail(ErrorKind::Usage, "--world-matrix needs 16 comma-separated numbers (row by row), got {}", v.size());
+  mat4 m;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) m[col][row] = v[std::size_t(row * 4 + col)];
+  return m;
+}
+
+constexpr const char* kFooter = R"(UDIM: a low poly whose UVs reach past the unit square (u in 0..10, v >= 0) bakes one map
+per tile: name every map with <UDIM> where the tile number goes, e.g. -o normal.<UDIM>.png
+--ao ao.<UDIM>.png writes normal.1001.png, normal.1002.png, ... (one bake, every tile).
+
+Examples:
+  glint bake car_low.obj car_high.ply -o car_normal.png
+  glint bake head_low.fbx head_high.fbx -o head.png --size 2048x2048 --samples 36 \
+        --height-detail pores.png --detail-scale 4 --ao head_ao.png --json report.json
+  glint bake rock_low.obj rock_high.ply -o n.png --ao ao.png --bent-normal bent.png \
+        --thickness thick.png --curvature curv.png --position pos.exr \
+        --opacity alpha.png                                            # every map, one pass
+  glint bake --batch jobs.json          # every job of a batch file, one after another
+  glint bake --batch jobs.json --job 3  # job 3 only (0-based), as a render-farm task runs it
+  glint bake --batch jobs.json --list   # the jobs as `glint bake ...` command lines
+
+Batch files (JSON; relative paths are relative to the file; docs/bake.md, "Batches"):
+  {"defaults": {"size": "1024x1024", "samples": 4, "max-front": "2%"},
+   "bakes": [{"low": "crate_low.obj", "high": "crate_high.ply", "output": "crate_n.png",
+              "ao": "crate_ao.png"},
+             {"low": "barrel_low.obj", "high": "barrel_high.ply", "output": "barrel_n.png",
+              "size": "2048x2048"}]}
+  A key is an option's long name ("low", "high" and "output" for LOW, HIGH and -o); a
+  flag is true or false. A job's key overrides the defaults; options given on the command
+  line with --batch (e.g. --threads, -q, --samples) override both, for every job. Every job
+  is checked before the first one runs; a failed job does not stop the others (the exit
+  status is the first failure's); --json writes one report listing every job's.
+
+Maps (each its own file, baked in the same pass as the normal map; docs/bake.md, "Maps"):
+  -o             high-poly normal in --space, encoded (n + 1) / 2
+  --ao           open fraction of --ao-samples hemisphere rays (1 = unoccluded)
+  --height       signed distance along the low poly's normal (+ in front)
+  --bent-normal  mean unoccluded direction of the AO rays, encoded like -o
+  --thickness    mean distance through the surface / --thickness-distance (1 = thick)
+  --curvature    mean curvature at --curvature-radius: mid-grey flat, bright convex
+                 (ridges), dark concave (creases); EXR: signed, 1 / scene units
+  --position     hit point, object space: EXR raw, 8/16-bit over the high poly's box
+  --opacity      fraction of a texel's samples that hit, 0 outside islands
+  --miss-mask    fraction of samples whose rays found nothing (debug)
+  --material-id  flat colour per high-poly material (a stable colour of its name)
+  --vertex-color the high poly's vertex colours, interpolated at the hits
+
+Bake groups (docs/bake.md, "Bake groups"): when the low file's parts are named
+<name>_low, each bakes only against the high parts <name>_high and <name>_high_*, so
+parts that touch or interpenetrate bake as if exploded. --low-suffix/--high-suffix
+change the suffixes; unmatched parts are reported by name (low ones are not baked). A high
+file without part names (a PLY) is baked against as one, with a warning; --no-groups bakes
+without groups.
+
+How it works: for every texel, rays start on the low poly (interpolated position) and
+follow its interpolated normal forwards (--max-front) and backwards (--max-rear): the
+low poly may be inside, outside or through the high poly. The hit's high-poly normal is
+stored relative to the low poly's MikkTSpace tangent frame (the frame Blender, Unity,
+Unreal, glTF and glint's renderer use), so the map decodes exactly where it is used.
+
+Notes for artists:
+  Shared normals   Rays follow the low poly's interpolated normals. At a hard edge (two
+                   normals at one point) the rays fan apart and the high-poly detail in
+                   the gap is never seen. Use smooth, shared normals on the low poly;
+                   glint warns about hard edges. Or bake through a --cage.
+  UV spacing       A normal map holds vectors, not colours: a texel that bleeds in from a
+                   neighbouring island bends the lighting. Leave gaps between islands
+                   (twice the padding at the smallest mip you use) and keep --padding on;
+                   bilinear filtering and mipmaps read across island borders.
+  Mirrored UVs     Fine in tangent space (the bitangent sign flips); overlapping UVs
+                   share texels, so only one of the overlapping parts is baked.
+  Micro detail     Model the big shapes, paint scars and pores into a height map and
+                   combine them here (--height-detail): smooth ray-cast shape plus detail.
+
+Every map of a bake is written, or none: a bake that fails at its last map (a full disk)
+leaves the earlier ones as they were.
+
+Exit status: 0 done, 2 bad option (or a bake estimated above --max-memory or, without it,
+this machine's memory), 3 unreadable/unsuitable input, 4 output not writable (a full disk:
+"no space left on device"), 6 out of memory, 130 interrupted (Ctrl-C; no partial file is
+left).)";
+
+
+}  // namespace
+
+void addOptions(CLI::App& cmd, BakeJob& a, Meshes meshes) {
+  if (meshes != Meshes::None) {
+    CLI::Option* low = cmd.add_option("low", a.low, "Low-poly mesh: positions, normals, one UV set (OBJ, PLY, glTF/GLB, "
+                                      "FBX, ...)")->type_name(kFile);
+    CLI::Option* high = cmd.add_option("high", a.high, "High-poly mesh: positions and normals")->type_name(kFile);
+    CLI::Option* output = cmd.add_option("-o,--output", a.output, "Normal map to write; format from the extension: .png "
+                                         ".tga .tif .exr; name it with <UDIM> (normal.<UDIM>.png) for one map per UDIM "
+                                         "tile")->type_name(kFile);
+    if (meshes == Meshes::Required)
+      for (CLI::Option* option : {low, high, output}) option->required();
+  }
+  cmd.add_option("--size", a.size, "Map size WIDTHxHEIGHT, any size")->capture_default_str();
+  cmd.add_option("--samples", a.samples, "Rays per texel, a square: 1, 4, 9, 16, 36, 64 (stratified √N×√N grid, "
+                 "averaged; 36 is smooth)")->capture_default_str();
+  cmd.add_option("--space", a.space, "tangent (MikkTSpace), object, or world (see --world-matrix)")
+      ->check(CLI::IsMember({"tangent", "object", "world"}))->capture_default_str();
+  cmd.add_option("--world-matrix", a.worldMatrix, "Object-to-world matrix for --space world: 16 numbers, row by row");
+  cmd.add_flag("--directx", a.directX, "Flip green (DirectX/Unreal convention); the default is OpenGL's +Y");
+  cmd.add_option("--bits", a.bits, "Bits per channel of the maps whose format has that depth: 8 or 16 for PNG/TIFF, 32 "
+                 "for EXR (the others keep their own: 8 PNG/TGA, 16 TIFF, 32 float EXR)")
+      ->check(CLI::IsMember({8, 16, 32}));
+  cmd.add_option("--max-front", a.maxFront, "How far in front of the low poly rays look: 0.2 (scene units) or 5% "
+                 "(of its bounding-box diagonal)")->capture_default_str();
+  cmd.add_option("--max-rear", a.maxRear, "How far behind the low poly rays look (negative rays)")->capture_default_str();
+  cmd.add_flag("--front-first", a.frontFirst, "Prefer hits in front of the low poly; default: the closest hit either way");
+  cmd.add_option("--cage", a.cage, "Cage mesh: the low poly with vertices pushed outwards (same vertices and "
+                 "triangles); rays then go from the cage inwards")->type_name(kFile);
+  cmd.add_option("--padding", a.padding, "Texels of dilation around UV islands (0: none)")->capture_default_str();
+  cmd.add_flag("--fill-all", a.fillAll, "Dilate until every texel is filled");
+  cmd.add_option("--height-detail", a.detail, "Painted height map (scars, pores) combined with the baked normals; "
+                 "tiled over the UVs")->type_name(kFile);
+  cmd.add_option("--detail-scale", a.detailScale, "Bumpiness of --height-detail: the height of its 0..1 range in "
+                 "texel widths (8: a black-to-white ramp over 8 texels is 45°; negative engraves)")->capture_default_str();
+  cmd.add_option("--ao", a.ao, "Also bake ambient occlusion (hemisphere rays against the high poly) to this file")
+      ->type_name(kFile);
+  cmd.add_option("--ao-samples", a.aoSamples, "AO rays per sample (bent normals share them; thickness casts as many "
+                 "into the surface)")->capture_default_str();
+  cmd.add_option("--ao-distance", a.aoDistance, "AO ray length: scene units or % of the low poly's diagonal")
+      ->capture_default_str();
+  cmd.add_option("--height", a.height, "Also bake height/displacement (signed ray distance) to this file; 8/16-bit "
+                 "files map ±max(--max-front, --max-rear) to 0..1, EXR keeps distances")->type_name(kFile);
+  cmd.add_option("--miss-mask", a.missMask, "Also write the fraction of each texel's rays that found nothing (debug)")
+      ->type_name(kFile);
+  cmd.add_option("--bent-normal", a.bentNormal, "Also bake bent normals (the mean unoccluded direction of the AO rays; "
+                 "casts them without --ao too), in --space, encoded like the normal map")->type_name(kFile);
+  cmd.add_option("--thickness", a.thickness, "Also bake thickness for subsurface/translucency: --ao-samples rays into "
+                 "the surface, mean distance to where they leave it / --thickness-distance (1 = thick)")->type_name(kFile);
+  cmd.add_option("--thickness-distance", a.thicknessDistance, "Thickness ray length, the distance that reads 1: scene "
+                 "units or % of the low poly's diagonal")->capture_default_str();
+  cmd.add_option("--curvature", a.curvature, "Also bake curvature (convex bright, concave dark, mid-grey flat; EXR: "
+                 "signed mean curvature in 1/scene units), from the high poly's normals at --curvature-radius")
+      ->type_name(kFile);
+  cmd.add_option("--curvature-radius", a.curvatureRadius, "The scale curvature is measured at (detail smaller is "
+                 "averaged away; a bend this tight reads white/black in 8/16-bit): scene units or % of the low poly's "
+                 "diagonal")->capture_default_str();
+  cmd.add_option("--position", a.position, "Also bake the high-poly hit point (object space): EXR keeps coordinates, "
+                 "8/16-bit maps the high poly's bounding box to 0..1 (position_min/max in the report)")->type_name(kFile);
+  cmd.add_option("--opacity", a.opacity, "Also bake coverage/opacity: the fraction of each texel's samples that hit the "
+                 "high poly, 0 outside UV islands (not dilated)")->type_name(kFile);
+  cmd.add_option("--material-id", a.materialId, "Also bake a material ID map: a flat colour per high-poly material "
+                 "(majority of the texel's hits, never blended), stable from the material's name")->type_name(kFile);
+  cmd.add_option("--vertex-color", a.vertexColor, "Also bake the high poly's vertex colours (OBJ 'v x y z r g b', PLY "
+                 "red/green/blue, glTF COLOR_0), averaged over each texel's hits")->type_name(kFile);
+  cmd.add_option("--low-suffix", a.lowSuffix, "Bake groups: low parts are named <group><suffix>")->capture_default_str();
+  cmd.add_option("--high-suffix", a.highSuffix, "Bake groups: high parts are named <group><suffix> or "
+                 "<group><suffix>_*")->capture_default_str();
+  cmd.add_flag("--no-groups", a.noGroups, "Bake the low poly as one, even when its parts are named <group>_low");
+  addToolOptions(cmd, a.tool, "texels, rays, hit ratio, misses, BVH size");
+  cmd.get_option("--json")->type_name(kFile);
+}
+
+
+const char* helpFooter() { return kFooter; }
+
+double estimateMemoryMiB(const BakeJob& job) {
+  BakeOptions options;
+  ivec2 size(1024);
+  try {
+    size = parseSize(job.size);
+  } catch (const Error&) {
+  }
+  options.width = size.x;
+  options.height = size.y;
+  options.samples = job.samples;
+  options.ambientOcclusion = !job.ao.empty();
+  options.aoSamples = job.aoSamples;
+  options.heightMap = !job.height.empty();
+  options.missMask = !job.missMask.empty();
+  options.bentNormals = !job.bentNormal.empty();
+  options.thickness = !job.thickness.empty();
+  options.curvature = !job.curvature.empty();
+  options.positionMap = !job.position.empty();
+  options.opacity = !job.opacity.empty();
+  options.materialId = !job.materialId.empty();
+  options.vertexColor = !job.vertexColor.empty();
+  return estimatePeakMemoryMiB(options, {job.low, job.high, job.cage});
+}
+
+std::vector<FileUse> inputFiles(const BakeJob& a) {
+  return {{a.low, "the low poly"}, {a.high, "the high poly"}, {a.cage, "--cage"}, {a.detail, "--height-detail"}};
+}
+
+std::vector<FileUse> outputFiles(const BakeJob& a) {
+  return {{a.output, "-o"}, {a.ao, "--ao"}, {a.height, "--height"}, {a.missMask, "--miss-mask"},
+          {a.bentNormal, "--bent-normal"}, {a.thickness, "--thickness"}, {a.curvature, "--curvature"},
+          {a.position, "--position"}, {a.opacity, "--opacity"}, {a.materialId, "--material-id"},
+          {a.vertexColor, "--vertex-color"}, {a.tool.json, "--json"}};
+}
+
+namespace {
+
+/// What checkBake worked out for runBake.
+struct BakePlan {
+  BakeOptions options;
+  ivec2 size{0};
+  bool needsImageIo = false;  ///< a detail map to read or an output other than PNG
+};
+
+/// Everything a bake checks before it reads an input: options, the files (no output is an
+/// input or another output, by file identity: core/file.h), writable folders, memory.
+/// Fails in a millisecond, not after the bake.
+BakePlan prepare(const BakeJob& a, ToolRun& run) {
+  checkDistinctFiles(inputFiles(a), outputFiles(a));
+  BakePlan plan;
+  BakeOptions& options = plan.options;
+  plan.size = parseSize(a.size);
+  options.width = plan.size.x;
+  options.height = plan.size.y;
+  options.samples = a.samples;
+  options.space = a.space == "object" ? NormalSpace::Object
+                : a.space == "world"  ? NormalSpace::World
+                                      : NormalSpace::Tangent;
+  if (!a.worldMatrix.empty()) options.objectToWorld = parseMatrix(a.worldMatrix);
+  options.directX = a.directX;
+  options.maxFront = parseDistance(a.maxFront, "--max-front");
+  options.maxRear = parseDistance(a.maxRear, "--max-rear");
+  options.selection = a.frontFirst ? HitSelection::FrontFirst : HitSelection::Closest;
+  options.padding = a.padding;
+  options.fillAll = a.fillAll;
+  options.ambientOcclusion = !a.ao.empty();
+  options.aoSamples = a.aoSamples;
+  options.aoDistance = parseDistance(a.aoDistance, "--ao-distance");
+  options.heightMap = !a.height.empty();
+  options.missMask = !a.missMask.empty();
+  options.bentNormals = !a.bentNormal.empty();
+  options.thickness = !a.thickness.empty();
+  options.thicknessDistance = parseDistance(a.thicknessDistance, "--thickness-distance");
+  options.curvature = !a.curvature.empty();
+  options.curvatureRadius = parseDistance(a.curvatureRadius, "--curvature-radius");
+  options.positionMap = !a.position.empty();
+  options.opacity = !a.opacity.empty();
+  options.materialId = !a.materialId.empty();
+  options.vertexColor = !a.vertexColor.empty();
+  if (a.lowSuffix.empty() || a.highSuffix.empty() || a.lowSuffix == a.highSuffix)
+    fail(ErrorKind::Usage, "--low-suffix and --high-suffix must be non-empty and differ");
+  validateOptions(options);
+  options.normalType = outputType(a.output, a.bits);  // quantized by the baker: no float copy of the map
+  std::vector<std::string> outputs{a.output};
+  bool anyHolds = a.bits == 0 || holdsBits(a.output, a.bits);
+  for (const std::string* extra : {&a.ao, &a.height, &a.missMask, &a.bentNormal, &a.thickness, &a.curvature, &a.position,
+                                   &a.opacity, &a.materialId, &a.vertexColor}) {
+    if (extra->empty()) continue;
+    outputType(*extra, a.bits);  // an unknown format: now, not after the bake
+    anyHolds = anyHolds || holdsBits(*extra, a.bits);
+    outputs.push_back(*extra);
+  }
+  // --bits applies to the maps whose format has that depth; one no map has is a mistake.
+  if (!anyHolds) {
+    fail(ErrorKind::Usage, "--bits {}: no map of this bake is in a format with {}-bit channels (PNG 8/16, TGA 8, TIFF "
+         "8/16, EXR 32 float)", a.bits, a.bits);
+  }
+  if (!a.tool.json.empty() && a.tool.json != "-") outputs.push_back(a.tool.json);
+  for (const auto& path : outputs) checkWritable(path);
+  run.checkMemory(estimateMemoryMiB(a), fmt::format("a {}x{} bake", plan.size.x, plan.size.y));
+  // OpenImageIO is needed for a detail map and for outputs other than PNG (libspng).
+  plan.needsImageIo = !a.detail.empty();
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const bool json = !a.tool.json.empty() && a.tool.json != "-" && i + 1 == outputs.size();
+    std::string ext = fs::path(outputs[i]).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (!json && ext != ".png") plan.needsImageIo = true;
+  }
+  if (plan.needsImageIo) requireImageIo();
+  return plan;
+}
+
+}  // namespace
+
+void checkJob(const BakeJob& job, ToolRun& run) { (void)prepare(job, run); }
+
+void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
+  BakePlan plan = prepare(a, run);
+  BakeOptions& options = plan.options;
+  if (cache) options.progressLabel = cache->progressLabel;
+  options.progress = run.showProgress();
+  options.cancel = &run.cancelFlag();
+  if (plan.needsImageIo) preloadImageIo();
+
+  // Inputs (never modified: loaded into memory, prepared there).
+  // The high poly (the big file) is parsed here while a second thread reads the rest;
+  // errors are reported in argument order: low, high, cage, detail.
+  std::optional<ToolRun::Phase> loading(std::in_place, run, "load");
+  // Named parts (bake groups, material ID, vertex colour) are read through Assimp; a low
+  // file that does not even contain the low suffix is read as before, in parallel with the high.
+  const GroupNaming naming{a.lowSuffix, a.highSuffix};
+  std::optional<MeshParts> lowParts;
+  if (!a.noGroups && mentionsText(a.low, naming.lowSuffix)) {
+    lowParts = loadMeshParts(a.low);
+    bool grouped = false;
+    for (const std::string& name : lowParts->partNames) grouped = grouped || !groupName(name, naming.lowSuffix, false).empty();
+    if (!grouped) lowParts.reset();
+  }
+  const bool highAsParts = lowParts || options.materialId || options.vertexColor;
+  auto others = std::async(std::launch::async, [&] {
+    Mesh low = lowParts ? lowParts->mesh : loadMesh(a.low);
+    if (!a.cage.empty()) options.cage = loadMesh(a.cage);
+    if (!a.detail.empty()) options.detail = HeightDetail{loadImage(a.detail), a.detailScale};
+    return low;
+  });
+  // Rays need no shared vertices: skipping Assimp's vertex joining halves the load.
+  std::shared_ptr<const Mesh> high;
+  std::shared_ptr<const MeshParts> highParts;
+  std::exception_ptr highError;
+  bool highReused = false;
+  try {
+    if (HighMeshCache::Entry* e = cache ? cache->find(a.high, highAsParts) : nullptr) {
+      high = e->mesh;
+      highParts = e->parts;
+      highReused = true;
+    } else {
+      if (highAsParts) highParts = std::make_shared<const MeshParts>(loadMeshParts(a.high, {.joinVertices = false}));
+      else high = std::make_shared<const Mesh>(loadMesh(a.high, {.joinVertices = false}));
+      if (cache && cache->usesLeft[a.high] > 1) cache->add(a.high, high, highParts);
+    }
+  } catch (...) {
+    highError = std::current_exception();
+  }
+  const Mesh low = others.get();
+  if (highError) std::rethrow_exception(highError);
+  loading.reset();
+  const Mesh& highMesh = highParts ? highParts->mesh : *high;
+  if (highReused) log::info("bake: {}: high mesh reused from an earlier job of the batch (read once)", a.high);
+  if (cache && (highReused || cache->usesLeft[a.high] > 1)) options.sceneCache = &cache->scenes;
+  GroupMatch match;
+  if (lowParts) {
+    // A high file that names no part with the high suffix (a PLY has no part names): baked
+    // against as one, said once, rather than a bake that stops.
+    bool highNamed = false;
+    for (const std::string& name : highParts->partNames) highNamed = highNamed || !groupName(name, naming.highSuffix, true).empty();
+    if (!highNamed) {
+      run.warn(fmt::format("bake groups: the low poly names its parts with '{}' but '{}' names no part with '{}' (no "
+                           "part names): baked against the whole high poly, without groups (--no-groups says so "
+                           "up front)", naming.lowSuffix, a.high, naming.highSuffix));
+      lowParts.reset();
+    }
+  }
+  if (lowParts) {
+    match = matchGroups(*lowParts, *highParts, naming);
+    // (unmatched parts are warned about by the bake, by name)
+    log::info("bake: {} bake group{} matched by name", match.groups.size(), match.groups.size() == 1 ? "" : "s");
+  }
+  run.throwIfInterrupted();
+  // Every map this bake writes: (kind for the report, the path as given).
+  const std::pair<const char*, const std::string*> kinds[] = {
+      {"normal", &a.output},         {"ao", &a.ao},          {"height", &a.height},     {"miss_mask", &a.missMask},
+      {"bent_normal", &a.bentNormal}, {"thickness", &a.thickness}, {"curvature", &a.curvature},
+      {"position", &a.position},     {"opacity", &a.opacity},     {"material_id", &a.materialId},
+      {"vertex_color", &a.vertexColor}};
+
+  // UDIM: UVs beyond the unit square, or outputs named with <UDIM>, bake one image per tile.
+  bool named = false, unnamed = false;
+  for (const auto& [kind, path] : kinds) {
+    if (path->empty()) continue;
+    (hasUdimToken(*path) ? named : unnamed) = true;
+  }
+  std::vector<UdimTile> tiles;
+  if (named || spansUdimTiles(low)) {
+    if (unnamed) {
+      fail(ErrorKind::Usage, "bake: the low poly's UVs span UDIM tiles (or an output names <UDIM>): name every map with "
+           "<UDIM> where the tile number goes, e.g. -o normal.<UDIM>.png");
+    }
+    UdimSplit split = splitUdimTiles(low);
+    if (split.outOfRangeTriangles)
+      run.warn(fmt::format("{} low-poly triangle{} with UVs outside the UDIM range (u in [0, 10), v >= 0) left out",
+                           split.outOfRangeTriangles, split.outOfRangeTriangles == 1 ? "" : "s"));
+    if (split.spanningTriangles)
+      run.warn(fmt::format("{} low-poly triangle{} reach past their UDIM tile's edge: baked in the tile of their "
+                           "centre, clipped at its edge",
+                           split.spanningTriangles, split.spanningTriangles == 1 ? "" : "s"));
+    if (split.tiles.empty()) fail(ErrorKind::Input, "bake: no low-poly triangle lies in the UDIM range");
+    tiles = std::move(split.tiles);
+  }
+  const bool udim = !tiles.empty();
+  if (udim) {
+    // Distances given as a share of the model are the whole low poly's, in every tile.
+    const float diagonal = low.bounds().diagonal();
+    for (Distance* d : {&options.maxFront, &options.maxRear, &options.aoDistance, &options.thicknessDistance,
+                              &options.curvatureRadius})
+      *d = Distance{d->resolve(diagonal), false};
+  }
+  if (!udim) tiles.push_back({.number = 0, .low = low, .triangles = low.triangleCount()});
+  // A UDIM tile's cage is the cage's vertices of the tile's triangles (the cage has the low
+  // poly's vertices and triangles), and its bake groups are those of its triangles' parts.
+  const std::optional<Mesh> wholeCage = udim ? options.cage : std::nullopt;
+  const auto tileCage = [&](const UdimTile& tile) {
+    Mesh cage = tile.low;
+    for (std::size_t k = 0; k < tile.lowVertices.size(); ++k) cage.positions[k] = wholeCage->positions[tile.lowVertices[k]];
+    return cage;
+  };
+  const auto tileParts = [&](const UdimTile& tile) {
+    MeshParts parts{.mesh = tile.low, .partNames = lowParts->partNames};
+    parts.trianglePart.reserve(tile.lowTriangles.size());
+    for (const std::uint32_t t : tile.lowTriangles) parts.trianglePart.push_back(lowParts->trianglePart[t]);
+    return parts;
+  };
+
+  auto& report = run.report();
+  report["low"] = a.low;
+  report["high"] = a.high;
+  if (cache) report["high_mesh_reused"] = highReused;
+  report["output"] = a.output;
+  Json maps = Json::object();  // every map written, by kind
+  for (const auto& [kind, path] : kinds)
+    if (!path->empty()) maps[kind] = *path;
+  report["maps"] = std::move(maps);
+  report.update(toJson(options));
+  if (match.grouped()) report.update(toJson(match));
+  Json tileReports = Json::array();
+  const std::string label = options.progressLabel;
+  for (const UdimTile& tile : tiles) {
+    const auto file = [&](const std::string& path) { return udim ? udimPath(path, tile.number) : path; };
+    if (udim) options.progressLabel = fmt::format("{} tile {}", label, tile.number);
+    if (udim && wholeCage) options.cage = tileCage(tile);
+    BakeResult result;
+    if (udim && lowParts) {  // the tile's parts, matched as the whole low poly's were
+      const MeshParts parts = tileParts(tile);
+      result = bake(parts, *highParts, matchGroups(parts, *highParts, naming), options);
+    } else if (highParts) {
+      result = bake(lowParts ? *lowParts : MeshParts{.mesh = tile.low}, *highParts, match, options);
+    } else {
+      result = bake(tile.low, *high, options);
+    }
+    const BakeStats& s = result.stats;
+    run.addSeconds("prepare", s.prepareSeconds);
+    run.addSeconds("trace", s.traceSeconds);
+    run.addSeconds("dilate", s.dilateSeconds);
+    if (s.bvhReused) log::info("bake: {}: BVH reused from an earlier job of the batch", a.high);
+
+    std::optional<ToolRun::Phase> writing(std::in_place, run, "write");
+    // Every map asked for, as (its option's path, the image converted for that file), the
+    // files written in parallel: compressing them is most of the write phase (six 2048²
+    // PNGs: 2.4 s one after another).
+    std::vector<std::function<void()>> writes;
+    const auto add = [&](const std::string& path, auto convert) {
+      if (!path.empty()) writes.emplace_back([&path, convert, &file, &a] { saveImage(convert(outputType(path, a.bits)), file(path)); });
+    };
+    writes.emplace_back([&] { saveImage(result.normal, file(a.output)); });
+    const float heightRange = std::max(s.frontDistance, s.rearDistance);
+    add(a.ao, [&](PixelType t) { return forOutput(result.ao, t); });
+    add(a.height, [&](PixelType t) { return heightForOutput(result.height, t, heightRange); });
+    add(a.missMask, [&](PixelType t) { return forOutput(result.missMask, t); });
+    add(a.bentNormal, [&](PixelType t) { return forOutput(result.bentNormal, t); });
+    add(a.thickness, [&](PixelType t) { return forOutput(result.thickness, t); });
+    add(a.curvature, [&](PixelType t) { return curvatureForOutput(result.curvature, t, s.curvatureRadius); });
+    add(a.position, [&](PixelType t) { return positionForOutput(result.position, t, *s.positionBounds); });
+    add(a.opacity, [&](PixelType t) { return forOutput(result.opacity, t); });
+    add(a.materialId, [&](PixelType t) { return forOutput(result.materialId, t); });
+    add(a.vertexColor, [&](PixelType t) { return forOutput(result.vertexColor, t); });
+    tbb::parallel_for_each(writes.begin(), writes.end(), [](const std::function<void()>& write) { write(); });
+    writing.reset();
+    log::info("bake: {} ({} triangles) → {} ({}x{}, {} per texel): {} texels baked, {} padded; {} rays, hit ratio "
+              "{:.4f}; {:.2f} s", a.high, highMesh.triangleCount(), file(a.output), options.width, options.height,
+              options.samples, s.coveredTexels, s.paddedTexels, s.rays, s.hitRatio(), run.elapsed());
+    for (const auto& w : result.warnings) run.recordWarning(w);
+    if (!udim) {
+      report.update(toJson(s));
+    } else {
+      Json entry = {{"tile", tile.number}, {"low_triangles_in_tile", tile.triangles}, {"output", file(a.output)}};
+      entry.update(toJson(s));
+      tileReports.push_back(std::move(entry));
+    }
+    run.throwIfInterrupted();
+  }
+  if (udim) report["udim_tiles"] = std::move(tileReports);
+}
+
+}  // namespace glint::bake
