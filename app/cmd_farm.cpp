@@ -143,7 +143,7 @@ int follow(farm::Farm& job, const FarmArgs& a, const std::string& outputs) {
     return 0;
   }
   for (const auto& failure : result.failures) log::error("farm {}: {}", job.plan().tool, failure);
-  if (result.exitCode != 2)
+  if (!result.cannotStart)
     log::error("farm {}: not joined; run the same command again to redo only the failed pieces", job.plan().tool);
   return result.exitCode;
 }

@@ -4,7 +4,11 @@
 // in the middle, u to the right, v down.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) readonly buffer Source { vec2 src[]; };
+#ifdef FLOAT_OUTPUT
+layout(rgba32f, binding = 0) writeonly uniform image2D uOutput;
+#else
 layout(rgba8, binding = 0) writeonly uniform image2D uOutput;
+#endif
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -540,6 +540,7 @@ WaitResult Farm::wait(const std::function<void(int, int, const std::string&)>& p
       result.failures.push_back("the queued tasks were cancelled: change the request (--cpus-per-task, --mem, --time, "
                                 "--partition) and run again");
       result.exitCode = 2;
+      result.cannotStart = true;
       return result;
     }
     const bool live = running + queued > 0;

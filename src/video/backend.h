@@ -23,7 +23,7 @@
 
 namespace glint::video::backend {
 
-constexpr int kVideoAbiVersion = 4;
+constexpr int kVideoAbiVersion = 5;
 
 /// An entry point's outcome: ok, or the Error it would have thrown.
 struct Status {

@@ -5,9 +5,18 @@
 #include "glint/core/log.h"
 
 #include <algorithm>
+#include <cstring>
 #include <optional>
 
 namespace glint::video {
+
+namespace {
+/// FFmpeg's reason a write failed, or "no space left on device (N KiB free ...)" for a full disk.
+std::string writeError(const std::filesystem::path& destination, int code) {
+  if (code == AVERROR(ENOSPC) || code == AVERROR(EDQUOT)) return writeFailure(destination, ENOSPC);
+  return ffmpegError(code);
+}
+}  // namespace
 
 namespace fs = std::filesystem;
 
@@ -42,7 +51,7 @@ OutputPtr createOutput(const fs::path& destination, const fs::path& tmp, const s
   }
   AVFormatContext* raw = nullptr;
   const int e = avformat_alloc_output_context2(&raw, format, nullptr, tmp.c_str());
-  if (e < 0 || !raw) fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(e));
+  if (e < 0 || !raw) fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, e));
   // The same frames give the same bytes: no random Matroska segment UID, no creation time,
   // no library version strings (found by tests/reliability's kill and determinism tests).
   raw->flags |= AVFMT_FLAG_BITEXACT;
@@ -52,7 +61,7 @@ OutputPtr createOutput(const fs::path& destination, const fs::path& tmp, const s
 void openFile(AVFormatContext& output, const fs::path& tmp, const fs::path& destination) {
   if (output.oformat->flags & AVFMT_NOFILE) return;
   if (const int e = avio_open(&output.pb, tmp.c_str(), AVIO_FLAG_WRITE); e < 0) {
-    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(e));
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, e));
   }
 }
 struct FfmpegSink {
@@ -84,7 +93,7 @@ struct FfmpegSink {
 
 void FfmpegSink::writePacket(AVPacket& p) {
   if (const int e = av_interleaved_write_frame(output.get(), &p); e < 0) {
-    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(e));
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, e));
   }
 }
 
@@ -163,6 +172,11 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_
   avcodec_parameters_from_context(s.videoStream->codecpar, &e);
   s.videoStream->time_base = e.time_base;
   s.videoStream->avg_frame_rate = e.framerate;
+  if (options.displayMatrix.size() == 9) {  // a rotated source stays rotated
+    std::uint8_t* m = av_stream_new_side_data(s.videoStream, AV_PKT_DATA_DISPLAYMATRIX, 9 * sizeof(std::int32_t));
+    if (!m) fail(ErrorKind::Internal, "cannot add the display matrix to '{}'", destination.string());
+    std::memcpy(m, options.displayMatrix.data(), 9 * sizeof(std::int32_t));
+  }
 
   if (options.audio) {
     const AVCodecParameters& a = options.audio->parameters();
@@ -190,7 +204,7 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_
                std::string_view(s.output->oformat->name) == "webm";
   openFile(*s.output, target, destination);
   if (const int h = avformat_write_header(s.output.get(), nullptr); h < 0) {
-    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(h));
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, h));
   }
   s.headerWritten = true;
 
@@ -268,7 +282,7 @@ void FfmpegSink::finish() {
   }
   s.drain(true);
   if (const int t = av_write_trailer(s.output.get()); t < 0) {
-    fail(ErrorKind::Output, "cannot write '{}': {}", s.destination.string(), ffmpegError(t));
+    fail(ErrorKind::Output, "cannot write '{}': {}", s.destination.string(), writeError(s.destination, t));
   }
   if (!(s.output->oformat->flags & AVFMT_NOFILE)) avio_closep(&s.output->pb);
   if (s.file) s.file->commit();
@@ -330,16 +344,22 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
     out->codecpar->codec_tag = 0;
     out->time_base = first.streams[i]->time_base;
     out->avg_frame_rate = first.streams[i]->avg_frame_rate;
+    std::size_t matrixSize = 0;  // the parts' rotation, kept
+    if (const std::uint8_t* m = av_stream_get_side_data(first.streams[i], AV_PKT_DATA_DISPLAYMATRIX, &matrixSize);
+        m && matrixSize > 0) {
+      if (std::uint8_t* copy = av_stream_new_side_data(out, AV_PKT_DATA_DISPLAYMATRIX, matrixSize))
+        std::memcpy(copy, m, matrixSize);
+    }
   }
   openFile(*output, file.temporary(), destination);
   if (const int h = avformat_write_header(output.get(), nullptr); h < 0) {
-    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(h));
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, h));
   }
 
   PacketPtr packet(av_packet_alloc());
   const auto write = [&](AVPacket& p) {
     if (const int w = av_interleaved_write_frame(output.get(), &p); w < 0) {
-      fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(w));
+      fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, w));
     }
   };
   std::int64_t frames = 0;
@@ -411,7 +431,7 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
     previousEnd = partEnd;
   }
   if (const int t = av_write_trailer(output.get()); t < 0) {
-    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), ffmpegError(t));
+    fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, t));
   }
   if (!(output->oformat->flags & AVFMT_NOFILE)) avio_closep(&output->pb);
   file.commit();

@@ -1,5 +1,9 @@
 #include "ffmpeg.h"
 
+extern "C" {
+#include <libavutil/display.h>
+}
+
 #include "glint/core/error.h"
 #include "glint/core/log.h"
 
@@ -28,6 +32,30 @@ std::string describe(const std::string& name, SourceKind kind) {
   }
   return fmt::format("'{}'", name);
 }
+/// `in` (U8 RGBA) turned counterclockwise by `quarters` quarter turns into `out`.
+void turnCounterclockwise(const Image& in, int quarters, Image& out) {
+  const int w = in.width(), h = in.height();
+  const bool swap = quarters % 2 == 1;
+  if (out.width() != (swap ? h : w) || out.height() != (swap ? w : h) || out.channels() != 4 || out.type() != PixelType::U8)
+    out = Image(swap ? h : w, swap ? w : h, 4, PixelType::U8);
+  const auto* src = reinterpret_cast<const std::uint32_t*>(in.bytes().data());
+  auto* dst = reinterpret_cast<std::uint32_t*>(out.bytes().data());
+  const int ow = out.width();
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      // Counterclockwise on screen (y down): a quarter turn takes (x, y) to (y, w - 1 - x).
+      int tx = x, ty = y;
+      switch (quarters) {
+        case 1: tx = y, ty = w - 1 - x; break;
+        case 2: tx = w - 1 - x, ty = h - 1 - y; break;
+        case 3: tx = h - 1 - y, ty = x; break;
+        default: break;
+      }
+      dst[std::size_t(ty) * std::size_t(ow) + std::size_t(tx)] = src[std::size_t(y) * std::size_t(w) + std::size_t(x)];
+    }
+  }
+}
+
 struct FfmpegSource {
   SourceOptions options;
   SourceInfo info;
@@ -44,6 +72,8 @@ struct FfmpegSource {
   std::int64_t startPts = kNoTimestamp;  // the stream's first timestamp: frame 0
   std::int64_t lastPts = kNoTimestamp;
   std::int64_t delivered = 0, dropped = 0, corrupt = 0, counter = 0;
+  int quarterTurns = 0;  // counterclockwise quarter turns applied to every frame (applyRotation)
+  Image unturned;        // a frame before it is turned
   bool flushing = false, done = false;
   // realtime pacing
   bool paceStarted = false;
@@ -148,9 +178,30 @@ void FfmpegSource::open(const std::string& name) {
   if (format->duration > 0 && info.kind == SourceKind::File) info.durationSeconds = double(format->duration) / AV_TIME_BASE;
   if (stream->duration > 0 && info.kind == SourceKind::File) info.durationSeconds = double(stream->duration) * av_q2d(stream->time_base);
   if (info.kind == SourceKind::File) {
-    if (stream->nb_frames > 0) info.frameCount = stream->nb_frames;
-    else if (info.durationSeconds > 0 && info.frameRate.valid())
+    if (stream->nb_frames > 0) {
+      info.frameCount = stream->nb_frames;
+      info.frameCountExact = true;
+    } else if (info.durationSeconds > 0 && info.frameRate.valid()) {
       info.frameCount = std::llround(info.durationSeconds * info.frameRate.value());
+    }
+  }
+  // A phone's portrait clip is stored sideways with a display matrix that turns it.
+  std::size_t matrixSize = 0;
+  if (const std::uint8_t* m = av_stream_get_side_data(stream, AV_PKT_DATA_DISPLAYMATRIX, &matrixSize);
+      m && matrixSize >= 9 * sizeof(std::int32_t)) {
+    const auto* values = reinterpret_cast<const std::int32_t*>(m);
+    info.displayMatrix.assign(values, values + 9);
+    const double degrees = av_display_rotation_get(values);
+    if (std::isfinite(degrees)) info.rotation = int(((std::lround(degrees) % 360) + 360) % 360);
+    // Turned here when asked, by quarter turns without a mirror (the matrices phones write).
+    const bool mirrored = double(values[0]) * double(values[4]) - double(values[1]) * double(values[3]) < 0.0;
+    if (options.applyRotation && info.rotation % 90 == 0 && !mirrored) {
+      quarterTurns = info.rotation / 90;
+      info.rotationApplied = true;
+      info.displayMatrix.clear();
+      if (quarterTurns % 2 == 1) std::swap(info.size.x, info.size.y);
+      this->options.yuv420 = this->options.yuv420 && quarterTurns == 0;
+    }
   }
   startPts = stream->start_time != AV_NOPTS_VALUE ? stream->start_time : kNoTimestamp;
 
@@ -259,7 +310,12 @@ bool FfmpegSource::decodeOne(Frame& out) {
       if (startPts == kNoTimestamp && pts != AV_NOPTS_VALUE) startPts = pts;
       if (pts == AV_NOPTS_VALUE) pts = kNoTimestamp;
       if (!options.yuv420 || !takeYuv420(*frame, out)) {
-        converter.toRgba(*frame, out.image);
+        if (quarterTurns == 0) {
+          converter.toRgba(*frame, out.image);
+        } else {
+          converter.toRgba(*frame, unturned);
+          turnCounterclockwise(unturned, quarterTurns, out.image);
+        }
         out.format = FrameFormat::Rgba;
       }
       out.pts = pts;

@@ -152,8 +152,18 @@ struct Sink::Impl {
   }
 };
 
+bool holdsDisplayMatrix(const fs::path& destination, const std::string& format) {
+  std::string ext = destination == "-" ? "." + format : destination.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".mp4" || ext == ".mov" || ext == ".m4v";
+}
+
 Sink::Sink(const fs::path& destination, const SinkOptions& options) : m_impl(std::make_unique<Impl>()) {
   if (options.codec == Codec::H264) checkPreset(options.preset);  // x264 would print its own error line
+  if (options.displayMatrix.size() == 9 && !holdsDisplayMatrix(destination, options.format)) {
+    fail(ErrorKind::Usage, "'{}': a {} file cannot hold the video's rotation (its display matrix): write .mp4 or .mov, "
+         "or turn the frames upright", destination.string(), destination.extension().string());
+  }
   backend::Status status;
   m_impl->destination = destination;
   m_impl->handle = api().openSink(destination, options, status);

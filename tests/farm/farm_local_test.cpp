@@ -298,6 +298,7 @@ TEST(FarmLocal, ATaskThatCanNeverStartIsReportedAndCancelled) {
   const farm::WaitResult r = job.wait();
   EXPECT_FALSE(r.joined);
   EXPECT_EQ(r.exitCode, 2);
+  EXPECT_TRUE(r.cannotStart);
   ASSERT_FALSE(r.failures.empty());
   EXPECT_NE(r.failures[0].find("can never start: PartitionConfig"), std::string::npos) << r.failures[0];
   EXPECT_TRUE(pending->m_cancelled.count(s.arrayJob));

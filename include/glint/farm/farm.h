@@ -147,6 +147,7 @@ struct PieceStatus {
 struct WaitResult {
   bool joined = false;           ///< the join succeeded: the outputs exist
   bool stopped = false;          ///< the stop flag was set: the jobs go on without being followed
+  bool cannotStart = false;      ///< a task can never start as submitted: the queued tasks were cancelled
   std::vector<std::string> failures;  ///< one line per failed or cancelled task: label, state, exit code, log
   int exitCode = 0;              ///< 0 when joined; else the first failed task's exit code, or 1; 2 for a
                                  ///< task that can never start (cancelled)

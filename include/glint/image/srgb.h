@@ -30,6 +30,34 @@ inline float srgbDecode(float encoded) {
   return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
+/// The transfer function extended past 0..1 (light above display white in an HDR image,
+/// and negative values, mirrored): monotonic, and srgbDecodeExtended undoes it exactly up to
+/// float rounding. `glint post` encodes a float image this way so it can decode the result.
+inline float srgbEncodeExtended(float linear) {
+  return linear < 0.0f ? -srgbEncode(-linear) : srgbEncode(linear);
+}
+inline float srgbDecodeExtended(float encoded) {
+  return encoded < 0.0f ? -srgbDecode(-encoded) : srgbDecode(encoded);
+}
+
+/// An F32 image's colour channels (R, G, B, or gray) through `f`; alpha unchanged.
+template <class F>
+Image mapColour(Image image, F f) {
+  const int colour = image.channels() >= 3 ? 3 : 1;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      for (int c = 0; c < colour; ++c) image.set(x, y, c, f(image.at(x, y, c)));
+  return image;
+}
+
+/// Linear light (F32) encoded without clamping (srgbEncodeExtended): values above 1 stay
+/// above 1, so decoding the result gives them back.
+inline Image srgbEncodedExtended(Image image) { return mapColour(std::move(image), srgbEncodeExtended); }
+/// Encoded values (any type; the result is F32) back to linear light (srgbDecodeExtended).
+inline Image srgbDecoded(const Image& image) {
+  return mapColour(image.type() == PixelType::F32 ? image : image.converted(PixelType::F32), srgbDecodeExtended);
+}
+
 /// An image of linear light (F32: EXR, HDR) with its colour (R, G, B, or gray) clamped to
 /// 0..1 and encoded; alpha unchanged, the type kept.
 inline Image srgbEncoded(Image image) {

@@ -79,7 +79,15 @@ struct SinkOptions {
   /// "nut", "ts"). Written as it is made, not atomically; MP4 and MOV cannot stream (their
   /// index is written at the end, which needs seeking): Error(Usage).
   std::string format;
+  /// The display matrix to write on the video stream (SourceInfo::displayMatrix: a rotated
+  /// source's stays rotated). MP4 and MOV hold it; with another container the sink fails
+  /// with Error(Usage) naming the container, so the caller can turn the frames instead.
+  std::vector<std::int32_t> displayMatrix;
 };
+
+/// Whether a video written to `destination` (or stdout as `format`) can hold a display
+/// matrix: MP4 and MOV can.
+bool holdsDisplayMatrix(const std::filesystem::path& destination, const std::string& format = {});
 
 class Sink {
 public:

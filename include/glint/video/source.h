@@ -41,6 +41,7 @@
 #include "glint/core/math.h"
 #include "glint/video/frame.h"
 
+#include <cstdint>
 #include <deque>
 #include <memory>
 #include <string>
@@ -67,6 +68,10 @@ struct SourceOptions {
   /// FrameFormat::Yuv420, without converting to RGBA; any other frame is converted as usual.
   /// For processors that work on luma (glint post's CPU backend).
   bool yuv420 = false;
+  /// Turn the frames as the stream's display matrix says they are shown (a phone's portrait
+  /// clip, stored sideways): RGBA frames rotated by SourceInfo::rotation, the size as shown,
+  /// no display matrix left to copy. Quarter turns only (other matrices are left as they are).
+  bool applyRotation = false;
 };
 
 /// What a source is, as far as the container says.
@@ -78,6 +83,16 @@ struct SourceInfo {
   Rational timeBase;           ///< the video stream's time base (Frame::pts units)
   double durationSeconds = 0;  ///< 0 when unknown (cameras, endless generators)
   std::int64_t frameCount = -1;  ///< frames in the file (container's count or duration × rate); -1 unknown
+  /// Whether frameCount is the container's own count (MP4's nb_frames) rather than an
+  /// estimate from the duration and the average rate, which a variable-rate stream misses.
+  bool frameCountExact = false;
+  /// The stream's display matrix (9 values, FFmpeg's AV_PKT_DATA_DISPLAYMATRIX), empty when
+  /// it has none; kept on a video written from these frames (SinkOptions::displayMatrix).
+  std::vector<std::int32_t> displayMatrix;
+  /// The rotation that matrix shows the frames with, counterclockwise in degrees, 0..359 (as
+  /// ffprobe prints it); 0 without one. After applyRotation, the rotation that was applied.
+  int rotation = 0;
+  bool rotationApplied = false;  ///< the frames were turned (SourceOptions::applyRotation)
   std::string container;       ///< "matroska,webm", "video4linux2,v4l2", "lavfi"
   std::string codec;           ///< "h264", "ffv1", "rawvideo"
   std::string pixelFormat;     ///< the decoded format before conversion, "yuv420p"

@@ -11,14 +11,26 @@
 namespace glint::render::post {
 
 gl::Texture uploadFrame(const Image& image, std::string_view label) {
-  const Image rgba = postInput(image);
   gl::Texture texture(GL_TEXTURE_2D, label);
+  if (image.type() == PixelType::F32) {  // a float image's encoded values, unclamped
+    if (image.channels() < 3) fail(ErrorKind::Usage, "post effects take RGB or RGBA images, got {} channel(s)", image.channels());
+    const Image rgba = image.withChannels(4);
+    texture.storage(GL_RGBA32F, rgba.width(), rgba.height());
+    texture.upload(0, rgba.width(), rgba.height(), GL_RGBA, GL_FLOAT, rgba.bytes().data());
+    return texture;
+  }
+  const Image rgba = postInput(image);
   texture.storage(GL_RGBA8, rgba.width(), rgba.height());
   texture.upload(0, rgba.width(), rgba.height(), GL_RGBA, GL_UNSIGNED_BYTE, rgba.bytes().data());
   return texture;
 }
 
 Image readFrame(const gl::Texture& texture) {
+  if (texture.internalFormat() == GL_RGBA32F) {
+    Image image(texture.width(), texture.height(), 4, PixelType::F32);
+    texture.read(0, GL_RGBA, GL_FLOAT, image.bytes().size(), image.bytes().data());
+    return image;
+  }
   Image image(texture.width(), texture.height(), 4, PixelType::U8);
   texture.read(0, GL_RGBA, GL_UNSIGNED_BYTE, image.bytes().size(), image.bytes().data());
   return image;
@@ -36,20 +48,24 @@ struct Stage {
 
 struct Chain::Impl {
   ivec2 size;
+  GLenum format = GL_RGBA8;  ///< of the targets: GL_RGBA8, or GL_RGBA32F for an F32 chain
   std::vector<Effect> effects;
   std::vector<Stage> stages;
   gl::Texture targets[2];
 };
 
-Chain::Chain(ivec2 size, std::vector<Effect> effects) : m_impl(std::make_unique<Impl>()) {
+Chain::Chain(ivec2 size, std::vector<Effect> effects, PixelType precision) : m_impl(std::make_unique<Impl>()) {
   if (size.x < 1 || size.y < 1) fail(ErrorKind::Usage, "frame size must be positive, got {}x{}", size.x, size.y);
+  if (precision != PixelType::U8 && precision != PixelType::F32)
+    fail(ErrorKind::Usage, "a post chain works on U8 or F32 frames, not {}", pixelTypeName(precision));
+  m_impl->format = precision == PixelType::F32 ? GL_RGBA32F : GL_RGBA8;
   for (const auto& e : effects) validateEffect(e, size);
   m_impl->size = size;
   m_impl->effects = std::move(effects);
   for (const auto& e : m_impl->effects) m_impl->stages.emplace_back(e);
   for (int i = 0; i < 2 && i < int(m_impl->effects.size()); ++i) {
     m_impl->targets[i] = gl::Texture(GL_TEXTURE_2D, i == 0 ? "post-ping" : "post-pong");
-    m_impl->targets[i].storage(GL_RGBA8, size.x, size.y);
+    m_impl->targets[i].storage(m_impl->format, size.x, size.y);
   }
 }
 
@@ -63,6 +79,9 @@ const gl::Texture& Chain::run(const gl::Texture& input) {
     fail(ErrorKind::Usage, "frame {}x{} does not match the chain's {}x{}", input.width(), input.height(), c.size.x,
          c.size.y);
   }
+  if (!c.stages.empty() && input.internalFormat() != c.format)
+    fail(ErrorKind::Usage, "a {} frame for a chain of {} targets", input.internalFormat() == GL_RGBA32F ? "float" : "8-bit",
+         c.format == GL_RGBA32F ? "float" : "8-bit");
   const gl::Texture* current = &input;
   for (std::size_t i = 0; i < c.stages.size(); ++i) {
     const gl::Texture& out = c.targets[i % 2];
@@ -94,7 +113,7 @@ void Chain::setEffects(std::vector<Effect> effects) {
   for (int i = 0; i < 2 && i < int(effects.size()); ++i) {
     if (c.targets[i]) continue;
     c.targets[i] = gl::Texture(GL_TEXTURE_2D, i == 0 ? "post-ping" : "post-pong");
-    c.targets[i].storage(GL_RGBA8, c.size.x, c.size.y);
+    c.targets[i].storage(c.format, c.size.x, c.size.y);
   }
   c.effects = std::move(effects);
 }

@@ -54,7 +54,8 @@ void checkOutput(const char* pass, const gl::Texture& input, const gl::Texture& 
     fail(ErrorKind::Usage, "{}: input {}x{} and output {}x{} must have the same size", pass, input.width(),
          input.height(), output.width(), output.height());
   }
-  if (output.internalFormat() != GL_RGBA8) fail(ErrorKind::Usage, "{}: the output must be an RGBA8 texture", pass);
+  if (output.internalFormat() != GL_RGBA8 && output.internalFormat() != GL_RGBA32F)
+    fail(ErrorKind::Usage, "{}: the output must be an RGBA8 or RGBA32F texture", pass);
 }
 /// The forward transform's first step, shared by the spectrum and the filters: `load`
 /// (post/fft_load.comp) reads the input image into `fft`'s buffer 0.
@@ -153,7 +154,6 @@ void SpectrumPass::prepare(ivec2 size) {
   m_fft = std::make_unique<Fft2d>(size, 1);
   if (!m_load) {
     m_load = gl::Program::fromFiles({"post/fft_load.comp"}, {"LANES 1"});
-    m_show = gl::Program::fromFiles({"post/fft_spectrum.comp"});
   }
 }
 
@@ -163,9 +163,13 @@ void SpectrumPass::run(const gl::Texture& input, const gl::Texture& output) {
   prepare(size);
   loadFftInput(m_load, *m_fft, input, size);
   const int result = m_fft->run(0, FftDirection::Forward);
-  m_show.use();
+  const bool wide = output.internalFormat() == GL_RGBA32F;
+  gl::Program& show = wide ? m_showFloat : m_show;
+  if (!show) show = gl::Program::fromFiles({"post/fft_spectrum.comp"}, wide ? std::vector<std::string>{"FLOAT_OUTPUT 1"}
+                                                                            : std::vector<std::string>{});
+  show.use();
   m_fft->buffer(result).bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-  output.bindImage(0, GL_WRITE_ONLY, GL_RGBA8);
+  output.bindImage(0, GL_WRITE_ONLY, output.internalFormat());
   glDispatchCompute(groups(size.x, 8), groups(size.y, 8), 1);
   imageBarrier();
 }
@@ -181,7 +185,6 @@ void FrequencyFilterPass::prepare(ivec2 size, const FrequencyFilter& filter) {
   if (!m_load) {
     m_load = gl::Program::fromFiles({"post/fft_load.comp"}, {"LANES 2"});
     m_multiply = gl::Program::fromFiles({"post/fft_multiply.comp"});
-    m_store = gl::Program::fromFiles({"post/fft_store.comp"});
   }
   const auto& p = m_prepared;
   const bool same = m_hasTransfer && p.kind == filter.kind && p.cutoff == filter.cutoff && p.low == filter.low &&
@@ -221,12 +224,16 @@ void FrequencyFilterPass::run(const gl::Texture& input, const gl::Texture& outpu
   glDispatchCompute(groups(size.x * size.y, 64), 1, 1);
   storageBarrier();
   result = m_fft->run(result, FftDirection::Inverse);
-  m_store.use();
-  m_store.set("uInput", 0);
-  m_store.set("uOffset", filter.offset);
+  const bool wide = output.internalFormat() == GL_RGBA32F;
+  gl::Program& store = wide ? m_storeFloat : m_store;
+  if (!store) store = gl::Program::fromFiles({"post/fft_store.comp"}, wide ? std::vector<std::string>{"FLOAT_OUTPUT 1"}
+                                                                           : std::vector<std::string>{});
+  store.use();
+  store.set("uInput", 0);
+  store.set("uOffset", filter.offset);
   bindInput(input, 0);
   m_fft->buffer(result).bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-  output.bindImage(0, GL_WRITE_ONLY, GL_RGBA8);
+  output.bindImage(0, GL_WRITE_ONLY, output.internalFormat());
   glDispatchCompute(groups(size.x, 8), groups(size.y, 8), 1);
   imageBarrier();
 }

@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 
@@ -22,15 +23,28 @@ namespace glint::render::post {
 
 namespace {
 
-/// The frame as glint post processes it: U8 RGBA. 16-bit images are rounded; float images
-/// (EXR, HDR) hold linear light and are sRGB-encoded, clamped, with a warning.
-Image toFrame(const Image& image, const std::string& name, ToolRun& run) {
+/// The frame as glint post processes it: RGBA, its values sRGB-encoded (the seed's camera
+/// values). U8 for 8- and 16-bit images (16-bit rounded). A float image (EXR, HDR: linear
+/// light) stays F32 for the GPU's float chain, encoded without clamping so the result
+/// decodes back to linear light (`floatChain`); for the CPU backend (8-bit frames) it is
+/// encoded, clamped to 0..1 and rounded, with a warning.
+Image toFrame(const Image& image, const std::string& name, bool floatChain, ToolRun& run) {
   Image rgba = image.channels() == 4 ? image : image.withChannels(4);
   if (rgba.type() == PixelType::F32) {
-    run.warn(fmt::format("{} holds linear float values: encoded to 8-bit sRGB (clamped to 0..1) before the effects", name));
+    if (floatChain) return srgbEncodedExtended(std::move(rgba));
+    run.warn(fmt::format("{} holds linear float values: the CPU backend encodes them to 8-bit sRGB (clamped to 0..1) "
+                         "before the effects (--backend gpu keeps them in float)", name));
     rgba = srgbEncoded(std::move(rgba));
   }
   return rgba.type() == PixelType::U8 ? rgba : rgba.converted(PixelType::U8);
+}
+
+/// Whether an image written to `output` (or stdout in `format`) holds float values: they are
+/// then linear light, as EXR and Radiance HDR files are read.
+bool floatImageOutput(const std::string& output, const std::string& format) {
+  std::string ext = output == "-" ? "." + format : std::filesystem::path(output).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr" || ext == ".hdr";
 }
 
 /// The processed RGBA frame with the channels the output keeps: `asked` (--channels), else
@@ -40,9 +54,9 @@ Image withOutputChannels(const Image& rgba, int inputChannels, int asked, const 
   if (asked > 0) return rgba.withChannels(asked);
   int channels = inputChannels;
   if (channels <= 2) {
-    const auto px = rgba.pixels<std::uint8_t>();
     bool grey = true;
-    for (std::size_t i = 0; grey && i + 3 < px.size(); i += 4) grey = px[i] == px[i + 1] && px[i] == px[i + 2];
+    for (int y = 0; grey && y < rgba.height(); ++y)
+      for (int x = 0; grey && x < rgba.width(); ++x) grey = rgba.at(x, y, 0) == rgba.at(x, y, 1) && rgba.at(x, y, 0) == rgba.at(x, y, 2);
     if (!grey) {
       channels += 2;
       log::info("post: the input is grey but {} gives colour: written as {}", effects, channels == 3 ? "RGB" : "RGBA");
@@ -64,8 +78,12 @@ std::unique_ptr<gl::HeadlessContext> makeContext(const PostJob& job, ivec2 size)
 // Where the effects run. Auto picks the CPU at once when EGL has only software devices;
 // otherwise it makes the GL context to read its renderer: kept for the GPU, dropped for the
 // CPU (a software renderer, and the CPU has every effect of the chain).
-Backend chooseBackend(const PostJob& job, std::unique_ptr<gl::HeadlessContext>& context) {
+Backend chooseBackend(const PostJob& job, std::unique_ptr<gl::HeadlessContext>& context, bool floatFrames = false) {
   if (job.backend != Backend::Auto) return job.backend;
+  if (floatFrames) {  // the CPU backend works on 8-bit frames: a float image keeps its range on the GPU
+    log::debug("post: a float image: the effects run on the GPU in float (the CPU backend is 8-bit)");
+    return Backend::Gpu;
+  }
   // Cheap first: when EGL has only software devices, no context is needed to know (a
   // context costs ~50 ms of a short video's run).
   if (gl::onlySoftwareDevices() && cpuMissing(job.effects).empty()) {
@@ -174,19 +192,21 @@ PostStats runParts(const PostJob& job, ToolRun& run) {
 
 PostStats runImage(const PostJob& job, ToolRun& run) {
   requireImageIo();
-  Image frame;
-  int inputChannels = 4;
+  Image input;
   {
     auto timed = run.phase("load");
-    const Image input = loadImage(job.input);
-    inputChannels = input.channels();
-    frame = toFrame(input, job.input, run);
+    input = loadImage(job.input);
   }
-  const ivec2 size(frame.width(), frame.height());
-  run.checkMemory(estimatePeakMemoryMiB(size, true), fmt::format("processing a {}x{} image", size.x, size.y));
+  const int inputChannels = input.channels();
+  const bool linear = input.type() == PixelType::F32;  // EXR, HDR: linear light
+  const ivec2 size(input.width(), input.height());
+  run.checkMemory(estimatePeakMemoryMiB(size, true) * (linear ? 4.0 : 1.0),
+                  fmt::format("processing a {}x{} image", size.x, size.y));
   std::unique_ptr<gl::HeadlessContext> context;
-  const Backend backend = chooseBackend(job, context);
+  const Backend backend = chooseBackend(job, context, linear);
   if (backend == Backend::Gpu) ensureContext(job, size, context);
+  const Image frame = toFrame(input, job.input, backend == Backend::Gpu, run);
+  input = Image();
   PostStats stats{.kind = InputKind::Image, .input = job.input, .output = job.output, .size = size, .framesRead = 1,
                   .framesWritten = 1};
   stats.backend = backendName(backend);
@@ -198,7 +218,7 @@ PostStats runImage(const PostJob& job, ToolRun& run) {
       result = chain.run(frame);
       stats.effects = chain.describe();
     } else {
-      Chain chain(size, job.effects);
+      Chain chain(size, job.effects, frame.type());
       result = chain.run(frame);
       stats.effects = chain.describe();
     }
@@ -206,6 +226,8 @@ PostStats runImage(const PostJob& job, ToolRun& run) {
   run.throwIfInterrupted();
   {
     auto timed = run.phase("write");
+    // A float file holds linear light, as the input was read: the encoded result decoded.
+    if (floatImageOutput(job.output, job.format)) result = srgbDecoded(result);
     saveImage(withOutputChannels(result, inputChannels, job.channels, stats.effects), job.output, job.format);
   }
   log::info("post: {} ({}x{}) → {}: {} ({})", job.input, size.x, size.y, job.output, stats.effects, stats.backend);
@@ -229,11 +251,13 @@ PostStats runStill(const PostJob& job, video::Source& source, Backend backend, T
     effects = chain.describe();
   }
   run.throwIfInterrupted();
+  if (floatImageOutput(job.output, job.format)) result = srgbDecoded(result);  // a float file holds linear light
   saveImage(withOutputChannels(result, 3, job.channels, effects), job.output, job.format);  // video: RGB
   log::info("post: frame {} ({:.3f} s) of {} → {}", frame.index, frame.seconds, source.info().name, job.output);
   return {.kind = inputKind(job), .still = true, .input = source.info().name, .output = job.output,
           .size = source.info().size, .effects = effects, .backend = backendName(backend), .frame = frame.index,
-          .framesRead = 1, .framesWritten = 1};
+          .framesRead = 1, .framesWritten = 1, .rotation = source.info().rotation,
+          .rotationApplied = source.info().rotationApplied};
 }
 
 // Warnings about frames the source lost or damaged: said, not silent.
@@ -244,7 +268,7 @@ void warnAboutSource(const PostStats& stats, const video::Source& source, const 
   // A file that ends before the frames its container announces (truncated, damaged). Frames
   // lost to corrupt packets are warned about already; one frame of slack for containers that
   // only know a rounded duration.
-  if (!stats.partial() && stats.framesExpected > 0 &&
+  if (!stats.partial() && stats.framesExpected > 0 && source.info().frameCountExact &&
       stats.framesRead + stats.corruptPackets + 1 < stats.framesExpected) {
     run.warn(fmt::format("'{}' ended after {} of the {} frames its container announces (truncated or damaged?)", name,
                          stats.framesRead, stats.framesExpected));
@@ -284,6 +308,9 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
   video::SourceOptions options{.camera = kind == InputKind::Camera, .realtime = job.realtime,
                                .size = job.cameraSize.value_or(ivec2(0)), .frameRate = job.cameraRate.value_or(0.0),
                                .keepAudio = job.keepAudio, .threads = run.settings().threads};
+  // A rotated video (a phone's portrait clip) keeps its rotation as the output's display
+  // matrix where the container holds one; else (an image, a .mkv) its frames are turned.
+  options.applyRotation = job.applyRotation || imageOutput(job) || !video::holdsDisplayMatrix(job.output, job.format);
   if (job.frames) {
     options.firstFrame = job.frames->first;
     options.lastFrame = job.frames->end;
@@ -298,6 +325,13 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
   std::optional<ToolRun::Phase> opening(std::in_place, run, "open");
   video::Source source = video::Source::open(name, options);
   const video::SourceInfo& info = source.info();
+  if (info.rotationApplied && !job.applyRotation) {
+    log::info("post: '{}' is shown turned {}° (its display matrix): its frames are turned upright, as {} cannot hold "
+              "the rotation", name, info.rotation, imageOutput(job) ? "an image" : "a " + std::filesystem::path(job.output).extension().string() + " file");
+  } else if (info.rotation != 0 && !info.rotationApplied) {
+    log::info("post: '{}' is shown turned {}° (its display matrix): kept on '{}' (--apply-rotation turns the frames "
+              "upright instead)", name, info.rotation, job.output);
+  }
   if (job.frames && info.frameCount > 0 && job.frames->first > info.frameCount) {  // plainly past the end
     fail(ErrorKind::Input, "--frames {} selects no frame of '{}' ({})", rangeText(*job.frames), name, countOf(info));
   }
@@ -312,7 +346,8 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
   video::Sink sink(job.output, {.codec = job.codec, .size = info.size, .frameRate = info.frameRate,
                                 .timeBase = info.timeBase, .crf = job.crf, .preset = job.preset,
                                 .threads = run.settings().threads, .noReordering = job.frames.has_value(),
-                                .audio = job.keepAudio ? source.audio() : nullptr, .format = job.format});
+                                .audio = job.keepAudio ? source.audio() : nullptr, .format = job.format,
+                                .displayMatrix = info.displayMatrix});
   opening.reset();
   if (!sink.audioNote().empty()) run.warn(sink.audioNote());
   log::info("post: {} ({}x{}, {:.3g} fps, {}{}) → {} ({}): {} on the {}{}", name, info.size.x, info.size.y,
@@ -367,6 +402,8 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
                            : sink.audioNote().empty() ? "copied"
                                                       : "dropped",
                   .audioPackets = t.audioPackets,
+                  .rotation = info.rotation,
+                  .rotationApplied = info.rotationApplied,
                   .fps = t.seconds > 0 ? double(t.framesWritten) / t.seconds : 0.0,
                   .seconds = t.seconds,
                   .interrupted = t.interrupted,
@@ -433,6 +470,8 @@ nlohmann::ordered_json PostStats::toJson() const {
     j["output"] = output;
     j["frame"] = frame;
     j["effects"] = effects;
+    j["rotation"] = rotation;
+    j["rotation_applied"] = rotationApplied;
     return j;
   }
   j["input"] = input;
@@ -452,6 +491,8 @@ nlohmann::ordered_json PostStats::toJson() const {
   j["decoder_errors"] = decoderErrors;
   j["audio"] = audio;
   j["audio_packets"] = audioPackets;
+  j["rotation"] = rotation;
+  j["rotation_applied"] = rotationApplied;
   j["fps"] = fps;
   j["partial"] = partial();
   j["interrupted"] = interrupted;
@@ -468,16 +509,43 @@ PostStats runJob(const PostJob& job, ToolRun& run) {
   return kind == InputKind::Image ? runImage(job, run) : runVideo(job, run);
 }
 
+namespace {
+/// Where a partial video goes when the output already exists: beside it, never over it
+/// ("graded.mkv" → "graded.partial.mkv", or the first of "graded.partial-2.mkv", ... that is free).
+std::filesystem::path partialName(const std::filesystem::path& output) {
+  const std::filesystem::path stem = output.parent_path() / (output.stem().string() + ".partial");
+  for (int n = 1;; ++n) {
+    std::filesystem::path candidate = stem;
+    candidate += (n == 1 ? "" : fmt::format("-{}", n)) + output.extension().string();
+    std::error_code ec;
+    if (!std::filesystem::exists(candidate, ec)) return candidate;
+  }
+}
+}  // namespace
+
 int finishJob(const PostStats& stats, ToolRun& run) {
+  // A partial video (Ctrl-C, an input that broke off) never replaces a file that was there:
+  // a complete video is worth more than a part of one. The part goes beside it.
+  std::string output = stats.output;
+  bool keptExisting = false;
+  std::error_code ec;
+  if (stats.partial() && output != "-" && std::filesystem::exists(output, ec) && run.outputs().staged(output)) {
+    const std::filesystem::path beside = partialName(output);
+    run.outputs().redirect(output, beside);
+    output = beside.string();
+    keptExisting = true;
+  }
   run.report().update(stats.toJson());
+  if (keptExisting) run.report()["output"] = output;
   run.finish();
+  const std::string kept = keptExisting ? fmt::format("'{}' was left as it was; ", stats.output) : "";
   if (stats.inputError) {
-    fail(ErrorKind::Input, "{}; '{}' was finished with the {} frame(s) before it (a complete, playable video)",
-         *stats.inputError, stats.output, stats.framesWritten);
+    fail(ErrorKind::Input, "{}; {}'{}' holds the {} frame(s) before it (a complete, playable video)", *stats.inputError,
+         kept, output, stats.framesWritten);
   }
   if (stats.interrupted) {
-    log::warn("post: interrupted after {} frame(s): '{}' is a complete, playable partial video", stats.framesWritten,
-              stats.output);
+    log::warn("post: interrupted after {} frame(s): {}'{}' is a complete, playable partial video", stats.framesWritten,
+              kept, output);
     return exitCode(ErrorKind::Interrupted);
   }
   if (stats.kind != InputKind::Image && stats.kind != InputKind::Parts && !stats.still) {
@@ -553,6 +621,9 @@ void addOptions(CLI::App& cmd, PostArgs& a) {
                                        "over machines, join the parts with --concat");
   cmd.add_option("--concat", a.concat, "Join parts made with --frames (in order) into -o, copying packets");
   cmd.add_flag("--no-audio", a.noAudio, "Do not copy the input's audio");
+  cmd.add_flag("--apply-rotation", a.applyRotation, "A rotated video (a phone's portrait clip): turn its frames upright "
+               "instead of keeping its display matrix on the output (done anyway for an image or a container other "
+               "than MP4/MOV)");
   cmd.add_option("--channels", a.channels, "Image output: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA (default: the "
                                            "input's; colour when an effect colours a grey input)");
   cmd.add_flag("--effects", a.listEffects, "List the effects and their parameters, and exit");
@@ -563,7 +634,7 @@ std::string helpFooter() { return std::string(kFooter) + "\n\n" + effectHelp(); 
 PostJob makeJob(const PostArgs& a, bool glDebug) {
   PostJob job{.input = a.input, .camera = a.camera, .lavfi = a.lavfi, .parts = a.concat, .output = a.output,
               .crf = a.crf, .preset = a.preset, .realtime = a.realtime, .keepAudio = !a.noAudio,
-              .channels = a.channels, .glDebug = glDebug};
+              .applyRotation = a.applyRotation, .channels = a.channels, .glDebug = glDebug};
   job.format = a.format;
   job.effects = parseEffects(a.effects, a.settings);
   job.codec = video::parseCodec(a.codec);
@@ -599,6 +670,7 @@ std::vector<std::string> arguments(const PostJob& job) {
   if (job.cameraRate) argv.insert(argv.end(), {"--fps", fmt::format("{}", *job.cameraRate)});
   if (job.realtime) argv.push_back("--realtime");
   if (!job.keepAudio) argv.push_back("--no-audio");
+  if (job.applyRotation) argv.push_back("--apply-rotation");
   if (job.channels > 0) argv.insert(argv.end(), {"--channels", std::to_string(job.channels)});
   return argv;
 }

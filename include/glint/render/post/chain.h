@@ -49,16 +49,20 @@ Image readFrame(const gl::Texture& texture);
 class Chain {
 public:
   /// Builds each effect's pass for frames of `size`. Error(Usage) from validateEffect.
-  Chain(ivec2 size, std::vector<Effect> effects);
+  /// `precision`: U8 (RGBA8 targets, as a video's frames) or F32 (RGBA32F targets: a float
+  /// image's sRGB-encoded values, unclamped, so that decoding the result gives linear light
+  /// back; `glint post` on EXR).
+  Chain(ivec2 size, std::vector<Effect> effects, PixelType precision = PixelType::U8);
   ~Chain();
   Chain(Chain&&) noexcept;
   Chain& operator=(Chain&&) noexcept;
 
-  /// Runs every effect on `input` (an RGBA8 texture of the chain's size) and returns the
+  /// Runs every effect on `input` (an RGBA8, or RGBA32F for an F32 chain, texture of the chain's size) and returns the
   /// texture holding the result — one of the chain's own, valid until the next run(); the
   /// input itself when the chain is empty. Leaves framebuffer 0 bound.
   const gl::Texture& run(const gl::Texture& input);
-  /// The same with an Image in and out (uploads, runs, reads back).
+  /// The same with an Image in and out (uploads, runs, reads back): U8 RGB(A) in and U8 RGBA
+  /// out, or F32 RGB(A) in and F32 RGBA out for an F32 chain.
   Image run(const Image& input);
 
   /// Replaces the effects (a viewer changing parameters or switching effects). Stages

@@ -99,7 +99,7 @@ public:
 private:
   void prepare(ivec2 size);
   std::unique_ptr<Fft2d> m_fft;
-  gl::Program m_load, m_show;
+  gl::Program m_load, m_show, m_showFloat;  // m_showFloat: for RGBA32F outputs
 };
 
 /// A frequency-domain filter (image/fourier.h's frequencyFilterReference): R + iG and B
@@ -118,7 +118,7 @@ private:
   gl::Buffer m_transfer;  // H(u, v) as vec2 per frequency
   FrequencyFilter m_prepared;
   bool m_hasTransfer = false;
-  gl::Program m_load, m_multiply, m_store;
+  gl::Program m_load, m_multiply, m_store, m_storeFloat;  // m_storeFloat: for RGBA32F outputs
 };
 
 }  // namespace glint::render::post

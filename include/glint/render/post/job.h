@@ -78,6 +78,10 @@ struct PostJob {
   std::optional<double> cameraRate;  ///< camera: the frame rate to ask for, positive
   bool realtime = false;           ///< pace a file or lavfi source and treat it as live
   bool keepAudio = true;           ///< copy the input's audio when the output can hold it
+  /// Turn a rotated video's frames upright (its display matrix) instead of keeping the
+  /// matrix on the output. Done anyway for an image output and for a container that cannot
+  /// hold the matrix (only MP4 and MOV can), and said.
+  bool applyRotation = false;
   /// Channels of an image written: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA; 0: the input's
   /// (a video's frames are RGB), in colour when the effects turn a grey input into colour.
   int channels = 0;
@@ -94,7 +98,7 @@ struct PostArgs {
       backend = "auto";
   std::vector<std::string> effects, settings, concat;
   int crf = 18, channels = 0;
-  bool realtime = false, noAudio = false, listEffects = false;
+  bool realtime = false, noAudio = false, listEffects = false, applyRotation = false;
 };
 
 /// The options of `glint post` (the tool options are addToolOptions'), bound to `args`.
@@ -150,6 +154,8 @@ struct PostStats {
   std::int64_t decoderErrors = 0;
   std::string audio;               ///< "none", "copied", "dropped", "dropped (--no-audio)"
   std::int64_t audioPackets = 0;
+  int rotation = 0;                ///< the input's display rotation, degrees counterclockwise (0: none)
+  bool rotationApplied = false;    ///< the frames were turned upright (else the rotation was kept on the output)
   double fps = 0.0;
   double seconds = 0.0;            ///< wall time of the video pipeline
   bool interrupted = false;        ///< stopped by Ctrl-C: the video is complete up to there
