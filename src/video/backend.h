@@ -23,7 +23,7 @@
 
 namespace glint::video::backend {
 
-constexpr int kVideoAbiVersion = 5;
+constexpr int kVideoAbiVersion = 6;
 
 /// An entry point's outcome: ok, or the Error it would have thrown.
 struct Status {
@@ -51,7 +51,11 @@ struct Api {
   /// The first error line the decoder logged ("" when none).
   std::string (*firstDecoderError)(const SourceHandle* source) = nullptr;
 
-  SinkHandle* (*openSink)(const std::filesystem::path& destination, const SinkOptions& options, Status& status) = nullptr;
+  /// Writes into `target` (a temporary the caller owns and renames: glint_video's AtomicFile,
+  /// so the run's OutputSet stages it; "-" for stdout); `destination` names the file in
+  /// messages and picks the container.
+  SinkHandle* (*openSink)(const std::filesystem::path& destination, const std::filesystem::path& target,
+                          const SinkOptions& options, Status& status) = nullptr;
   void (*closeSink)(SinkHandle* sink) = nullptr;
   void (*write)(SinkHandle* sink, const Frame& frame, Status& status) = nullptr;
   void (*writeAudio)(SinkHandle* sink, Packet& packet, Status& status) = nullptr;
@@ -60,7 +64,7 @@ struct Api {
   const std::string* (*audioNote)(const SinkHandle* sink) = nullptr;
 
   std::int64_t (*concatenate)(std::span<const std::filesystem::path> parts, const std::filesystem::path& destination,
-                              Status& status) = nullptr;
+                              const std::filesystem::path& target, Status& status) = nullptr;
   /// video::indexFrames
   FrameIndex (*indexFrames)(const std::string& name, Status& status) = nullptr;
   /// av_packet_free, for Packets made by the module and destroyed by glint_video.

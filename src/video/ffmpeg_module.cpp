@@ -13,7 +13,8 @@ void takeAudio(SourceHandle* source, std::deque<Packet>& packets);
 const AudioTrack* audio(const SourceHandle* source);
 void counters(const SourceHandle* source, std::int64_t out[4]);
 std::string firstDecoderError(const SourceHandle* source);
-SinkHandle* openSink(const std::filesystem::path& destination, const SinkOptions& options, Status& status);
+SinkHandle* openSink(const std::filesystem::path& destination, const std::filesystem::path& target,
+                     const SinkOptions& options, Status& status);
 void closeSink(SinkHandle* sink);
 void write(SinkHandle* sink, const Frame& frame, Status& status);
 void writeAudio(SinkHandle* sink, Packet& packet, Status& status);
@@ -21,7 +22,7 @@ void finish(SinkHandle* sink, Status& status);
 std::int64_t framesWritten(const SinkHandle* sink);
 const std::string* audioNote(const SinkHandle* sink);
 std::int64_t concatenate(std::span<const std::filesystem::path> parts, const std::filesystem::path& destination,
-                         Status& status);
+                         const std::filesystem::path& target, Status& status);
 FrameIndex indexFrames(const std::string& name, Status& status);
 }  // namespace glint::video::backend
 

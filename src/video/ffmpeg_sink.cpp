@@ -67,7 +67,6 @@ void openFile(AVFormatContext& output, const fs::path& tmp, const fs::path& dest
 struct FfmpegSink {
   SinkOptions options;
   fs::path destination;
-  std::optional<AtomicFile> file;
   OutputPtr output;
   CodecContextPtr encoder;
   AVStream* videoStream = nullptr;
@@ -82,7 +81,7 @@ struct FfmpegSink {
   std::int64_t lastPts = kNoTimestamp;
   bool headerWritten = false, finished = false;
 
-  FfmpegSink(const fs::path& destination, const SinkOptions& options);
+  FfmpegSink(const fs::path& destination, const fs::path& target, const SinkOptions& options);
   void drain(bool flushing);
   void writePacket(AVPacket& p);
   void write(const Frame& frame);
@@ -109,7 +108,7 @@ void FfmpegSink::drain(bool flushing) {
   }
 }
 
-FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_) {
+FfmpegSink::FfmpegSink(const fs::path& destination_, const fs::path& target_, const SinkOptions& options_) {
   initFfmpeg();
   FfmpegSink& s = *this;
   const fs::path& destination = destination_;
@@ -136,8 +135,9 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const SinkOptions& options_
                                                       : avcodec_find_encoder(AV_CODEC_ID_FFV1);
   if (!codec) fail(ErrorKind::Internal, "this FFmpeg has no {} encoder", options.codec == Codec::H264 ? "libx264" : "FFV1");
 
-  // A file is written atomically; stdout ("-") as it is made.
-  const fs::path target = destination == "-" ? fs::path("pipe:1") : (s.file.emplace(destination), s.file->temporary());
+  // A file goes into the caller's temporary (renamed when the run's outputs are committed);
+  // stdout ("-") is written as it is made.
+  const fs::path target = destination == "-" ? fs::path("pipe:1") : target_;
   s.output = createOutput(destination, target, options.format);
 
   s.encoder.reset(avcodec_alloc_context3(codec));
@@ -285,7 +285,6 @@ void FfmpegSink::finish() {
     fail(ErrorKind::Output, "cannot write '{}': {}", s.destination.string(), writeError(s.destination, t));
   }
   if (!(s.output->oformat->flags & AVFMT_NOFILE)) avio_closep(&s.output->pb);
-  if (s.file) s.file->commit();
   s.finished = true;
 }
 
@@ -314,7 +313,7 @@ InputPtr openPart(const fs::path& path) {
 }
 }  // namespace
 
-std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& destination) {
+std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& destination, const fs::path& target) {
   initFfmpeg();
   if (parts.empty()) fail(ErrorKind::Usage, "concatenate: no parts given");
   std::vector<InputPtr> inputs;
@@ -336,8 +335,7 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
   int video = av_find_best_stream(inputs.front().get(), AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
   if (video < 0) fail(ErrorKind::Input, "'{}' has no video stream", parts[0].string());
 
-  AtomicFile file(destination);
-  OutputPtr output = createOutput(destination, file.temporary());
+  OutputPtr output = createOutput(destination, target);
   for (unsigned i = 0; i < first.nb_streams; ++i) {
     AVStream* out = avformat_new_stream(output.get(), nullptr);
     avcodec_parameters_copy(out->codecpar, first.streams[i]->codecpar);
@@ -351,7 +349,7 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
         std::memcpy(copy, m, matrixSize);
     }
   }
-  openFile(*output, file.temporary(), destination);
+  openFile(*output, target, destination);
   if (const int h = avformat_write_header(output.get(), nullptr); h < 0) {
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, h));
   }
@@ -434,7 +432,6 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, t));
   }
   if (!(output->oformat->flags & AVFMT_NOFILE)) avio_closep(&output->pb);
-  file.commit();
   return frames;
 }
 
@@ -446,11 +443,11 @@ FfmpegSink& cast(SinkHandle* h) { return *reinterpret_cast<FfmpegSink*>(h); }
 const FfmpegSink& cast(const SinkHandle* h) { return *reinterpret_cast<const FfmpegSink*>(h); }
 }  // namespace
 
-SinkHandle* openSink(const fs::path& destination, const SinkOptions& options, Status& status) {
-  return guarded(status, [&] { return reinterpret_cast<SinkHandle*>(new FfmpegSink(destination, options)); },
+SinkHandle* openSink(const fs::path& destination, const fs::path& target, const SinkOptions& options, Status& status) {
+  return guarded(status, [&] { return reinterpret_cast<SinkHandle*>(new FfmpegSink(destination, target, options)); },
                  static_cast<SinkHandle*>(nullptr));
 }
-void closeSink(SinkHandle* h) { delete &cast(h); }  // AtomicFile removes an unfinished file
+void closeSink(SinkHandle* h) { delete &cast(h); }  // the caller's AtomicFile removes an unfinished file
 void write(SinkHandle* h, const Frame& frame, Status& status) {
   guarded(status, [&] { cast(h).write(frame); return true; }, false);
 }
@@ -462,8 +459,9 @@ void finish(SinkHandle* h, Status& status) {
 }
 std::int64_t framesWritten(const SinkHandle* h) { return cast(h).written; }
 const std::string* audioNote(const SinkHandle* h) { return &cast(h).audioNote; }
-std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destination, Status& status) {
-  return guarded(status, [&] { return concatenateFiles(parts, destination); }, std::int64_t(0));
+std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destination, const fs::path& target,
+                         Status& status) {
+  return guarded(status, [&] { return concatenateFiles(parts, destination, target); }, std::int64_t(0));
 }
 }  // namespace backend
 

@@ -4,6 +4,7 @@
 #include "backend.h"
 
 #include "glint/core/error.h"
+#include "glint/core/file.h"
 #include "glint/core/locations.h"
 #include "glint/core/log.h"
 #include "glint/video/sink.h"
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <optional>
 #include <utility>
 
 #if defined(GLINT_NO_VIDEO_MODULE)
@@ -145,6 +147,10 @@ DecoderErrors Source::decoderErrors() const {
 
 // ---------------------------------------------------------------------------
 struct Sink::Impl {
+  /// The file being written (its temporary), renamed into place by finish(): here, in the
+  /// program, so that a run's OutputSet stages it with the run's other outputs. Declared
+  /// before the handle: the module closes its file before the temporary is removed.
+  std::optional<AtomicFile> file;
   backend::SinkHandle* handle = nullptr;
   fs::path destination;
   ~Impl() {
@@ -166,7 +172,8 @@ Sink::Sink(const fs::path& destination, const SinkOptions& options) : m_impl(std
   }
   backend::Status status;
   m_impl->destination = destination;
-  m_impl->handle = api().openSink(destination, options, status);
+  if (destination != "-") m_impl->file.emplace(destination);  // checks the folder first
+  m_impl->handle = api().openSink(destination, m_impl->file ? m_impl->file->temporary() : fs::path("-"), options, status);
   check(status);
 }
 
@@ -190,6 +197,7 @@ void Sink::finish() {
   backend::Status status;
   api().finish(m_impl->handle, status);
   check(status);
+  if (m_impl->file) m_impl->file->commit();  // with the run's other outputs, when a run stages them
 }
 
 std::int64_t Sink::framesWritten() const { return api().framesWritten(m_impl->handle); }
@@ -198,8 +206,10 @@ const fs::path& Sink::destination() const { return m_impl->destination; }
 
 std::int64_t concatenate(std::span<const fs::path> parts, const fs::path& destination) {
   backend::Status status;
-  const std::int64_t frames = api().concatenate(parts, destination, status);
+  AtomicFile file(destination);
+  const std::int64_t frames = api().concatenate(parts, destination, file.temporary(), status);
   check(status);
+  file.commit();
   return frames;
 }
 
