@@ -276,6 +276,41 @@ TEST(FarmSlurm, BakeRunsOneTaskPerBakeWithTheBytesOfLocalBakes) {
   EXPECT_TRUE(readBytes(d / "out" / "b.png") == readBytes(d / "local" / "b.png"));
 }
 
+TEST(FarmSlurm, AFileNameWithALineBreakRunsNoCommandOnTheCluster) {
+  NEED_CLUSTER();
+  const fs::path d = dir("evil");
+  const std::string evil = "b\ntouch PWNED #.mp4";
+  fs::copy_file(clip(d, 2), d / evil);
+  // A work directory with quotes, a dollar and a percent sign: sbatch reads every directive.
+  const fs::path work = d / "work $(x) 'q' 100%";
+  fs::create_directories(work);
+  const auto r = runShell("cd " + q(d) + " && " GLINT_EXE " farm post " + q(evil) + " -o ok.mkv --codec ffv1 -e sepia "
+                          "--chunks 2 --wait --work-dir " + q(work));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(fs::exists(d / "PWNED"));
+  EXPECT_FALSE(fs::exists(work / "PWNED"));
+  ASSERT_EQ(runShell("cd " + q(d) + " && " GLINT_EXE " -q post " + q(evil) + " -o local.mkv --codec ffv1 -e sepia").status, 0);
+  EXPECT_TRUE(readBytes(d / "ok.mkv") == readBytes(d / "local.mkv"));
+  // The logs went where --output said (the directives were all read): work/post-*/logs/.
+  EXPECT_EQ(countFiles(work, ".log"), 3);
+}
+
+TEST(FarmSlurm, ATaskThatCanNeverStartIsNamedAndCancelled) {
+  NEED_CLUSTER();
+  const fs::path d = dir("never");
+  const fs::path in = clip(d, 2);
+  const auto r = runGlint("farm post " + q(in) + " -o " + q(d / "out.mkv") + " --codec ffv1 -e sepia --chunks 2 "
+                          "--cpus-per-task 64 --wait");
+  // Slurm either refuses the job at once or keeps it pending for PartitionConfig: both are
+  // said in words, and nothing is left queued.
+  EXPECT_NE(r.status, 0) << r.output;
+  const bool refused = r.output.find("Slurm refused the job") != std::string::npos;
+  const bool never = r.output.find("can never start") != std::string::npos;
+  EXPECT_TRUE(refused || never) << r.output;
+  std::printf("%s", r.output.c_str());  // which of the two this Slurm did, for the log
+  EXPECT_EQ(squeue(), "") << "nothing left queued";
+}
+
 TEST(Farm, WithoutSlurmItSaysWhatToInstall) {
   const fs::path d = dir("no-slurm");
   bake::writeObj(makeMachineRoom({.modules = 1}), d / "stage.obj");
