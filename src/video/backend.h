@@ -46,8 +46,8 @@ struct Api {
   bool (*read)(SourceHandle* source, Frame& frame, Status& status) = nullptr;
   void (*takeAudio)(SourceHandle* source, std::deque<Packet>& packets) = nullptr;
   const AudioTrack* (*audio)(const SourceHandle* source) = nullptr;
-  /// dropped, corrupt, delivered, decoder error lines
-  void (*counters)(const SourceHandle* source, std::int64_t out[4]) = nullptr;
+  /// dropped, corrupt, delivered, decoder error lines, the last frame's time in µs (-1: none)
+  void (*counters)(const SourceHandle* source, std::int64_t out[5]) = nullptr;
   /// The first error line the decoder logged ("" when none).
   std::string (*firstDecoderError)(const SourceHandle* source) = nullptr;
 

@@ -11,7 +11,7 @@ const SourceInfo* sourceInfo(const SourceHandle* source);
 bool read(SourceHandle* source, Frame& frame, Status& status);
 void takeAudio(SourceHandle* source, std::deque<Packet>& packets);
 const AudioTrack* audio(const SourceHandle* source);
-void counters(const SourceHandle* source, std::int64_t out[4]);
+void counters(const SourceHandle* source, std::int64_t out[5]);
 std::string firstDecoderError(const SourceHandle* source);
 SinkHandle* openSink(const std::filesystem::path& destination, const std::filesystem::path& target,
                      const SinkOptions& options, Status& status);

@@ -399,11 +399,13 @@ bool read(SourceHandle* h, Frame& frame, Status& status) {
 }
 void takeAudio(SourceHandle* h, std::deque<Packet>& packets) { packets = std::exchange(cast(h).audioPackets, {}); }
 const AudioTrack* audio(const SourceHandle* h) { return cast(h).audio.get(); }
-void counters(const SourceHandle* h, std::int64_t out[4]) {
-  out[0] = cast(h).dropped;
-  out[1] = cast(h).corrupt;
-  out[2] = cast(h).delivered;
-  out[3] = cast(h).decoderErrors.count();
+void counters(const SourceHandle* h, std::int64_t out[5]) {
+  const FfmpegSource& s = cast(h);
+  out[0] = s.dropped;
+  out[1] = s.corrupt;
+  out[2] = s.delivered;
+  out[3] = s.decoderErrors.count();
+  out[4] = s.lastPts == kNoTimestamp || s.startPts == kNoTimestamp ? -1 : std::llround(s.secondsOf(s.lastPts) * 1e6);
 }
 std::string firstDecoderError(const SourceHandle* h) { return cast(h).decoderErrors.first(); }
 

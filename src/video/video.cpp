@@ -132,7 +132,7 @@ const AudioTrack* Source::audio() const { return api().audio(m_impl->handle); }
 
 namespace {
 std::int64_t counter(const backend::SourceHandle* handle, int which) {
-  std::int64_t values[4] = {};
+  std::int64_t values[5] = {};
   api().counters(handle, values);
   return values[which];
 }
@@ -141,6 +141,10 @@ std::int64_t counter(const backend::SourceHandle* handle, int which) {
 std::int64_t Source::droppedFrames() const { return counter(m_impl->handle, 0); }
 std::int64_t Source::corruptPackets() const { return counter(m_impl->handle, 1); }
 std::int64_t Source::framesRead() const { return counter(m_impl->handle, 2); }
+double Source::lastFrameSeconds() const {
+  const std::int64_t us = counter(m_impl->handle, 4);
+  return us < 0 ? -1.0 : double(us) * 1e-6;
+}
 DecoderErrors Source::decoderErrors() const {
   return {.count = counter(m_impl->handle, 3), .first = api().firstDecoderError(m_impl->handle)};
 }

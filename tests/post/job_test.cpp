@@ -119,13 +119,14 @@ TEST(PostJob, AVideoReportHasTheCommandsFields) {
   EXPECT_EQ(keys(j), (std::vector<std::string>{"input", "output", "width", "height", "frame_rate", "codec", "effects",
                                                "live", "first_frame", "frames_read", "frames_written",
                                                "frames_expected", "dropped_frames", "corrupt_packets",
-                                               "decoder_errors", "audio", "audio_packets", "fps", "partial",
+                                               "decoder_errors", "audio", "audio_packets", "rotation",
+                                               "rotation_applied", "fps", "partial",
                                                "interrupted", "input_error"}));
   EXPECT_EQ(j["partial"], true);
   EXPECT_EQ(j["frames_written"], 48);
   EXPECT_EQ(keys(PostStats{.kind = InputKind::Parts}.toJson()), (std::vector<std::string>{"parts", "output", "frames"}));
   EXPECT_EQ(keys(PostStats{.kind = InputKind::Video, .still = true}.toJson()),
-            (std::vector<std::string>{"input", "output", "frame", "effects"}));
+            (std::vector<std::string>{"input", "output", "frame", "effects", "rotation", "rotation_applied"}));
 }
 
 // Ctrl-C before the first frame is processed: no video is made, and a file already at the

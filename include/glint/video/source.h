@@ -138,6 +138,8 @@ public:
   std::int64_t corruptPackets() const;
   /// Frames delivered so far.
   std::int64_t framesRead() const;
+  /// The time of the last frame delivered, seconds from the stream's start; -1 before one.
+  double lastFrameSeconds() const;
   /// Errors the decoder reported while still delivering frames: damage it concealed (an
   /// FFV1 slice whose CRC does not match, broken H.264 macroblocks). Those frames are in
   /// the output, possibly wrong; nothing on the frame itself says which.

@@ -268,8 +268,16 @@ void warnAboutSource(const PostStats& stats, const video::Source& source, const 
   // A file that ends before the frames its container announces (truncated, damaged). Frames
   // lost to corrupt packets are warned about already; one frame of slack for containers that
   // only know a rounded duration.
-  if (!stats.partial() && stats.framesExpected > 0 && source.info().frameCountExact &&
-      stats.framesRead + stats.corruptPackets + 1 < stats.framesExpected) {
+  // A container's own frame count (MP4) is compared as it is; one estimated from the
+  // duration and the average rate (Matroska) is not, since a variable-rate file has fewer
+  // frames than that and is whole: there the last frame must reach the duration.
+  const video::SourceInfo& info = source.info();
+  const double interval = info.frameRate.valid() ? 1.0 / info.frameRate.value() : 0.04;
+  const bool toEnd = stats.framesExpected == info.frameCount - stats.firstFrame;
+  const bool endsEarly = info.frameCountExact || (toEnd && info.durationSeconds > 0 && source.lastFrameSeconds() >= 0 &&
+                                                  source.lastFrameSeconds() + 2.5 * interval < info.durationSeconds);
+  if (!stats.partial() && stats.framesExpected > 0 && stats.framesRead + stats.corruptPackets + 1 < stats.framesExpected &&
+      endsEarly) {
     run.warn(fmt::format("'{}' ended after {} of the {} frames its container announces (truncated or damaged?)", name,
                          stats.framesRead, stats.framesExpected));
   }
