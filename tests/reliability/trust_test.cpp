@@ -494,6 +494,19 @@ TEST(TrustMessages, ABakeBiggerThanTheMachineIsRefusedBeforeItStarts) {
   EXPECT_EQ(allowed.status, 0) << allowed.output;
 }
 
+TEST(TrustMessages, OutOfMemoryIsItsOwnDocumentedExitStatus) {
+  const fs::path d = dir("oom");
+  bake::writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
+  bake::writeObj(makeUvSphere(1.0f, 64, 32), d / "high.obj");
+  // An 8192² bake (about 1.3 GB) in a process allowed 1.5 GB of address space: the estimate
+  // passes the machine's memory, the allocator then fails.
+  const auto r = runShell("ulimit -v 1500000 && " GLINT_EXE " -q bake " + q(d / "low.obj") + " " + q(d / "high.obj") +
+                          " --size 8192x8192 -o " + q(d / "n.png"));
+  EXPECT_EQ(r.status, 6) << r.output;
+  EXPECT_NE(r.output.find("glint: out of memory"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(d / "n.png"));
+}
+
 TEST(TrustMessages, BakeGroupsFallBackWithoutHighPartNamesAndCanBeTurnedOff) {
   const fs::path d = dir("groups");
   // A low OBJ whose one part is named suz_low, and a high PLY (PLY has no part names).
