@@ -66,11 +66,13 @@ struct Frame {
 
 /// "30,20" or "30,20,2.6" → azimuth°, elevation°, distance (in bounding radii).
 vec3 parseCamera(const std::string& text) {
-  float az = 0, el = 0, dist = 2.6f;
-  char extra = 0;
-  const int n = std::sscanf(text.c_str(), "%f,%f,%f%c", &az, &el, &dist, &extra);
-  if ((n != 2 && n != 3) || !std::isfinite(az) || !std::isfinite(el) || !std::isfinite(dist))
-    fail(ErrorKind::Usage, "--camera must be AZIMUTH,ELEVATION[,DISTANCE] (degrees, degrees, bounding radii), got '{}'", text);
+  const auto fields = splitFields(text, ',');
+  if (fields.size() != 2 && fields.size() != 3)
+    fail(ErrorKind::Usage, "--camera must be AZIMUTH,ELEVATION[,DISTANCE] (degrees, degrees, bounding radii), got '{}'",
+         printable(text));
+  // core/text's strict numbers: no spaces, no "nan", nothing after the last number.
+  const float az = parseFloat(fields[0], "--camera azimuth"), el = parseFloat(fields[1], "--camera elevation");
+  const float dist = fields.size() == 3 ? parseFloat(fields[2], "--camera distance") : 2.6f;
   if (std::abs(el) >= 90.0f) fail(ErrorKind::Usage, "--camera elevation must be within (-90, 90) degrees, got {}", el);
   if (!(dist > 1.0f) || dist > 1000.0f)
     fail(ErrorKind::Usage, "--camera distance must be above 1 (outside the mesh's bounding sphere) and at most 1000, got {}", dist);

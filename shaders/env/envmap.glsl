@@ -2,6 +2,8 @@
 // formulas, in C++, are the CPU references of the tests (image/envmap.h): keep them
 // in step.
 
+#include "common/srgb.glsl"
+
 const float kPi = 3.14159265358979;
 
 // Direction through (s, t) of cube face `face` (GL order +X −X +Y −Y +Z −Z): the
@@ -49,7 +51,5 @@ vec3 sphereMapDirection(vec2 st, out bool inside) {
 vec3 displayEncode(vec3 radiance, float exposure) {
   vec3 x = max(radiance * exposure, vec3(0.0));
   vec3 mapped = clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-  vec3 lo = 12.92 * mapped;
-  vec3 hi = 1.055 * pow(mapped, vec3(1.0 / 2.4)) - 0.055;
-  return mix(hi, lo, lessThanEqual(mapped, vec3(0.0031308)));
+  return srgbEncode(mapped);
 }

@@ -1,4 +1,5 @@
 #version 450 core
+#include "common/srgb.glsl"
 // The renderer's colour buffer (sRGB: texel fetches decode to linear) into the frame's
 // target, encoded to sRGB by hand (the target is a plain RGBA8 buffer or the window),
 // alpha 1. uView 1: the seed's destination-alpha view — the dim factor for every light,
@@ -10,17 +11,13 @@ uniform int uView;
 in vec2 vUv;
 layout(location = 0) out vec4 fragColor;
 
-vec3 encodeSrgb(vec3 c) {
-  c = clamp(c, 0.0, 1.0);
-  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy) - uOrigin;
   if (uView == 1) {
     vec4 w = texelFetch(uWeights, p, 0);
-    fragColor = vec4(encodeSrgb(vec3(1.0 - (w.x + w.y + w.z + w.w))), 1.0);
+    fragColor = vec4(srgbEncode(vec3(1.0 - (w.x + w.y + w.z + w.w))), 1.0);
   } else {
-    fragColor = vec4(encodeSrgb(texelFetch(uColor, p, 0).rgb), 1.0);
+    fragColor = vec4(srgbEncode(texelFetch(uColor, p, 0).rgb), 1.0);
   }
 }

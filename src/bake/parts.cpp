@@ -1,5 +1,6 @@
 // Bake groups matched by name, and the material ID and vertex colour maps (bake/groups.h).
 #include "glint/bake/groups.h"
+#include "glint/core/hash.h"
 
 #include "glint/core/error.h"
 #include "glint/core/log.h"
@@ -81,8 +82,7 @@ GroupMatch matchGroups(const MeshParts& low, const MeshParts& high, const GroupN
 }
 
 vec3 materialColor(std::string_view name) {
-  std::uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a 64
-  for (const char c : name) hash = (hash ^ std::uint8_t(c)) * 0x100000001b3ull;
+  const std::uint64_t hash = Fnv1a().addBytes(name.data(), name.size()).value();
   // The golden ratio spreads even neighbouring hashes around the hue circle. (32 bits of the
   // hash: a double keeps the fraction of their product to 1e-6.)
   const double hue = std::fmod(double(std::uint32_t(hash >> 32)) * 0.6180339887498949, 1.0);

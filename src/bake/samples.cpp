@@ -1,6 +1,7 @@
 #include "glint/bake/samples.h"
 
 #include "glint/core/error.h"
+#include "glint/core/hash.h"
 #include "glint/core/file.h"
 
 #include <fmt/format.h>
@@ -79,13 +80,8 @@ Image makeScratchesAndPores(int size, int pores, int scratches) {
   Image image(size, size, 1, PixelType::F32);
   auto px = image.pixels<float>();
   std::fill(px.begin(), px.end(), 1.0f);
-  std::uint32_t state = 12345u;
-  const auto random = [&] {  // xorshift: fixed sequence, same picture everywhere
-    state ^= state << 13;
-    state ^= state >> 17;
-    state ^= state << 5;
-    return float(state & 0xFFFFFF) / float(0x1000000);
-  };
+  HashSequence rng{12345u};  // core/hash.h's generator: a fixed sequence, the same picture everywhere
+  const auto random = [&] { return rng.next(); };
   const float s = float(size);
   // Wrapped offset: the map tiles, so distances are measured on a torus.
   const auto wrapped = [&](float d) { return d - s * std::round(d / s); };

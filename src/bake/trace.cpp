@@ -12,6 +12,8 @@
 #include <array>
 #include <atomic>
 #include <bit>
+#include "glint/core/hash.h"
+
 #include <cmath>
 #include <thread>
 #include <unordered_map>
@@ -19,14 +21,9 @@
 namespace glint::bake::detail {
 namespace {
 
-/// splitmix64: per-texel random streams that do not depend on scheduling.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-float toUnit(std::uint64_t x) { return float(x >> 40) * (1.0f / float(1ull << 24)); }
+/// Per-texel random streams that do not depend on scheduling: core/hash.h's hash64.
+constexpr std::uint64_t mix(std::uint64_t x) { return hash64(x); }
+constexpr float toUnit(std::uint64_t x) { return unitFloat(x); }
 float radicalInverse(std::uint32_t i) {
   i = (i << 16u) | (i >> 16u);
   i = ((i & 0x55555555u) << 1u) | ((i & 0xAAAAAAAAu) >> 1u);

@@ -1,5 +1,7 @@
 #include "receiver.h"
 
+#include "glint/core/hash.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -87,14 +89,6 @@ void ReceiverStats::add(const ReceiverStats& o) {
   predicates.add(o.predicates);
 }
 
-namespace {
-std::uint64_t keyHash(const std::array<std::uint32_t, 3>& k) {
-  std::uint64_t h = k[0] * 0x9E3779B97F4A7C15ull;
-  h ^= (h >> 31) ^ (std::uint64_t(k[1]) * 0xC2B2AE3D27D4EB4Full);
-  h ^= (h >> 29) ^ (std::uint64_t(k[2]) * 0x165667B19E3779F9ull);
-  return h ^ (h >> 32);
-}
-}  // namespace
 
 template <typename Equal>
 std::uint32_t ReceiverCutter::NameIndex::find(std::uint64_t hash, Equal&& equal, std::uint32_t fresh) {
@@ -183,7 +177,7 @@ std::uint32_t ReceiverCutter::planeIndex(const PlaneDef& def, int& orientation) 
   const auto key = def.key();
   const std::uint32_t fresh = std::uint32_t(m_planes.size());
   const std::uint32_t index =
-      m_planeIndex.find(keyHash(key), [&](std::uint32_t i) { return m_planes[i].key == key; }, fresh);
+      m_planeIndex.find(hashKey(key[0], key[1], key[2]), [&](std::uint32_t i) { return m_planes[i].key == key; }, fresh);
   if (index == fresh) {
     m_planes.push_back(m_g.plane(def));
     orientation = 1;

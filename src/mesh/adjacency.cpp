@@ -3,6 +3,8 @@
 // matters for the 1M-triangle meshes the shadow benchmark builds).
 #include "glint/mesh/adjacency.h"
 
+#include "glint/core/hash.h"
+
 #include <algorithm>
 #include <bit>
 #include <numeric>
@@ -18,10 +20,7 @@ struct PositionKey {
 
 struct PositionHash {
   std::size_t operator()(const PositionKey& k) const {
-    std::uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
-    h ^= (h >> 29) + k.y * 0xBF58476D1CE4E5B9ull;
-    h ^= (h >> 31) + k.z * 0x94D049BB133111EBull;
-    return std::size_t(h ^ (h >> 32));
+    return std::size_t(hashKey(k.x, k.y, k.z));
   }
 };
 

@@ -281,9 +281,7 @@ std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::v
     return glm::i64vec3(std::floor((double(p.x) - double(lo.x)) / cell), std::floor((double(p.y) - double(lo.y)) / cell),
                         std::floor((double(p.z) - double(lo.z)) / cell));
   };
-  const auto key = [](const glm::i64vec3& c) {
-    return std::uint64_t(c.x) * 73856093ull ^ std::uint64_t(c.y) * 19349663ull ^ std::uint64_t(c.z) * 83492791ull;
-  };
+  const auto key = [](const glm::i64vec3& c) { return hashKey(std::uint64_t(c.x), std::uint64_t(c.y), std::uint64_t(c.z)); };
   // The grid as a flat table: the vertices sorted by cell key (in parallel), and an
   // open-addressing table from a key to its run of vertices. (A hash multimap of one node
   // per vertex spent 3/4 of a small bake of a 262k-triangle OBJ chasing its bucket lists.)

@@ -3,6 +3,7 @@
 #include "glint/scenes/scene.h"
 
 #include <algorithm>
+#include <limits>
 #include <charconv>
 
 namespace glint::scenes {
@@ -118,7 +119,7 @@ bool Scene::keyPressed(int key) {
 
 void setOption(Scene& scene, const std::string& assignment) {
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos) fail(ErrorKind::Usage, "--set expects name=value, got '{}'", assignment);
+  if (eq == std::string::npos) fail(ErrorKind::Usage, "--set expects name=value, got '{}'", printable(assignment));
   const std::string name = assignment.substr(0, eq);
   const std::string value = assignment.substr(eq + 1);
   auto options = scene.options();
@@ -126,9 +127,9 @@ void setOption(Scene& scene, const std::string& assignment) {
   if (it == options.end()) {
     std::string names;
     for (const auto& o : options) names += (names.empty() ? "" : ", ") + o.name;
-    fail(ErrorKind::Usage, "this scene has no option '{}' (options: {})", name, names.empty() ? "none" : names);
+    fail(ErrorKind::Usage, "this scene has no option '{}' (options: {})", printable(name), names.empty() ? "none" : names);
   }
-  const auto bad = [&] { fail(ErrorKind::Usage, "option '{}': cannot use '{}'", name, value); };
+  const auto bad = [&] { fail(ErrorKind::Usage, "option '{}': cannot use '{}'", name, printable(value)); };
   if (auto* f = std::get_if<float*>(&it->value)) {
     try {
       **f = parseFloat(value, name);  // the whole text, finite, no locale
@@ -136,10 +137,11 @@ void setOption(Scene& scene, const std::string& assignment) {
       bad();
     }
   } else if (auto* i = std::get_if<int*>(&it->value)) {
-    int v = 0;
-    const auto [p, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
-    if (ec != std::errc() || p != value.data() + value.size()) bad();
-    **i = v;
+    try {
+      **i = parseInt(value, name, std::numeric_limits<int>::min(), std::numeric_limits<int>::max());  // core/text's
+    } catch (const Error&) {
+      bad();
+    }
   } else if (auto* b = std::get_if<bool*>(&it->value)) {
     if (value == "1" || value == "true" || value == "on") **b = true;
     else if (value == "0" || value == "false" || value == "off") **b = false;

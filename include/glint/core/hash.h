@@ -1,10 +1,17 @@
 #pragma once
-// glint/core/hash.h — the project's two hashes, each written once.
+// glint/core/hash.h — the project's hashes and its one seeded generator, each written once.
 //
-//   hash32   an integer hash for deterministic procedural noise (textures, simulated rain):
-//            identical on every machine and thread count, unlike a random engine.
-//   Fnv1a    64-bit FNV-1a over bytes: a stable content hash for cache keys, input
-//            fingerprints and hash-map keys. Not cryptographic.
+//   hash32        an integer hash for deterministic procedural noise (textures, simulated
+//                 rain): identical on every machine and thread count, unlike a random engine.
+//   hash64        SplitMix64's mix: a 64-bit integer hash, for counter-based random streams
+//                 (the baker's per-texel rays: the value for (texel, sample) does not depend
+//                 on which thread asks) and as unitFloat's input.
+//   hashKey       three integers → one 64-bit key, for hash tables keyed by a small integer
+//                 tuple (grid cells, welded positions, plane names).
+//   HashSequence  the seeded generator: a deterministic sequence of uniform numbers built on
+//                 hash32 (the Pipe Dream stage and score, the painted detail map).
+//   Fnv1a         64-bit FNV-1a over bytes: a stable content hash for cache keys, input
+//                 fingerprints and names (a material's colour). Not cryptographic.
 //
 /// ```cpp run
 /// #include <vector>
@@ -14,6 +21,9 @@
 /// h.add(positions).add(lightCount);  // ranges of trivially copyable values, or values
 /// const std::uint64_t key = h.value();
 /// const std::uint32_t noise = glint::hash32(7);  // the same on every machine
+/// const float u = glint::unitFloat(glint::hash64(42));  // texel 42's first random number
+/// glint::HashSequence rng{12345u};
+/// const float r = rng.range(-1.0f, 1.0f);
 /// ```
 
 #include <cstddef>
@@ -32,6 +42,27 @@ constexpr std::uint32_t hash32(std::uint32_t x) {
   x *= 0x846ca68bU;
   x ^= x >> 16;
   return x;
+}
+
+/// SplitMix64's output function of state `x` (the state advanced by the golden ratio first):
+/// a 64-bit hash with full avalanche, identical everywhere.
+constexpr std::uint64_t hash64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+/// The top 24 bits of `x` as a float in [0, 1): a uniform number from a hash64 value.
+constexpr float unitFloat(std::uint64_t x) { return float(x >> 40) * (1.0f / float(1ull << 24)); }
+
+/// Three integers (a cell's coordinates, a position's bits) as one 64-bit key for a hash
+/// table: each multiplied by a large odd constant and folded in with shifts.
+constexpr std::uint64_t hashKey(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
+  std::uint64_t h = a * 0x9E3779B97F4A7C15ull;
+  h ^= (h >> 29) + b * 0xBF58476D1CE4E5B9ull;
+  h ^= (h >> 31) + c * 0x94D049BB133111EBull;
+  return h ^ (h >> 32);
 }
 
 /// A deterministic sequence of uniform numbers built on hash32: the same numbers on every

@@ -2,8 +2,8 @@
 // glint/image/srgb.h — the sRGB transfer function (IEC 61966-2-1), the one implementation
 // glint's CPU code uses: display encoding of linear light (image/envmap.h's displayEncode,
 // `glint post` on float images) and decoding of 8- and 16-bit colour to linear
-// (render/env's equirect upload). The shaders that encode on the GPU
-// (shaders/env/envmap.glsl, shaders/pipedream/present.frag) write the same formula.
+// (render/env's equirect upload). The shaders that encode on the GPU include the one GLSL
+// copy, shaders/common/srgb.glsl, with the same branch point.
 //
 /// ```cpp
 /// const float encoded = glint::srgbEncode(0.18f);  // middle gray: 0.46

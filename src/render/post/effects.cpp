@@ -31,16 +31,6 @@ std::function<std::unique_ptr<EffectStage>()> passStage(Options (*options)(const
   return [options] { return std::make_unique<Stage>(options); };
 }
 
-// A one-shader effect: the parameters go to the shader as uniforms (passes.h's ShaderPass).
-std::function<std::unique_ptr<EffectStage>()> shaderStage(const char* shader) {
-  struct Stage final : EffectStage {
-    ShaderPass pass;
-    explicit Stage(const char* s) : pass(s) {}
-    void run(const gl::Texture& in, const gl::Texture& out, const Effect& e) override { pass.run(in, out, e); }
-  };
-  return [shader] { return std::make_unique<Stage>(shader); };
-}
-
 // ---------------------------------------------------------------------------
 // The frequency-domain effects: one pass, parameters into a FrequencyFilter.
 using FilterOf = FrequencyFilter (*)(const Effect&);
@@ -124,7 +114,8 @@ const std::vector<EffectDef>& table() {
                    .minExcluded = true, .sliderMin = 0.25f, .sliderMax = 10.0f},
                   {.name = "threshold", .help = "Sobel magnitudes below this draw nothing", .value = 0.25f,
                    .sliderMin = 0.0f, .sliderMax = 2.0f}},
-       .stage = shaderStage("post/edges.frag")},  // uScale, uThreshold: image/post.h's EdgesOptions
+       .stage = passStage<EdgesPass>(
+           +[](const Effect& e) { return EdgesOptions{.scale = e.value("scale"), .threshold = e.value("threshold")}; })},
       {.name = "kuwahara",
        .summary = "edge-preserving smoothing: mean of the calmest of four overlapping quadrants (2 passes)",
        .params = {{.name = "size", .help = "quadrant edge length (the seed: 3, a 5×5 window)", .type = ParamType::Int,

@@ -125,31 +125,4 @@ void KuwaharaPass::run(const gl::Texture& input, const gl::Texture& output, cons
   finish();
 }
 
-// ---------------------------------------------------------------------------
-ShaderPass::ShaderPass(const std::string& shader)
-    : m_shader(shader), m_pass(shader), m_framebuffer(gl::Framebuffer::create("post-" + shader)) {}
-
-void ShaderPass::run(const gl::Texture& input, const gl::Texture& output, const Effect& effect) {
-  checkSizes(m_shader.c_str(), input, output);
-  const auto& params = effect.def->params;
-  if (m_uniforms.size() != params.size()) {
-    m_uniforms.clear();
-    for (const auto& p : params) {
-      std::string name = std::string("u") + p.name;
-      name[1] = char(std::toupper(static_cast<unsigned char>(name[1])));
-      m_uniforms.push_back(std::move(name));
-    }
-  }
-  bindOutput(m_framebuffer, output);
-  bindInput(input, 0);
-  const auto& program = m_pass.program();
-  program.set("uInput", 0);
-  for (std::size_t i = 0; i < params.size(); ++i) {
-    if (const float* f = std::get_if<float>(&effect.values[i])) program.set(m_uniforms[i], *f);
-    else program.set(m_uniforms[i], std::get<int>(effect.values[i]));
-  }
-  m_pass.drawWithCurrentState();
-  finish();
-}
-
 }  // namespace glint::render::post

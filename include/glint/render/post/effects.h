@@ -26,11 +26,10 @@
 // image/fourier.h) define what each parameter means.
 //
 // Adding an effect: one entry in the table in src/render/post/effects.cpp (name, summary,
-// typed parameters, and its stage) and the work itself. An effect that is one fragment
-// shader is a new file under shaders/post/ whose uniforms are named after the parameters
-// (passes.h's ShaderPass: "threshold" → uThreshold), as edges is; one with several passes
-// or its own state gets a pass class (passes.h, fft.h) the entry runs. Parsing, --effects,
-// the chain and the viewer's panel follow from the entry.
+// typed parameters, and its stage), its pass (passes.h, fft.h: a class with typed options,
+// tested against the image/ reference the entry's options feed), its shader under
+// shaders/post/, and its CPU version (cpu.h). Parsing, --effects, the chain and the viewer's
+// panel follow from the entry.
 
 #include "glint/core/math.h"
 #include "glint/gl/objects.h"

@@ -9,9 +9,6 @@
 //   KuwaharaPass   the seed's two passes: statistics of every s×s block into a float
 //                  texture (kuwahara_stats.frag), then four fetches and the calmest mean
 //                  (kuwahara_select.frag)
-//   ShaderPass     any one-shader effect of the table (render/post/effects.h): its
-//                  parameters become uniforms by name, so such an effect is a shader and a
-//                  table entry (the table runs edges through it)
 //
 // Conventions: image/post.h's, exactly — same luma weights, same border rule (texelFetch
 // at clamped coordinates), same arithmetic. Textures hold frames in image orientation:
@@ -96,16 +93,5 @@ private:
 /// frame as `uniform sampler2D uInput` (texelFetch) and takes each parameter of the effect
 /// as a uniform named "u" + the parameter's name with a capital ("threshold" → uThreshold;
 /// Float as float, Int and Choice as int). A parameter the shader does not use is ignored.
-class ShaderPass {
-public:
-  explicit ShaderPass(const std::string& shader);
-  void run(const gl::Texture& input, const gl::Texture& output, const Effect& effect);
-
-private:
-  std::string m_shader;
-  FullscreenPass m_pass;
-  gl::Framebuffer m_framebuffer;
-  std::vector<std::string> m_uniforms;  // per parameter of the last effect run
-};
 
 }  // namespace glint::render::post
