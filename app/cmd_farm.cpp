@@ -7,11 +7,9 @@
 
 #include "glint/bake/job.h"
 #include "glint/core/error.h"
-#include "glint/core/file.h"
-#include "glint/core/log.h"
-#include "glint/core/progress.h"
 #include "glint/core/text.h"
 #include "glint/farm/farm.h"
+#include "glint/farm/run.h"
 #include "glint/render/post/job.h"
 #include "glint/scenes/render_job.h"
 #if GLINT_HAS_CUT
@@ -20,9 +18,7 @@
 
 #include <fmt/format.h>
 
-#include <atomic>
 #include <cmath>
-#include <csignal>
 #include <filesystem>
 
 namespace glint::app {
@@ -31,15 +27,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// The farm's options: what `glint farm` asks besides the tool's own (farm::RunOptions) and
+/// the pieces and memory (farm::Split).
 struct FarmArgs {
-  std::string partition, time, mem, workDir, scheduler = "slurm";
-  int cpusPerTask = 0, pieces = 0;
-  bool dryRun = false, wait = false;
+  farm::RunOptions run;
+  std::string mem;
+  int pieces = 0;
 };
-
-/// Set by Ctrl-C while `--wait` follows the jobs: stop following, say that they go on.
-std::atomic<bool> stopFollowing{false};
-void onFarmInterrupt(int) { stopFollowing.store(true); }
 
 constexpr const char* kCommonHelp = R"(
 Farm options (every `glint farm` subcommand):
@@ -76,115 +70,26 @@ void addFarmOptions(CLI::App& cmd, FarmArgs& a, const char* piecesName, const ch
   for (const char* name : kFarmOptions)
     if (CLI::Option* clash = cmd.get_option_no_throw(name)) cmd.remove_option(clash);
   if (piecesName) cmd.add_option(piecesName, a.pieces, piecesHelp)->required()->check(CLI::Range(1, 100000));
-  cmd.add_option("--partition", a.partition, "Slurm partition for every task (default: the cluster's)");
-  cmd.add_option("--time", a.time, "Slurm time limit per task, e.g. 2:00:00 (default: the partition's)");
+  cmd.add_option("--partition", a.run.partition, "Slurm partition for every task (default: the cluster's)");
+  cmd.add_option("--time", a.run.time, "Slurm time limit per task, e.g. 2:00:00 (default: the partition's)");
   cmd.add_option("--mem", a.mem, "Memory per task: MiB, or 512M, 4G (default: the tool's own estimate for the job, "
                                  "which each piece also gets as --max-memory)");
-  cmd.add_option("--cpus-per-task", a.cpusPerTask, "CPUs per task (also the pieces' --threads; default: Slurm's, one)")
+  cmd.add_option("--cpus-per-task", a.run.cpusPerTask, "CPUs per task (also the pieces' --threads; default: Slurm's, one)")
       ->check(CLI::Range(1, 4096));
-  cmd.add_option("--work-dir", a.workDir, "Directory for intermediates, scripts and logs, seen by every node (default: "
+  cmd.add_option("--work-dir", a.run.workDir, "Directory for intermediates, scripts and logs, seen by every node (default: "
                                           "the output's directory)");
-  cmd.add_option("--scheduler", a.scheduler, "slurm, or local: run the tasks on this machine as child processes (same "
+  cmd.add_option("--scheduler", a.run.scheduler, "slurm, or local: run the tasks on this machine as child processes (same "
                                              "scripts and rules)")
       ->check(CLI::IsMember({"slurm", "local"}))
       ->capture_default_str();
-  cmd.add_flag("--dry-run", a.dryRun, "Print the batch scripts and submit nothing");
-  cmd.add_flag("--wait", a.wait, "Follow the tasks to the end; exit 0 only when the joined output exists");
+  cmd.add_flag("--dry-run", a.run.dryRun, "Print the batch scripts and submit nothing");
+  cmd.add_flag("--wait", a.run.wait, "Follow the tasks to the end; exit 0 only when the joined output exists");
 }
 
 farm::Split splitOf(const FarmArgs& a) {
-  farm::Split split{.pieces = std::max(1, a.pieces), .cpusPerTask = a.cpusPerTask, .workDir = a.workDir};
+  farm::Split split{.pieces = std::max(1, a.pieces), .cpusPerTask = a.run.cpusPerTask, .workDir = a.run.workDir};
   if (!a.mem.empty()) split.memoryMiB = std::int64_t(std::ceil(parseMemorySize(a.mem, "--mem")));
   return split;
-}
-
-std::shared_ptr<farm::Scheduler> makeScheduler(const FarmArgs& a, const fs::path& workDir) {
-  if (a.scheduler == "local") return farm::localScheduler(workDir / "local-jobs");
-  return farm::slurmScheduler();
-}
-
-/// Error(Input) when the scheduler cannot be used here (sbatch missing): before any work.
-void checkScheduler(const FarmArgs& a) {
-  if (a.dryRun) return;
-  if (auto missing = makeScheduler(a, "/")->unavailable()) throw Error(ErrorKind::Input, *missing);
-}
-
-/// Follows the jobs with a progress bar until they joined, failed or Ctrl-C; the exit status.
-int follow(farm::Farm& job, const FarmArgs& a, const std::string& outputs) {
-  Progress progress("farm " + job.plan().tool, job.plan().pieces.size());
-  std::string last;
-  stopFollowing.store(false);
-  struct sigaction action {}, oldInt {}, oldTerm {};
-  action.sa_handler = onFarmInterrupt;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, &oldInt);
-  sigaction(SIGTERM, &action, &oldTerm);
-  const farm::WaitResult result = job.wait(
-      [&](int done, int, const std::string& line) {
-        if (std::uint64_t(done) > progress.done()) progress.advance(std::uint64_t(done) - progress.done());
-        progress.setDetail(line);
-        if (!progress.enabled() && line != last) log::info("farm {}: {}", job.plan().tool, line);
-        last = line;
-      },
-      &stopFollowing);
-  sigaction(SIGINT, &oldInt, nullptr);
-  sigaction(SIGTERM, &oldTerm, nullptr);
-  progress.finish();
-  if (result.stopped) {
-    std::string ids = job.arrayJob();
-    if (!job.joinJob().empty()) ids += (ids.empty() ? "" : " ") + job.joinJob();
-    log::warn("farm {}: stopped following; the jobs keep running ({}{}): the same command with --wait follows them "
-              "again{}", job.plan().tool, a.scheduler == "local" ? "on this machine, local jobs " : "", ids,
-              a.scheduler == "local" ? "" : fmt::format("; scancel {} cancels them", ids));
-    return exitCode(ErrorKind::Interrupted);
-  }
-  if (result.joined) {
-    log::info("farm {}: done: {}", job.plan().tool, outputs);
-    return 0;
-  }
-  for (const auto& failure : result.failures) log::error("farm {}: {}", job.plan().tool, failure);
-  if (!result.cannotStart)
-    log::error("farm {}: not joined; run the same command again to redo only the failed pieces", job.plan().tool);
-  return result.exitCode;
-}
-
-/// Submits (or prints) the plan and reports; the exit status.
-int runFarm(farm::Plan plan, const FarmArgs& a) {
-  farm::Resources resources{.partition = a.partition, .time = a.time, .memoryMiB = plan.memoryMiB,
-                            .cpusPerTask = a.cpusPerTask};
-  if (plan.workDir.empty()) plan.workDir = a.workDir.empty() ? fs::path(farm::absolutePath(plan.outputs.front().string())).parent_path()
-                                                             : fs::path(a.workDir);
-  // The outputs' folders must exist and be writable: found now, not after the cluster's work.
-  for (const auto& output : plan.outputs) checkWritable(output);
-  farm::Farm job(plan, resources, makeScheduler(a, fs::absolute(plan.workDir)));
-  if (a.dryRun) {
-    fmt::print("{}", job.scripts());
-    return 0;
-  }
-  const farm::Submission s = job.submit();
-  std::string outputs;
-  for (const auto& o : job.plan().outputs) outputs += (outputs.empty() ? "" : ", ") + o.string();
-  if (s.alreadyJoined) {
-    log::info("farm {}: {} already made by this very job (same inputs and options, and the files are the ones its join "
-              "wrote): nothing to submit", job.plan().tool, outputs);
-    return 0;
-  }
-  std::string pieces = fmt::format("{} piece{}", s.submitted.size(), s.submitted.size() == 1 ? "" : "s");
-  if (!s.reused.empty())
-    pieces += fmt::format(" ({} of {} already done or still running: not resubmitted)", s.reused.size(),
-                          job.plan().pieces.size());
-  log::info("farm {}: {} → {}: submitted {}{}{}; work directory {}", job.plan().tool, job.plan().title, outputs, pieces,
-            s.arrayJob.empty() ? "" : fmt::format(" as job array {}", s.arrayJob),
-            s.joinJob.empty() ? "" : fmt::format(", join job {}", s.joinJob), job.directory().string());
-  if (!a.wait) {
-    std::string ids = s.arrayJob;
-    if (!s.joinJob.empty()) ids += (ids.empty() ? "" : ",") + s.joinJob;
-    fmt::print("{}\n", ids);
-    if (a.scheduler == "local") log::info("follow it: the same command with --wait");
-    else log::info("follow it: squeue -j {}   (or run the same command with --wait)", ids);
-    return 0;
-  }
-  return follow(job, a, outputs);
 }
 
 /// One tool `glint farm` splits: its subcommand, its options (the library's), its plan.
@@ -282,8 +187,8 @@ Command farmCommand(CLI::App& app, const GlobalOptions&) {
   return Command{.run = [parsed] {
                    for (const Parsed& p : *parsed) {
                      if (!p.cmd->parsed()) continue;
-                     checkScheduler(*p.args);
-                     return runFarm(p.plan(splitOf(*p.args)), *p.args);
+                     farm::checkScheduler(p.args->run);
+                     return farm::run(p.plan(splitOf(*p.args)), p.args->run);
                    }
                    fail(ErrorKind::Usage, "farm: give a subcommand: cut, post, render or bake");
                  },
