@@ -198,6 +198,35 @@ TEST(Install, AConsumerProjectBuildsAgainstTheInstalledTreeAndRendersTheTriangle
                                           quote(work / "bad.xyz")));
   EXPECT_EQ(badLibrary.status, badCommand.status);
   EXPECT_EQ(badLibrary.status, 2) << badLibrary.output;
+
+  // 8. A batch of bakes through the library alone: the consumer's bake_batch (glint::bake)
+  //    and the installed `glint bake --batch` give the same maps and the same report fields.
+  writeTextAtomically(work / "low.obj", "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                        "vn 0 1 0\nf 1/1/1 3/3/1 2/2/1\nf 1/1/1 4/4/1 3/3/1\n");
+  writeTextAtomically(work / "high.obj", "v -1 0 -1\nv 1 0.2 -1\nv 1 0 1\nv -1 0.2 1\nvn 0 1 0\n"
+                                         "f 1//1 3//1 2//1\nf 1//1 4//1 3//1\n");
+  const auto batchFor = [&](const std::string& name) {
+    writeTextAtomically(work / (name + ".json"),
+                        fmt::format(R"({{"defaults": {{"size": "32x32", "padding": 2}}, "bakes": [
+                                      {{"low": "low.obj", "high": "high.obj", "output": "{0}_n.png", "ao": "{0}_ao.png"}},
+                                      {{"low": "low.obj", "high": "high.obj", "output": "{0}_m.png", "directx": true}}]}})",
+                                    name));
+    return work / (name + ".json");
+  };
+  const auto bakeByCommand = run(fmt::format("{} -q bake --batch {} --samples 4 --json {}", quote(prefix / GLINT_INSTALL_BINDIR / "glint"),
+                                             quote(batchFor("cmd")), quote(work / "cmd-report.json")));
+  ASSERT_EQ(bakeByCommand.status, 0) << bakeByCommand.output;
+  const auto bakeByLibrary = run(fmt::format("{} {} --samples 4 --json {}", quote(build / "bake_batch"),
+                                             quote(batchFor("lib")), quote(work / "lib-report.json")));
+  ASSERT_EQ(bakeByLibrary.status, 0) << bakeByLibrary.output;
+  for (const char* map : {"_n.png", "_ao.png", "_m.png"})
+    EXPECT_TRUE(readTextFile(work / (std::string("cmd") + map)) == readTextFile(work / (std::string("lib") + map))) << map;
+  const auto cmdBatch = nlohmann::json::parse(readTextFile(work / "cmd-report.json"));
+  const auto libBatch = nlohmann::json::parse(readTextFile(work / "lib-report.json"));
+  ASSERT_EQ(libBatch.at("jobs").size(), 2u);
+  for (std::size_t j = 0; j < 2; ++j)
+    for (const char* key : {"status", "samples", "width", "height", "covered_texels", "rays", "hit_ratio"})
+      EXPECT_EQ(libBatch["jobs"][j].at(key), cmdBatch["jobs"][j].at(key)) << "job " << j << " " << key;
 }
 
 // GLINT_OIIO_MODULE names the module explicitly: used when set, and the only candidate,
