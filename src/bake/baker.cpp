@@ -190,18 +190,18 @@ void storeExtraMaps(const Context& ctx, const Pending& p, std::span<const detail
       curvature += r.curvature;
     }
   }
-  if (ctx.bentChannel >= 0) {
+  if (ctx.baking(Map::BentNormal)) {
     const float len = glm::length(bent);
     const vec3 b = len > 0.0f ? bent * (1.0f / len) : vec3(0.0f, 0.0f, 1.0f);
-    for (int k = 0; k < 3; ++k) out[ctx.bentChannel + k] = b[k];
+    for (int k = 0; k < 3; ++k) out[ctx.channelOf(Map::BentNormal) + k] = b[k];
   }
-  if (ctx.thicknessChannel >= 0) out[ctx.thicknessChannel] = hits ? thickness / float(hits) : 0.0f;
-  if (ctx.curvatureChannel >= 0) out[ctx.curvatureChannel] = hits ? curvature / float(hits) : 0.0f;
-  if (ctx.positionChannel >= 0) {
+  if (ctx.baking(Map::Thickness)) out[ctx.channelOf(Map::Thickness)] = hits ? thickness / float(hits) : 0.0f;
+  if (ctx.baking(Map::Curvature)) out[ctx.channelOf(Map::Curvature)] = hits ? curvature / float(hits) : 0.0f;
+  if (ctx.baking(Map::Position)) {
     const vec3 q = hits ? position / float(hits) : positionAll / float(p.count);
-    for (int k = 0; k < 3; ++k) out[ctx.positionChannel + k] = q[k];
+    for (int k = 0; k < 3; ++k) out[ctx.channelOf(Map::Position) + k] = q[k];
   }
-  if (ctx.opacityChannel >= 0) out[ctx.opacityChannel] = float(hits) / float(ctx.root * ctx.root);
+  if (ctx.baking(Map::Opacity)) out[ctx.channelOf(Map::Opacity)] = float(hits) / float(ctx.root * ctx.root);
 }
 
 /// The texel's samples averaged into ctx.texels (the normal normalized), and counted.
@@ -230,9 +230,9 @@ void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleRe
   out[1] = n.y;
   out[2] = n.z;
   const float count = float(p.count);
-  if (ctx.aoChannel >= 0) out[ctx.aoChannel] = ao / count;
-  if (ctx.heightChannel >= 0) out[ctx.heightChannel] = height / count;
-  if (ctx.missChannel >= 0) out[ctx.missChannel] = float(missed) / count;
+  if (ctx.baking(Map::Ao)) out[ctx.channelOf(Map::Ao)] = ao / count;
+  if (ctx.baking(Map::Height)) out[ctx.channelOf(Map::Height)] = height / count;
+  if (ctx.baking(Map::MissMask)) out[ctx.channelOf(Map::MissMask)] = float(missed) / count;
   if (ctx.extraMaps) storeExtraMaps(ctx, p, results, hits, out);
   if (ctx.parts) detail::storePartsMaps(ctx, p.texel, results.subspan(p.first, p.count), out);
   ctx.covered[p.texel] = 1;
@@ -362,29 +362,27 @@ void setUpContext(Context& ctx, BakeStats& stats) {
   }
   stats.frontDistance = ctx.front;
   stats.rearDistance = ctx.rear;
-  ctx.hemisphere = options.ambientOcclusion || options.bentNormals;
+  ctx.hemisphere = options.maps.needs(kHemisphereRays);
   stats.aoDistance = ctx.hemisphere ? ctx.aoDistance : 0.0f;
-  stats.thicknessDistance = options.thickness ? ctx.thicknessDistance : 0.0f;
-  stats.curvatureRadius = options.curvature ? ctx.curvatureRadius : 0.0f;
-  if (options.positionMap) stats.positionBounds = ctx.scene.bounds();
-  if (options.ambientOcclusion) ctx.aoChannel = ctx.channels++;
-  if (options.heightMap) ctx.heightChannel = ctx.channels++;
-  if (options.missMask) ctx.missChannel = ctx.channels++;
-  if (options.bentNormals) ctx.bentChannel = std::exchange(ctx.channels, ctx.channels + 3);
-  if (options.thickness) ctx.thicknessChannel = ctx.channels++;
-  if (options.curvature) ctx.curvatureChannel = ctx.channels++;
-  if (options.positionMap) ctx.positionChannel = std::exchange(ctx.channels, ctx.channels + 3);
-  if (options.opacity) ctx.opacityChannel = ctx.channels++;
-  if (options.vertexColor) ctx.colorChannel = std::exchange(ctx.channels, ctx.channels + 3);
-  // The material and colour maps read the hit's triangle, which shade() records: no lean path.
-  ctx.hitWork = ctx.hemisphere || options.thickness || options.curvature || options.materialId || options.vertexColor;
-  ctx.extraMaps = options.bentNormals || options.thickness || options.curvature || options.positionMap || options.opacity;
+  stats.thicknessDistance = options.maps.has(Map::Thickness) ? ctx.thicknessDistance : 0.0f;
+  stats.curvatureRadius = options.maps.has(Map::Curvature) ? ctx.curvatureRadius : 0.0f;
+  if (options.maps.has(Map::Position)) stats.positionBounds = ctx.scene.bounds();
+  // Each map asked for gets its floats in a texel, in the table's order (the normal first).
+  for (const MapInfo& m : mapTable()) {
+    if (m.map == Map::Normal || !options.maps.has(m.map) || m.texelChannels == 0) continue;
+    ctx.channel[std::size_t(m.map)] = std::exchange(ctx.channels, ctx.channels + m.texelChannels);
+  }
+  // Maps with rays of their own, or that read the hit's triangle (which shade() records):
+  // no lean path.
+  ctx.hitWork = options.maps.needs(kHemisphereRays | kInwardRays | kCurvatureRays | kHitTriangle);
+  ctx.extraMaps = options.maps.has(Map::BentNormal) || options.maps.has(Map::Thickness) ||
+                  options.maps.has(Map::Curvature) || options.maps.has(Map::Position) || options.maps.has(Map::Opacity);
   stats.texels = std::uint64_t(options.width) * std::uint64_t(options.height);
   const std::size_t texelValues = std::size_t(stats.texels) * std::size_t(ctx.channels);
   ctx.texelStorage = std::make_unique_for_overwrite<float[]>(texelValues);
   ctx.texels = std::span<float>(ctx.texelStorage.get(), texelValues);
   ctx.covered.assign(std::size_t(stats.texels), 0);
-  if (options.materialId) ctx.texelMaterial.assign(std::size_t(stats.texels), 0);
+  if (options.maps.has(Map::MaterialId)) ctx.texelMaterial.assign(std::size_t(stats.texels), 0);
 }
 
 /// The low poly's triangles in texel space, binned into tiles (in id order, so bins are
@@ -501,47 +499,42 @@ void makeImages(Context& ctx, const std::vector<std::uint8_t>& filled, BakeResul
     out[1] = rgb.y;
     out[2] = rgb.z;
   });
-  if (ctx.aoChannel >= 0) {
-    result.ao = channelImage(ctx, ctx.aoChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 1.0f; });
+  // Each map asked for, as an image: its empty texels hold the map's neutral value (AO 1,
+  // a bent normal the background direction, a position the bounds' minimum: 0 in 8/16-bit
+  // files); the undilated maps (miss mask, opacity) see the islands only.
+  const vec3 lowest = result.stats.positionBounds ? result.stats.positionBounds->min : vec3(0.0f);
+  for (const MapInfo& m : mapTable()) {
+    if (m.map == Map::Normal || !options.maps.has(m.map)) continue;
+    ctx.covered = m.dilated ? filled : islands;
+    Image& image = result.maps[std::size_t(m.map)];
+    const int first = ctx.channelOf(m.map);
+    switch (m.map) {
+      case Map::MaterialId: image = detail::materialImage(ctx); break;
+      case Map::BentNormal:  // dilation averaged the vectors: normalized again here
+        image = channelImage(ctx, first, 3, true, PixelType::F32, [&](const float* in, float* out, bool has) {
+          const vec3 b(in[0], in[1], in[2]);
+          const float len = has ? glm::length(b) : 0.0f;
+          const vec3 rgb = len > 0.0f ? encodeNormal(b * (1.0f / len), options.directX) : background * 0.5f + 0.5f;
+          out[0] = rgb.x;
+          out[1] = rgb.y;
+          out[2] = rgb.z;
+        });
+        break;
+      case Map::Position:
+        image = channelImage(ctx, first, 3, true, PixelType::F32, [&](const float* in, float* out, bool has) {
+          for (int k = 0; k < 3; ++k) out[k] = has ? in[k] : lowest[k];
+        });
+        break;
+      default: {
+        const float empty = m.map == Map::Ao ? 1.0f : 0.0f;
+        const int channels = m.channels;
+        image = channelImage(ctx, first, channels, true, PixelType::F32, [=](const float* in, float* out, bool has) {
+          for (int k = 0; k < channels; ++k) out[k] = has ? in[k] : empty;
+        });
+      }
+    }
   }
-  if (ctx.heightChannel >= 0) {
-    result.height = channelImage(ctx, ctx.heightChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
-  }
-  if (ctx.bentChannel >= 0) {  // dilation averaged the vectors: normalized again here
-    result.bentNormal = channelImage(ctx, ctx.bentChannel, 3, true, PixelType::F32, [&](const float* in, float* out, bool has) {
-      const vec3 b(in[0], in[1], in[2]);
-      const float len = has ? glm::length(b) : 0.0f;
-      const vec3 rgb = len > 0.0f ? encodeNormal(b * (1.0f / len), options.directX) : background * 0.5f + 0.5f;
-      out[0] = rgb.x;
-      out[1] = rgb.y;
-      out[2] = rgb.z;
-    });
-  }
-  if (ctx.thicknessChannel >= 0) {
-    result.thickness = channelImage(ctx, ctx.thicknessChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
-  }
-  if (ctx.curvatureChannel >= 0) {
-    result.curvature = channelImage(ctx, ctx.curvatureChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
-  }
-  if (ctx.positionChannel >= 0) {  // the background is the bounds' minimum: 0 in 8/16-bit files
-    const vec3 lowest = result.stats.positionBounds ? result.stats.positionBounds->min : vec3(0.0f);
-    result.position = channelImage(ctx, ctx.positionChannel, 3, true, PixelType::F32, [&](const float* in, float* out, bool has) {
-      for (int k = 0; k < 3; ++k) out[k] = has ? in[k] : lowest[k];
-    });
-  }
-  if (ctx.colorChannel >= 0) {
-    result.vertexColor = channelImage(ctx, ctx.colorChannel, 3, true, PixelType::F32, [](const float* in, float* out, bool has) {
-      for (int k = 0; k < 3; ++k) out[k] = has ? in[k] : 0.0f;
-    });
-  }
-  if (!ctx.texelMaterial.empty()) result.materialId = detail::materialImage(ctx);
-  ctx.covered = islands;  // the miss mask and opacity are not dilated
-  if (ctx.missChannel >= 0) {
-    result.missMask = channelImage(ctx, ctx.missChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
-  }
-  if (ctx.opacityChannel >= 0) {
-    result.opacity = channelImage(ctx, ctx.opacityChannel, 1, true, PixelType::F32, [](const float* in, float* out, bool has) { out[0] = has ? in[0] : 0.0f; });
-  }
+  ctx.covered = islands;
   result.coverage = Image(W, H, 1, PixelType::U8);
   auto cov = result.coverage.pixels<std::uint8_t>();
   tbb::parallel_for(tbb::blocked_range<int>(0, H, 64), [&](const tbb::blocked_range<int>& rows) {
@@ -577,8 +570,9 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
   // 1 M: 0.15 s against 0.30–0.45 s) and its rays cost the same up to tens of rays per
   // triangle; at 150 (2048², 36 per texel, 1 M triangles) they took 4–8 % longer, more
   // than the build saves: medium from 64 rays per triangle on.
-  const double raysPerSample = 1.0 + (options.ambientOcclusion || options.bentNormals ? double(options.aoSamples) : 0.0) +
-                               (options.thickness ? double(options.aoSamples) : 0.0) + (options.curvature ? 8.0 : 0.0);
+  const double raysPerSample = 1.0 + (options.maps.needs(kHemisphereRays) ? double(options.aoSamples) : 0.0) +
+                               (options.maps.needs(kInwardRays) ? double(options.aoSamples) : 0.0) +
+                               (options.maps.needs(kCurvatureRays) ? 8.0 : 0.0);
   const double expectedRays = double(options.width) * double(options.height) * double(options.samples) * raysPerSample;
   const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
   // The high poly is read in place (it outlives the scene): no copy of its vertices.
@@ -610,7 +604,7 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
   Context ctx{options, in, scene};
   setUpContext(ctx, stats);
   detail::PartsTables partsTables;
-  if (options.materialId || options.vertexColor) {
+  if (options.maps.needs(kHitTriangle)) {
     partsTables = detail::makePartsTables(options, *in.high, parts ? parts->high : nullptr, result.warnings);
     ctx.parts = &partsTables;
   }
@@ -629,7 +623,7 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
     return 1e-5f * std::max(b.diagonal(), scene.bounds().diagonal());
   };
   if (match) {  // position bounds are the whole high poly's, as without groups
-    if (options.positionMap) stats.positionBounds = in.high->bounds();
+    if (options.maps.has(Map::Position)) stats.positionBounds = in.high->bounds();
     ctx.epsilon = groupEpsilon(0);
     ctx.highCornerNormals = groupMesh.normals.data();
     ctx.highTriangleIds = groupIds.data();

@@ -102,20 +102,10 @@ Batch files (JSON; relative paths are relative to the file; docs/bake.md, "Batch
   is checked before the first one runs; a failed job does not stop the others (the exit
   status is the first failure's); --json writes one report listing every job's.
 
-Maps (each its own file, baked in the same pass as the normal map; docs/bake.md, "Maps"):
-  -o             high-poly normal in --space, encoded (n + 1) / 2
-  --ao           open fraction of --ao-samples hemisphere rays (1 = unoccluded)
-  --height       signed distance along the low poly's normal (+ in front)
-  --bent-normal  mean unoccluded direction of the AO rays, encoded like -o
-  --thickness    mean distance through the surface / --thickness-distance (1 = thick)
-  --curvature    mean curvature at --curvature-radius: mid-grey flat, bright convex
-                 (ridges), dark concave (creases); EXR: signed, 1 / scene units
-  --position     hit point, object space: EXR raw, 8/16-bit over the high poly's box
-  --opacity      fraction of a texel's samples that hit, 0 outside islands
-  --miss-mask    fraction of samples whose rays found nothing (debug)
-  --material-id  flat colour per high-poly material (a stable colour of its name)
-  --vertex-color the high poly's vertex colours, interpolated at the hits
+)";
 
+/// After the map list.
+constexpr const char* kFooterAfterMaps = R"(
 Bake groups (docs/bake.md, "Bake groups"): when the low file's parts are named
 <name>_low, each bakes only against the high parts <name>_high and <name>_high_*, so
 parts that touch or interpenetrate bake as if exploded. --low-suffix/--high-suffix
@@ -159,9 +149,7 @@ void addOptions(CLI::App& cmd, BakeJob& a, Meshes meshes) {
     CLI::Option* low = cmd.add_option("low", a.low, "Low-poly mesh: positions, normals, one UV set (OBJ, PLY, glTF/GLB, "
                                       "FBX, ...)")->type_name(kFile);
     CLI::Option* high = cmd.add_option("high", a.high, "High-poly mesh: positions and normals")->type_name(kFile);
-    CLI::Option* output = cmd.add_option("-o,--output", a.output, "Normal map to write; format from the extension: .png "
-                                         ".tga .tif .exr; name it with <UDIM> (normal.<UDIM>.png) for one map per UDIM "
-                                         "tile")->type_name(kFile);
+    CLI::Option* output = cmd.add_option("-o,--output", a.output, mapInfo(Map::Normal).help)->type_name(kFile);
     if (meshes == Meshes::Required)
       for (CLI::Option* option : {low, high, output}) option->required();
   }
@@ -187,36 +175,20 @@ void addOptions(CLI::App& cmd, BakeJob& a, Meshes meshes) {
                  "tiled over the UVs")->type_name(kFile);
   cmd.add_option("--detail-scale", a.detailScale, "Bumpiness of --height-detail: the height of its 0..1 range in "
                  "texel widths (8: a black-to-white ramp over 8 texels is 45°; negative engraves)")->capture_default_str();
-  cmd.add_option("--ao", a.ao, "Also bake ambient occlusion (hemisphere rays against the high poly) to this file")
-      ->type_name(kFile);
   cmd.add_option("--ao-samples", a.aoSamples, "AO rays per sample (bent normals share them; thickness casts as many "
                  "into the surface)")->capture_default_str();
   cmd.add_option("--ao-distance", a.aoDistance, "AO ray length: scene units or % of the low poly's diagonal")
       ->capture_default_str();
-  cmd.add_option("--height", a.height, "Also bake height/displacement (signed ray distance) to this file; 8/16-bit "
-                 "files map ±max(--max-front, --max-rear) to 0..1, EXR keeps distances")->type_name(kFile);
-  cmd.add_option("--miss-mask", a.missMask, "Also write the fraction of each texel's rays that found nothing (debug)")
-      ->type_name(kFile);
-  cmd.add_option("--bent-normal", a.bentNormal, "Also bake bent normals (the mean unoccluded direction of the AO rays; "
-                 "casts them without --ao too), in --space, encoded like the normal map")->type_name(kFile);
-  cmd.add_option("--thickness", a.thickness, "Also bake thickness for subsurface/translucency: --ao-samples rays into "
-                 "the surface, mean distance to where they leave it / --thickness-distance (1 = thick)")->type_name(kFile);
   cmd.add_option("--thickness-distance", a.thicknessDistance, "Thickness ray length, the distance that reads 1: scene "
                  "units or % of the low poly's diagonal")->capture_default_str();
-  cmd.add_option("--curvature", a.curvature, "Also bake curvature (convex bright, concave dark, mid-grey flat; EXR: "
-                 "signed mean curvature in 1/scene units), from the high poly's normals at --curvature-radius")
-      ->type_name(kFile);
   cmd.add_option("--curvature-radius", a.curvatureRadius, "The scale curvature is measured at (detail smaller is "
                  "averaged away; a bend this tight reads white/black in 8/16-bit): scene units or % of the low poly's "
                  "diagonal")->capture_default_str();
-  cmd.add_option("--position", a.position, "Also bake the high-poly hit point (object space): EXR keeps coordinates, "
-                 "8/16-bit maps the high poly's bounding box to 0..1 (position_min/max in the report)")->type_name(kFile);
-  cmd.add_option("--opacity", a.opacity, "Also bake coverage/opacity: the fraction of each texel's samples that hit the "
-                 "high poly, 0 outside UV islands (not dilated)")->type_name(kFile);
-  cmd.add_option("--material-id", a.materialId, "Also bake a material ID map: a flat colour per high-poly material "
-                 "(majority of the texel's hits, never blended), stable from the material's name")->type_name(kFile);
-  cmd.add_option("--vertex-color", a.vertexColor, "Also bake the high poly's vertex colours (OBJ 'v x y z r g b', PLY "
-                 "red/green/blue, glTF COLOR_0), averaged over each texel's hits")->type_name(kFile);
+  // Every other map: one option each, from the table (bake/maps.h).
+  for (const MapInfo& m : mapTable()) {
+    if (m.map == Map::Normal) continue;
+    cmd.add_option(std::string("--") + m.name, a.maps[std::size_t(m.map)], m.help)->type_name(kFile);
+  }
   cmd.add_option("--low-suffix", a.lowSuffix, "Bake groups: low parts are named <group><suffix>")->capture_default_str();
   cmd.add_option("--high-suffix", a.highSuffix, "Bake groups: high parts are named <group><suffix> or "
                  "<group><suffix>_*")->capture_default_str();
@@ -226,7 +198,25 @@ void addOptions(CLI::App& cmd, BakeJob& a, Meshes meshes) {
 }
 
 
-const char* helpFooter() { return kFooter; }
+std::string helpFooter() {
+  // The map list from the table (bake/maps.h): an option, then what a texel holds.
+  std::string maps = "Maps (each its own file, baked in the same pass as the normal map; docs/bake.md, \"Maps\"):\n";
+  for (const MapInfo& m : mapTable()) {
+    const std::string option = m.map == Map::Normal ? std::string("-o") : std::string("--") + m.name;
+    maps += fmt::format("  {:<14} {}\n", option, m.summary);
+  }
+  return std::string(kFooter) + maps + kFooterAfterMaps;
+}
+
+namespace {
+/// The extra maps a job asks for: those with a file.
+MapSet mapsOf(const BakeJob& job) {
+  MapSet maps;
+  for (const MapInfo& m : mapTable())
+    if (m.map != Map::Normal && !job.path(m.map).empty()) maps.add(m.map);
+  return maps;
+}
+}  // namespace
 
 double estimateMemoryMiB(const BakeJob& job) {
   BakeOptions options;
@@ -238,17 +228,8 @@ double estimateMemoryMiB(const BakeJob& job) {
   options.width = size.x;
   options.height = size.y;
   options.samples = job.samples;
-  options.ambientOcclusion = !job.ao.empty();
+  options.maps = mapsOf(job);
   options.aoSamples = job.aoSamples;
-  options.heightMap = !job.height.empty();
-  options.missMask = !job.missMask.empty();
-  options.bentNormals = !job.bentNormal.empty();
-  options.thickness = !job.thickness.empty();
-  options.curvature = !job.curvature.empty();
-  options.positionMap = !job.position.empty();
-  options.opacity = !job.opacity.empty();
-  options.materialId = !job.materialId.empty();
-  options.vertexColor = !job.vertexColor.empty();
   return estimatePeakMemoryMiB(options, {job.low, job.high, job.cage});
 }
 
@@ -257,10 +238,11 @@ std::vector<FileUse> inputFiles(const BakeJob& a) {
 }
 
 std::vector<FileUse> outputFiles(const BakeJob& a) {
-  return {{a.output, "-o"}, {a.ao, "--ao"}, {a.height, "--height"}, {a.missMask, "--miss-mask"},
-          {a.bentNormal, "--bent-normal"}, {a.thickness, "--thickness"}, {a.curvature, "--curvature"},
-          {a.position, "--position"}, {a.opacity, "--opacity"}, {a.materialId, "--material-id"},
-          {a.vertexColor, "--vertex-color"}, {a.tool.json, "--json"}};
+  std::vector<FileUse> files{{a.output, "-o"}};
+  for (const MapInfo& m : mapTable())
+    if (m.map != Map::Normal) files.push_back({a.path(m.map), std::string("--") + m.name});
+  files.push_back({a.tool.json, "--json"});
+  return files;
 }
 
 namespace {
@@ -293,28 +275,19 @@ BakePlan prepare(const BakeJob& a, ToolRun& run) {
   options.selection = a.frontFirst ? HitSelection::FrontFirst : HitSelection::Closest;
   options.padding = a.padding;
   options.fillAll = a.fillAll;
-  options.ambientOcclusion = !a.ao.empty();
+  options.maps = mapsOf(a);
   options.aoSamples = a.aoSamples;
   options.aoDistance = parseDistance(a.aoDistance, "--ao-distance");
-  options.heightMap = !a.height.empty();
-  options.missMask = !a.missMask.empty();
-  options.bentNormals = !a.bentNormal.empty();
-  options.thickness = !a.thickness.empty();
   options.thicknessDistance = parseDistance(a.thicknessDistance, "--thickness-distance");
-  options.curvature = !a.curvature.empty();
   options.curvatureRadius = parseDistance(a.curvatureRadius, "--curvature-radius");
-  options.positionMap = !a.position.empty();
-  options.opacity = !a.opacity.empty();
-  options.materialId = !a.materialId.empty();
-  options.vertexColor = !a.vertexColor.empty();
   if (a.lowSuffix.empty() || a.highSuffix.empty() || a.lowSuffix == a.highSuffix)
     fail(ErrorKind::Usage, "--low-suffix and --high-suffix must be non-empty and differ");
   validateOptions(options);
   options.normalType = outputType(a.output, a.bits);  // quantized by the baker: no float copy of the map
   std::vector<std::string> outputs{a.output};
   bool anyHolds = a.bits == 0 || holdsBits(a.output, a.bits);
-  for (const std::string* extra : {&a.ao, &a.height, &a.missMask, &a.bentNormal, &a.thickness, &a.curvature, &a.position,
-                                   &a.opacity, &a.materialId, &a.vertexColor}) {
+  for (const std::string& path : a.maps) {
+    const std::string* extra = &path;
     if (extra->empty()) continue;
     outputType(*extra, a.bits);  // an unknown format: now, not after the bake
     anyHolds = anyHolds || holdsBits(*extra, a.bits);
@@ -366,7 +339,7 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
     for (const std::string& name : lowParts->partNames) grouped = grouped || !groupName(name, naming.lowSuffix, false).empty();
     if (!grouped) lowParts.reset();
   }
-  const bool highAsParts = lowParts || options.materialId || options.vertexColor;
+  const bool highAsParts = lowParts || options.maps.needs(kHitTriangle);
   auto others = std::async(std::launch::async, [&] {
     Mesh low = lowParts ? lowParts->mesh : loadMesh(a.low);
     if (!a.cage.empty()) options.cage = loadMesh(a.cage);
@@ -416,12 +389,9 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
     log::info("bake: {} bake group{} matched by name", match.groups.size(), match.groups.size() == 1 ? "" : "s");
   }
   run.throwIfInterrupted();
-  // Every map this bake writes: (kind for the report, the path as given).
-  const std::pair<const char*, const std::string*> kinds[] = {
-      {"normal", &a.output},         {"ao", &a.ao},          {"height", &a.height},     {"miss_mask", &a.missMask},
-      {"bent_normal", &a.bentNormal}, {"thickness", &a.thickness}, {"curvature", &a.curvature},
-      {"position", &a.position},     {"opacity", &a.opacity},     {"material_id", &a.materialId},
-      {"vertex_color", &a.vertexColor}};
+  // Every map this bake writes: (its report key, the path as given), in the table's order.
+  std::vector<std::pair<const char*, const std::string*>> kinds;
+  for (const MapInfo& m : mapTable()) kinds.emplace_back(m.reportKey, &a.path(m.map));
 
   // UDIM: UVs beyond the unit square, or outputs named with <UDIM>, bake one image per tile.
   bool named = false, unnamed = false;
@@ -507,21 +477,14 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
     // files written in parallel: compressing them is most of the write phase (six 2048²
     // PNGs: 2.4 s one after another).
     std::vector<std::function<void()>> writes;
-    const auto add = [&](const std::string& path, auto convert) {
-      if (!path.empty()) writes.emplace_back([&path, convert, &file, &a] { saveImage(convert(outputType(path, a.bits)), file(path)); });
-    };
-    writes.emplace_back([&] { saveImage(result.normal, file(a.output)); });
-    const float heightRange = std::max(s.frontDistance, s.rearDistance);
-    add(a.ao, [&](PixelType t) { return forOutput(result.ao, t); });
-    add(a.height, [&](PixelType t) { return heightForOutput(result.height, t, heightRange); });
-    add(a.missMask, [&](PixelType t) { return forOutput(result.missMask, t); });
-    add(a.bentNormal, [&](PixelType t) { return forOutput(result.bentNormal, t); });
-    add(a.thickness, [&](PixelType t) { return forOutput(result.thickness, t); });
-    add(a.curvature, [&](PixelType t) { return curvatureForOutput(result.curvature, t, s.curvatureRadius); });
-    add(a.position, [&](PixelType t) { return positionForOutput(result.position, t, *s.positionBounds); });
-    add(a.opacity, [&](PixelType t) { return forOutput(result.opacity, t); });
-    add(a.materialId, [&](PixelType t) { return forOutput(result.materialId, t); });
-    add(a.vertexColor, [&](PixelType t) { return forOutput(result.vertexColor, t); });
+    writes.emplace_back([&] { saveImage(result.normal, file(a.output)); });  // quantized as it was baked
+    for (const MapInfo& m : mapTable()) {
+      const std::string& path = a.path(m.map);
+      if (m.map == Map::Normal || path.empty()) continue;
+      writes.emplace_back([&m, &path, &result, &s, &file, &a] {
+        saveImage(m.forOutput(result.map(m.map), outputType(path, a.bits), s), file(path));
+      });
+    }
     tbb::parallel_for_each(writes.begin(), writes.end(), [](const std::function<void()>& write) { write(); });
     writing.reset();
     log::info("bake: {} ({} triangles) → {} ({}x{}, {} per texel): {} texels baked, {} padded; {} rays, hit ratio "

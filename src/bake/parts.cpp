@@ -142,13 +142,13 @@ PartsTables makePartsTables(const BakeOptions& options, const Mesh& high, const 
                             std::vector<std::string>& warnings) {
   PartsTables tables;
   tables.highIndices = &high.indices;
-  if (options.vertexColor) {
+  if (options.maps.has(Map::VertexColor)) {
     if (!parts || !parts->hasColors())
       fail(ErrorKind::Input, "--vertex-color: the high poly has no vertex colours (OBJ 'v x y z r g b', PLY "
            "red/green/blue, glTF COLOR_0)");
     tables.colors = &parts->colors;
   }
-  if (options.materialId) {
+  if (options.maps.has(Map::MaterialId)) {
     if (parts && parts->hasMaterials()) {
       tables.triangleMaterial = &parts->triangleMaterial;
       for (const std::string& name : parts->materialNames) tables.materialColors.push_back(materialColor(name));
@@ -203,7 +203,7 @@ void storePartsMaps(Context& ctx, std::size_t texel, std::span<const SampleResul
     }
     ctx.texelMaterial[texel] = best ? best : kMaterialMissed;  // no hit: black, kept out of dilation
   }
-  if (ctx.colorChannel >= 0) {
+  if (ctx.baking(Map::VertexColor)) {
     vec3 sum(0.0f);
     std::size_t hits = 0;
     for (const SampleResult& r : results) {
@@ -214,7 +214,7 @@ void storePartsMaps(Context& ctx, std::size_t texel, std::span<const SampleResul
       ++hits;
     }
     const vec3 colour = hits ? sum / float(hits) : vec3(0.0f);
-    for (int k = 0; k < 3; ++k) out[ctx.colorChannel + k] = colour[k];
+    for (int k = 0; k < 3; ++k) out[ctx.channelOf(Map::VertexColor) + k] = colour[k];
   }
 }
 

@@ -179,7 +179,7 @@ void validateOptions(const BakeOptions& options) {
     fail(ErrorKind::Usage, "samples per texel must be a square (1, 4, 9, 16, 25, 36, 49, 64, ... 1024), got {}",
          options.samples);
   }
-  if ((options.ambientOcclusion || options.bentNormals || options.thickness) &&
+  if (options.maps.needs(kHemisphereRays | kInwardRays) &&
       (options.aoSamples < 1 || options.aoSamples > 4096)) {
     fail(ErrorKind::Usage, "AO samples must be 1..4096, got {}", options.aoSamples);
   }
@@ -187,10 +187,10 @@ void validateOptions(const BakeOptions& options) {
       options.thicknessDistance.value < 0.0f || options.curvatureRadius.value < 0.0f) {
     fail(ErrorKind::Usage, "ray distances must not be negative");
   }
-  if (options.thickness && !(options.thicknessDistance.value > 0.0f)) {
+  if (options.maps.has(Map::Thickness) && !(options.thicknessDistance.value > 0.0f)) {
     fail(ErrorKind::Usage, "--thickness-distance must be more than 0 (it is the distance that reads 1)");
   }
-  if (options.curvature && !(options.curvatureRadius.value > 0.0f)) {
+  if (options.maps.has(Map::Curvature) && !(options.curvatureRadius.value > 0.0f)) {
     fail(ErrorKind::Usage, "--curvature-radius must be more than 0 (it is the scale curvature is measured at)");
   }
   if (options.padding < 0) fail(ErrorKind::Usage, "--padding must not be negative, got {}", options.padding);

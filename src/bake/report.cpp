@@ -28,13 +28,12 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
     if (!in.empty()) inputBytes += double(std::filesystem::file_size(in, ec)) * (ec ? 0.0 : 1.0);
   }
   const double texels = double(options.width) * double(options.height);
-  const int extraChannels = int(options.ambientOcclusion) + int(options.heightMap) + int(options.missMask) +
-                            3 * int(options.bentNormals) + int(options.thickness) + int(options.curvature) +
-                            3 * int(options.positionMap) + int(options.opacity) + 3 * int(options.vertexColor) +
-                            2 * int(options.materialId);
+  double extraChannels = 0.0;  // the maps' float channels per texel (bake/maps.h)
+  for (const MapInfo& m : mapTable())
+    if (m.map != Map::Normal && options.maps.has(m.map)) extraChannels += m.memoryChannels;
   // Thickness and curvature may keep per-vertex tables of the high poly (trace.h,
   // VertexCache: ~40 bytes a triangle while they are built), about 1.5× a binary PLY's bytes.
-  const double vertexTables = options.thickness || options.curvature ? 1.5 * inputBytes : 0.0;
+  const double vertexTables = options.maps.needs(kInwardRays | kCurvatureRays) ? 1.5 * inputBytes : 0.0;
   return 64.0 + (2.0 * inputBytes + vertexTables + texels * (19.5 + 8.0 * extraChannels)) / (1 << 20);
 }
 

@@ -476,14 +476,14 @@ SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const 
       result.ao = o.open;
       bent = o.bent;
     }
-    if (ctx.thicknessChannel >= 0) result.thickness = thicknessOf(ctx, f, objectNormal, in.seed, counters);
-    if (ctx.curvatureChannel >= 0) result.curvature = curvatureOf(ctx, f, objectNormal, in.seed, counters);
-    if (ctx.positionChannel >= 0) result.position = f.ray.at(f.hit->t);
-  } else if (ctx.positionChannel >= 0) {
+    if (ctx.baking(Map::Thickness)) result.thickness = thicknessOf(ctx, f, objectNormal, in.seed, counters);
+    if (ctx.baking(Map::Curvature)) result.curvature = curvatureOf(ctx, f, objectNormal, in.seed, counters);
+    if (ctx.baking(Map::Position)) result.position = f.ray.at(f.hit->t);
+  } else if (ctx.baking(Map::Position)) {
     result.position = g.position;
   }
   store(ctx, g, objectNormal, in, result);
-  if (ctx.bentChannel >= 0) result.bent = inSpace(ctx, g, bent);
+  if (ctx.baking(Map::BentNormal)) result.bent = inSpace(ctx, g, bent);
   return result;
 }
 
@@ -589,7 +589,7 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
     r.ao = 1.0f;
     r.hit = true;
     r.height = side * (hit->t - before);
-    if (ctx.positionChannel >= 0) r.position = sweeps[i].at(hit->t);
+    if (ctx.baking(Map::Position)) r.position = sweeps[i].at(hit->t);
     (r.height >= 0.0f ? front : rear) += 1;
     if (!lanes) {
       const vec3 high = highNormal(ctx, *hit);
@@ -626,7 +626,7 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
 }
 
 std::unique_ptr<VertexCache> buildVertexCache(const Context& ctx, const Mesh& mesh) {
-  const bool thickness = ctx.thicknessChannel >= 0, curvature = ctx.curvatureChannel >= 0;
+  const bool thickness = ctx.baking(Map::Thickness), curvature = ctx.baking(Map::Curvature);
   if (!thickness && !curvature) return nullptr;
   const std::size_t triangles = mesh.triangleCount();
   // Worth it only where a bake's samples outnumber the vertices: a vertex's thickness costs

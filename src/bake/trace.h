@@ -72,9 +72,14 @@ struct Context {
   float front = 0, rear = 0, aoDistance = 0, thicknessDistance = 0, curvatureRadius = 0;
   float epsilon = 0;  ///< offsets off a surface, and the nudge of a retried ray (scene units)
   mat3 worldNormalMatrix{1.0f};
-  int channels = 3;  ///< normal (3) [+ ao] [+ height] [+ miss] [+ bent (3)] [+ thickness] [+ curvature] [+ position (3)] [+ opacity]
-  int aoChannel = -1, heightChannel = -1, missChannel = -1;
-  int bentChannel = -1, thicknessChannel = -1, curvatureChannel = -1, positionChannel = -1, opacityChannel = -1;
+  int channels = 3;  ///< floats per texel: the normal (3), then each map asked for, in the table's order (bake/maps.h)
+  std::array<int, kMapCount> channel = [] {  ///< each map's first float in a texel; -1: not baked
+    std::array<int, kMapCount> c{};
+    c.fill(-1);
+    return c;
+  }();
+  int channelOf(Map m) const { return channel[std::size_t(m)]; }
+  bool baking(Map m) const { return channelOf(m) >= 0; }
   bool hemisphere = false;  ///< AO rays are cast (for AO or bent normals)
   /// Some map casts rays from the hit (AO, bent normals, thickness, curvature): the sweep's lean path
   /// (traceGroup) is not taken.
@@ -104,7 +109,6 @@ struct Context {
   // Bake groups and the maps of the high poly's parts (parts.cpp, bake/groups.h).
   const struct PartsTables* parts = nullptr;      ///< material/colour tables, when those maps are asked
   const std::uint32_t* highTriangleIds = nullptr; ///< the scene's triangle → the high poly's (null: the same)
-  int colorChannel = -1;                          ///< vertex colour (3)
   std::vector<std::uint32_t> texelMaterial;       ///< per texel material index + 1 (0: off the islands; detail::kMaterialMissed: no hit), with a material ID map
   std::unique_ptr<VertexCache> vertexCache;       ///< with thickness or curvature, where some triangles are small
 };

@@ -260,6 +260,18 @@ public:
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
+    // Tasks that had not started are cancelled now, as scancel does (the runner, which
+    // looks at the cancel file before it starts a task, may only confirm it).
+    std::stringstream tasks(readLine(job / "tasks"));
+    int t = 0;
+    while (tasks >> t) {
+      if (one && std::to_string(t) != task) continue;
+      const fs::path state = job / fmt::format("state.{}", t);
+      std::stringstream line(readLine(state));
+      std::string now;
+      line >> now;
+      if (now == "PENDING") writeFile(state, "CANCELLED 0:0 None\n");
+    }
   }
 
 private:

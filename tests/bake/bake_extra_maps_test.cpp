@@ -48,20 +48,20 @@ TEST(BakeExtraMaps, BentNormalOnAConvexSphereIsTheNormal) {
   const Mesh low = makeUvSphere(1.0f, 16, 8);
   bake::BakeOptions options;
   options.width = options.height = 48;
-  options.bentNormals = true;  // without ambientOcclusion: the AO rays are cast anyway
+  options.maps.add(bake::Map::BentNormal);  // without ambientOcclusion: the AO rays are cast anyway
   options.aoSamples = 64;
   options.aoDistance = {10.0f, false};
   const auto r = bake::bake(low, high, options);
-  ASSERT_FALSE(r.bentNormal.empty());
-  EXPECT_TRUE(r.ao.empty());
-  EXPECT_EQ(r.bentNormal.channels(), 3);
+  ASSERT_FALSE(r.map(bake::Map::BentNormal).empty());
+  EXPECT_TRUE(r.map(bake::Map::Ao).empty());
+  EXPECT_EQ(r.map(bake::Map::BentNormal).channels(), 3);
   EXPECT_EQ(r.stats.aoRays, r.stats.hits * 64u);
   double sum = 0, worst = 0;
   int n = 0;
   for (int row = 0; row < 48; ++row)
     for (int x = 0; x < 48; ++x) {
       if (!inIsland(r, x, row)) continue;
-      const double a = angleDeg(glm::dvec3(decoded(r.normal, x, row)), glm::dvec3(decoded(r.bentNormal, x, row)));
+      const double a = angleDeg(glm::dvec3(decoded(r.normal, x, row)), glm::dvec3(decoded(r.map(bake::Map::BentNormal), x, row)));
       sum += a;
       worst = std::max(worst, a);
       ++n;
@@ -72,9 +72,9 @@ TEST(BakeExtraMaps, BentNormalOnAConvexSphereIsTheNormal) {
   EXPECT_LT(worst, 2.0);
 
   // The same rays as an AO bake's: asking for AO too changes nothing in the bent map.
-  options.ambientOcclusion = true;
+  options.maps.add(bake::Map::Ao);
   const auto both = bake::bake(low, high, options);
-  EXPECT_TRUE(both.bentNormal == r.bentNormal);
+  EXPECT_TRUE(both.map(bake::Map::BentNormal) == r.map(bake::Map::BentNormal));
   EXPECT_EQ(both.stats.aoRays, r.stats.aoRays);
 }
 
@@ -93,8 +93,8 @@ TEST(BakeExtraMaps, BentNormalTiltsAwayFromAWall) {
   bake::BakeOptions options;
   options.width = options.height = 16;
   options.space = NormalSpace::Object;
-  options.bentNormals = true;
-  options.ambientOcclusion = true;
+  options.maps.add(bake::Map::BentNormal);
+  options.maps.add(bake::Map::Ao);
   options.aoSamples = 256;
   options.aoDistance = {10000.0f, false};
   options.maxFront = options.maxRear = {0.01f, false};
@@ -103,10 +103,10 @@ TEST(BakeExtraMaps, BentNormalTiltsAwayFromAWall) {
   double sum = 0, worst = 0, aoWorst = 0;
   for (int row = 0; row < 16; ++row)
     for (int x = 0; x < 16; ++x) {
-      const double a = angleDeg(glm::dvec3(decoded(r.bentNormal, x, row)), expected);
+      const double a = angleDeg(glm::dvec3(decoded(r.map(bake::Map::BentNormal), x, row)), expected);
       sum += a;
       worst = std::max(worst, a);
-      aoWorst = std::max(aoWorst, std::abs(r.ao.at(x, row, 0) - 0.5));  // half the cosine-weighted hemisphere
+      aoWorst = std::max(aoWorst, std::abs(r.map(bake::Map::Ao).at(x, row, 0) - 0.5));  // half the cosine-weighted hemisphere
     }
   std::printf("bent normal beside a wall: tilt %.2f° expected, mean error %.3f°, worst %.3f°; AO worst |ao - 0.5| %.4f\n",
               glm::degrees(std::atan(2.0 / kPiD)), sum / 256, worst, aoWorst);
@@ -124,7 +124,7 @@ TEST(BakeExtraMaps, WorldSpaceIsTheRotatedObjectSpace) {
   const Mesh low = makeTorus(1.0f, 0.35f, 12, 6);
   bake::BakeOptions options;
   options.width = options.height = 40;
-  options.bentNormals = true;
+  options.maps.add(bake::Map::BentNormal);
   options.aoSamples = 8;
   options.space = NormalSpace::Object;
   const auto object = bake::bake(low, high, options);
@@ -137,7 +137,7 @@ TEST(BakeExtraMaps, WorldSpaceIsTheRotatedObjectSpace) {
     for (int x = 0; x < 40; ++x) {
       const auto rotated = [&](const Image& image) { return vec3(rotation * vec4(decoded(image, x, row), 0.0f)); };
       worstNormal = std::max(worstNormal, double(glm::length(rotated(object.normal) - decoded(world.normal, x, row))));
-      worstBent = std::max(worstBent, double(glm::length(rotated(object.bentNormal) - decoded(world.bentNormal, x, row))));
+      worstBent = std::max(worstBent, double(glm::length(rotated(object.map(bake::Map::BentNormal)) - decoded(world.map(bake::Map::BentNormal), x, row))));
     }
   std::printf("world vs rotated object space: normal %.2g, bent %.2g\n", worstNormal, worstBent);
   EXPECT_LT(worstNormal, 1e-5);
@@ -152,11 +152,11 @@ TEST(BakeExtraMaps, ThicknessOfASphereIsTheMeanChord) {
   const Mesh low = makeUvSphere(1.0f, 16, 8);
   bake::BakeOptions options;
   options.width = options.height = 32;
-  options.thickness = true;
+  options.maps.add(bake::Map::Thickness);
   options.aoSamples = 64;
   options.thicknessDistance = {2.5f, false};  // longer than the longest chord: no ray is capped
   const auto r = bake::bake(low, high, options);
-  ASSERT_FALSE(r.thickness.empty());
+  ASSERT_FALSE(r.map(bake::Map::Thickness).empty());
   EXPECT_EQ(r.stats.thicknessRays, r.stats.hits * 64u);
   EXPECT_EQ(r.stats.aoRays, 0u);
   const double expected = 4.0 / 3.0 / 2.5;
@@ -165,7 +165,7 @@ TEST(BakeExtraMaps, ThicknessOfASphereIsTheMeanChord) {
   for (int row = 0; row < 32; ++row)
     for (int x = 0; x < 32; ++x) {
       if (!inIsland(r, x, row)) continue;
-      const double e = r.thickness.at(x, row, 0) - expected;
+      const double e = r.map(bake::Map::Thickness).at(x, row, 0) - expected;
       sum += e;
       worst = std::max(worst, std::abs(e));
       ++n;
@@ -189,7 +189,7 @@ TEST(BakeExtraMaps, ThicknessOfASlab) {
   high.append(bottom);
   bake::BakeOptions options;
   options.width = options.height = 16;
-  options.thickness = true;
+  options.maps.add(bake::Map::Thickness);
   options.aoSamples = 256;
   options.maxFront = options.maxRear = {0.01f, false};
   for (const float D : {1.0f, 0.5f, 0.15f}) {
@@ -198,7 +198,7 @@ TEST(BakeExtraMaps, ThicknessOfASlab) {
     const double expected = D <= t ? 1.0 : 2.0 * t / D - double(t) * t / (double(D) * D);
     double worst = 0;
     for (int row = 0; row < 16; ++row)
-      for (int x = 0; x < 16; ++x) worst = std::max(worst, std::abs(r.thickness.at(x, row, 0) - expected));
+      for (int x = 0; x < 16; ++x) worst = std::max(worst, std::abs(r.map(bake::Map::Thickness).at(x, row, 0) - expected));
     std::printf("slab t = %.2f, D = %.2f: expected %.4f, worst error %.5f\n", t, D, expected, worst);
     EXPECT_LT(worst, D <= t ? 1e-6 : 0.01) << "D = " << D;
   }
@@ -217,21 +217,21 @@ TEST(BakeExtraMaps, CurvatureOfASphereIsOneOverTheRadius) {
     const Mesh low = makeUvSphere(R, 16, 8);
     bake::BakeOptions options;
     options.width = options.height = 48;
-    options.curvature = true;  // the default radius: 1 % of the low poly's diagonal
+    options.maps.add(bake::Map::Curvature);  // the default radius: 1 % of the low poly's diagonal
     const auto r = bake::bake(low, high, options);
-    ASSERT_FALSE(r.curvature.empty());
-    EXPECT_EQ(r.curvature.channels(), 1);
+    ASSERT_FALSE(r.map(bake::Map::Curvature).empty());
+    EXPECT_EQ(r.map(bake::Map::Curvature).channels(), 1);
     EXPECT_FLOAT_EQ(r.stats.curvatureRadius, 0.01f * low.bounds().diagonal());
     EXPECT_GE(r.stats.curvatureRays, r.stats.hits * 8u);
     EXPECT_EQ(r.stats.aoRays + r.stats.thicknessRays, 0u);
-    const Image u8 = bake::curvatureForOutput(r.curvature, PixelType::U8, r.stats.curvatureRadius);
+    const Image u8 = bake::curvatureForOutput(r.map(bake::Map::Curvature), PixelType::U8, r.stats.curvatureRadius);
     const double expected = 1.0 / R, expected8 = 0.5 + 0.5 * r.stats.curvatureRadius / R;
     double sum = 0, worst = 0, worst8 = 0;
     int n = 0;
     for (int row = 0; row < 48; ++row)
       for (int x = 0; x < 48; ++x) {
         if (!inIsland(r, x, row)) continue;
-        const double e = (r.curvature.at(x, row, 0) - expected) / expected;
+        const double e = (r.map(bake::Map::Curvature).at(x, row, 0) - expected) / expected;
         sum += e;
         worst = std::max(worst, std::abs(e));
         worst8 = std::max(worst8, std::abs(u8.at(x, row, 0) - expected8));
@@ -259,8 +259,8 @@ TEST(BakeExtraMaps, ThicknessAndCurvatureAtVerticesOfADenseSphere) {
   bake::BakeOptions options;
   options.width = 512;
   options.height = 256;
-  options.thickness = true;
-  options.curvature = true;
+  options.maps.add(bake::Map::Thickness);
+  options.maps.add(bake::Map::Curvature);
   options.aoSamples = 16;
   options.thicknessDistance = {2.5f, false};
   options.curvatureRadius = {0.2f, false};
@@ -277,7 +277,7 @@ TEST(BakeExtraMaps, ThicknessAndCurvatureAtVerticesOfADenseSphere) {
   for (int row = 0; row < 256; ++row)
     for (int x = 0; x < 512; ++x) {
       if (!inIsland(r, x, row)) continue;
-      const double t = r.thickness.at(x, row, 0) - thick, c = r.curvature.at(x, row, 0) - 1.0;
+      const double t = r.map(bake::Map::Thickness).at(x, row, 0) - thick, c = r.map(bake::Map::Curvature).at(x, row, 0) - 1.0;
       sumT += t;
       worstT = std::max(worstT, std::abs(t));
       sumC += c;
@@ -300,10 +300,10 @@ TEST(BakeExtraMaps, ThicknessAndCurvatureAtVerticesOfADenseSphere) {
   EXPECT_EQ(one.stats.vertexMeasurements, r.stats.vertexMeasurements);
   EXPECT_EQ(one.stats.thicknessRays, r.stats.thicknessRays);
   EXPECT_EQ(one.stats.curvatureRays, r.stats.curvatureRays);
-  EXPECT_TRUE(std::equal(one.thickness.pixels<float>().begin(), one.thickness.pixels<float>().end(),
-                         r.thickness.pixels<float>().begin()));
-  EXPECT_TRUE(std::equal(one.curvature.pixels<float>().begin(), one.curvature.pixels<float>().end(),
-                         r.curvature.pixels<float>().begin()));
+  EXPECT_TRUE(std::equal(one.map(bake::Map::Thickness).pixels<float>().begin(), one.map(bake::Map::Thickness).pixels<float>().end(),
+                         r.map(bake::Map::Thickness).pixels<float>().begin()));
+  EXPECT_TRUE(std::equal(one.map(bake::Map::Curvature).pixels<float>().begin(), one.map(bake::Map::Curvature).pixels<float>().end(),
+                         r.map(bake::Map::Curvature).pixels<float>().begin()));
 }
 
 // A torus (ring radius a = 1 around +Y, tube radius b = 0.6: fat enough that its inner side
@@ -322,20 +322,20 @@ TEST(BakeExtraMaps, CurvatureOfATorusIsTheAnalyticMeanCurvature) {
   const Mesh low = makeTorus(float(a), float(b), 24, 12);
   bake::BakeOptions options;
   options.width = options.height = 64;
-  options.curvature = options.positionMap = true;
+  options.maps.add(bake::Map::Curvature).add(bake::Map::Position);
   options.curvatureRadius = {0.02f, false};
   options.maxFront = options.maxRear = {0.1f, false};
   const auto r = bake::bake(low, high, options);
-  const Image u8 = bake::curvatureForOutput(r.curvature, PixelType::U8, 0.3f);
+  const Image u8 = bake::curvatureForOutput(r.map(bake::Map::Curvature), PixelType::U8, 0.3f);
   double sum = 0, worst = 0, lowest = 1e9, highest = -1e9;
   int n = 0, convexBright = 0, concaveDark = 0, convex = 0, concave = 0;
   for (int row = 0; row < 64; ++row)
     for (int x = 0; x < 64; ++x) {
       if (!inIsland(r, x, row)) continue;
-      const glm::dvec3 p(texel(r.position, x, row));
+      const glm::dvec3 p(texel(r.map(bake::Map::Position), x, row));
       const double cv = (std::sqrt(p.x * p.x + p.z * p.z) - a) / b;
       const double H = (a + 2.0 * b * cv) / (2.0 * b * (a + b * cv));
-      const double e = std::abs(r.curvature.at(x, row, 0) - H);
+      const double e = std::abs(r.map(bake::Map::Curvature).at(x, row, 0) - H);
       sum += e;
       worst = std::max(worst, e);
       lowest = std::min(lowest, H);
@@ -365,18 +365,18 @@ TEST(BakeExtraMaps, CurvatureOfAConcaveSurfaceIsNegative) {
   const Mesh low = makeUvSphere(1.0f, 16, 8);
   bake::BakeOptions options;
   options.width = options.height = 32;
-  options.curvature = true;
+  options.maps.add(bake::Map::Curvature);
   options.curvatureRadius = {0.2f, false};
   for (const bool inward : {false, true}) {
     const Mesh high = inward ? flipped(makeUvSphere(1.0f, 128, 64)) : makeUvSphere(1.0f, 128, 64);
     const auto r = bake::bake(low, high, options);
-    const Image u8 = bake::curvatureForOutput(r.curvature, PixelType::U8, r.stats.curvatureRadius);
+    const Image u8 = bake::curvatureForOutput(r.map(bake::Map::Curvature), PixelType::U8, r.stats.curvatureRadius);
     double worst = 0;
     int wrongSide = 0, n = 0;
     for (int row = 0; row < 32; ++row)
       for (int x = 0; x < 32; ++x) {
         if (!inIsland(r, x, row)) continue;
-        worst = std::max(worst, std::abs(r.curvature.at(x, row, 0) - (inward ? -1.0 : 1.0)));
+        worst = std::max(worst, std::abs(r.map(bake::Map::Curvature).at(x, row, 0) - (inward ? -1.0 : 1.0)));
         wrongSide += inward ? u8.at(x, row, 0) >= 0.5f : u8.at(x, row, 0) <= 0.5f;
         ++n;
       }
@@ -397,21 +397,21 @@ TEST(BakeExtraMaps, PositionIsTheHitPoint) {
     const Mesh low = makeUvSphere(radius, 16, 8);
     bake::BakeOptions options;
     options.width = options.height = 48;
-    options.positionMap = true;
+    options.maps.add(bake::Map::Position);
     options.maxFront = options.maxRear = {0.1f, false};
     const auto r = bake::bake(low, high, options);
     ASSERT_TRUE(r.stats.positionBounds);
     const Bounds b = *r.stats.positionBounds;
     EXPECT_EQ(b.min, high.bounds().min);
     EXPECT_EQ(b.max, high.bounds().max);
-    const Image u16 = bake::positionForOutput(r.position, PixelType::U16, b);
+    const Image u16 = bake::positionForOutput(r.map(bake::Map::Position), PixelType::U16, b);
     ASSERT_EQ(u16.type(), PixelType::U16);
     double worstRaw = 0, worstDecoded = 0, worstRadius = 0;
     int n = 0;
     for (int row = 0; row < 48; ++row)
       for (int x = 0; x < 48; ++x) {
         if (!inIsland(r, x, row)) continue;
-        const vec3 raw = texel(r.position, x, row);
+        const vec3 raw = texel(r.map(bake::Map::Position), x, row);
         worstRadius = std::max(worstRadius, std::abs(double(glm::length(raw)) - 1.0));
         const auto s = surfaceAt(r.low, texelCentre(x, row, 48, 48));
         if (!s) continue;  // a texel filled by the closest-point rule: its sample is not the centre
@@ -452,10 +452,10 @@ TEST(BakeExtraMaps, OpacityCountsTheSamplesThatHit) {
   bake::BakeOptions options;
   options.width = options.height = 32;
   options.samples = 16;
-  options.opacity = true;
+  options.maps.add(bake::Map::Opacity);
   options.maxFront = options.maxRear = {0.05f, false};
   const auto r = bake::bake(low, high, options);
-  ASSERT_FALSE(r.opacity.empty());
+  ASSERT_FALSE(r.map(bake::Map::Opacity).empty());
   int mismatches = 0, fractional = 0, ones = 0, zeros = 0;
   for (int row = 0; row < 32; ++row)
     for (int x = 0; x < 32; ++x) {
@@ -466,7 +466,7 @@ TEST(BakeExtraMaps, OpacityCountsTheSamplesThatHit) {
         const auto p = surfaceAt(r.low, uv);
         if (p && !inHole(p->position.x, p->position.z)) ++hits;
       }
-      const float expected = float(hits) / 16.0f, got = r.opacity.at(x, row, 0);
+      const float expected = float(hits) / 16.0f, got = r.map(bake::Map::Opacity).at(x, row, 0);
       if (got != expected) {
         ++mismatches;
         ADD_FAILURE() << "texel " << x << "," << row << ": opacity " << got << ", expected " << expected;
@@ -493,11 +493,11 @@ TEST(BakeExtraMaps, NormalMapUnchangedAndDeterministic) {
   const auto reference = bake::bake(low, high, plain);
   bake::BakeOptions options = plain;
   // Opacity and position need only the hits: the normal pass's rays and its lean path.
-  options.opacity = options.positionMap = true;
+  options.maps.add(bake::Map::Opacity).add(bake::Map::Position);
   const auto withHitsOnly = bake::bake(low, high, options);
   EXPECT_TRUE(withHitsOnly.normal == reference.normal);
   EXPECT_EQ(withHitsOnly.stats.rays, reference.stats.rays);
-  options.bentNormals = options.thickness = options.curvature = true;
+  options.maps.add(bake::Map::BentNormal).add(bake::Map::Thickness).add(bake::Map::Curvature);
   options.aoSamples = 8;
   bake::BakeResult one;
   {
@@ -505,11 +505,11 @@ TEST(BakeExtraMaps, NormalMapUnchangedAndDeterministic) {
     one = bake::bake(low, high, options);
   }
   const auto many = bake::bake(low, high, options);
-  EXPECT_TRUE(one.bentNormal == many.bentNormal);
-  EXPECT_TRUE(one.thickness == many.thickness);
-  EXPECT_TRUE(one.curvature == many.curvature);
-  EXPECT_TRUE(one.position == many.position);
-  EXPECT_TRUE(one.opacity == many.opacity);
+  EXPECT_TRUE(one.map(bake::Map::BentNormal) == many.map(bake::Map::BentNormal));
+  EXPECT_TRUE(one.map(bake::Map::Thickness) == many.map(bake::Map::Thickness));
+  EXPECT_TRUE(one.map(bake::Map::Curvature) == many.map(bake::Map::Curvature));
+  EXPECT_TRUE(one.map(bake::Map::Position) == many.map(bake::Map::Position));
+  EXPECT_TRUE(one.map(bake::Map::Opacity) == many.map(bake::Map::Opacity));
   EXPECT_TRUE(one.normal == many.normal);
   EXPECT_EQ(many.stats.rays, reference.stats.rays);  // the normal pass casts the same rays
   // The normal map through the per-sample path instead of the vectorized lanes: the same
@@ -521,12 +521,12 @@ TEST(BakeExtraMaps, NormalMapUnchangedAndDeterministic) {
 TEST(BakeExtraMaps, OptionChecksReportAndMemory) {
   log::setLevel(log::Level::Off);
   bake::BakeOptions o;
-  o.thickness = true;
+  o.maps.add(bake::Map::Thickness);
   o.thicknessDistance = {0.0f, true};
   EXPECT_THROW(bake::validateOptions(o), Error);
   o.thicknessDistance = {0.1f, true};
-  o.thickness = false;
-  o.curvature = true;
+  o.maps.remove(bake::Map::Thickness);
+  o.maps.add(bake::Map::Curvature);
   o.curvatureRadius = {0.0f, false};
   EXPECT_THROW(bake::validateOptions(o), Error);
   o.curvatureRadius = {-0.01f, true};
@@ -535,25 +535,25 @@ TEST(BakeExtraMaps, OptionChecksReportAndMemory) {
   EXPECT_NO_THROW(bake::validateOptions(o));  // curvature casts no AO rays: AO samples do not matter
   o.aoSamples = 0;
   EXPECT_NO_THROW(bake::validateOptions(o));
-  o.curvature = false;
-  o.thickness = true;
+  o.maps.remove(bake::Map::Curvature);
+  o.maps.add(bake::Map::Thickness);
   EXPECT_THROW(bake::validateOptions(o), Error);
-  o.thickness = false;
-  o.bentNormals = true;
+  o.maps.remove(bake::Map::Thickness);
+  o.maps.add(bake::Map::BentNormal);
   EXPECT_THROW(bake::validateOptions(o), Error);
-  o.bentNormals = false;
+  o.maps.remove(bake::Map::BentNormal);
   EXPECT_NO_THROW(bake::validateOptions(o));  // AO samples only matter when they are cast
 
   bake::BakeOptions big;
   big.width = big.height = 1024;
-  big.bentNormals = big.positionMap = true;  // three channels each
-  big.thickness = big.opacity = big.curvature = true;  // one each
+  big.maps.add(bake::Map::BentNormal).add(bake::Map::Position);  // three channels each
+  big.maps.add(bake::Map::Thickness).add(bake::Map::Opacity).add(bake::Map::Curvature);  // one each
   EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5 + 8.0 * 9);
 
   const Mesh low = makeUvSphere(1.0f, 16, 8), high = makeUvSphere(1.0f, 32, 16);
   bake::BakeOptions options;
   options.width = options.height = 16;
-  options.thickness = options.positionMap = options.curvature = true;
+  options.maps.add(bake::Map::Thickness).add(bake::Map::Position).add(bake::Map::Curvature);
   options.thicknessDistance = {0.5f, false};
   options.curvatureRadius = {0.05f, false};
   const auto r = bake::bake(low, high, options);

@@ -94,8 +94,8 @@ TEST(BakeGroups, InterpenetratingGroupsBakeAsIfAlone) {
   options.normalType = PixelType::U8;
   options.maxFront = {0.3f, false};  // absolute: the low poly's diagonal differs alone
   options.maxRear = {0.3f, false};
-  options.heightMap = true;
-  options.ambientOcclusion = true;  // AO rays too see only their group
+  options.maps.add(bake::Map::Height);
+  options.maps.add(bake::Map::Ao);  // AO rays too see only their group
   options.aoSamples = 8;
   options.aoDistance = {0.5f, false};
   options.padding = 4;
@@ -119,8 +119,8 @@ TEST(BakeGroups, InterpenetratingGroupsBakeAsIfAlone) {
       const auto* b = alone->normal.pixels<std::uint8_t>().data() + (std::size_t(row) * 128 + std::size_t(x)) * 3;
       const auto* c = naive.normal.pixels<std::uint8_t>().data() + (std::size_t(row) * 128 + std::size_t(x)) * 3;
       differentNormal += std::memcmp(a, b, 3) != 0;
-      differentHeight += together.height.at(x, row, 0) != alone->height.at(x, row, 0);
-      differentAo += together.ao.at(x, row, 0) != alone->ao.at(x, row, 0);
+      differentHeight += together.map(bake::Map::Height).at(x, row, 0) != alone->map(bake::Map::Height).at(x, row, 0);
+      differentAo += together.map(bake::Map::Ao).at(x, row, 0) != alone->map(bake::Map::Ao).at(x, row, 0);
       naiveDifferent += std::memcmp(a, c, 3) != 0;
     }
   }
@@ -175,11 +175,11 @@ TEST(BakeMaterialId, EveryTexelIsExactlyItsMaterialsColour) {
   bake::BakeOptions options;
   options.width = options.height = 64;
   options.samples = 9;
-  options.materialId = true;
+  options.maps.add(bake::Map::MaterialId);
   options.progress = false;
   const bake::BakeResult r = bake::bake(part(low, "plane"), high, bake::GroupMatch{}, options);
-  ASSERT_FALSE(r.materialId.empty());
-  const Image map = r.materialId.converted(PixelType::U8);
+  ASSERT_FALSE(r.map(bake::Map::MaterialId).empty());
+  const Image map = r.map(bake::Map::MaterialId).converted(PixelType::U8);
   const vec3 red = bake::materialColor("red_paint"), steel = bake::materialColor("steel");
   EXPECT_NE(red, steel);
   EXPECT_EQ(bake::materialColor("steel"), steel);  // a function of the name
@@ -210,7 +210,7 @@ TEST(BakeMaterialId, EveryTexelIsExactlyItsMaterialsColour) {
   EXPECT_GT(sided, 3500);
   // Without materials: one colour, and a warning.
   const bake::BakeResult plain = bake::bake(low, high.mesh, options);
-  EXPECT_EQ(plain.materialId.at(10, 10, 0), bake::materialColor("").r);
+  EXPECT_EQ(plain.map(bake::Map::MaterialId).at(10, 10, 0), bake::materialColor("").r);
   EXPECT_FALSE(plain.warnings.empty());
 }
 
@@ -228,11 +228,11 @@ TEST(BakeMaterialId, MissedTexelsOnTheIslandStayBlack) {
   bake::BakeOptions options;
   options.width = options.height = 64;
   options.samples = 4;
-  options.materialId = true;
-  options.vertexColor = true;
+  options.maps.add(bake::Map::MaterialId);
+  options.maps.add(bake::Map::VertexColor);
   options.progress = false;  // padding: the default 16
   const bake::BakeResult r = bake::bake(part(low, "plane"), high, bake::GroupMatch{}, options);
-  const Image map = r.materialId.converted(PixelType::U8);
+  const Image map = r.map(bake::Map::MaterialId).converted(PixelType::U8);
   const vec3 steel = glm::round(bake::materialColor("steel") * 255.0f);
   int black = 0, coloured = 0;
   for (int row = 0; row < 64; ++row) {
@@ -245,7 +245,7 @@ TEST(BakeMaterialId, MissedTexelsOnTheIslandStayBlack) {
       const float out = std::max(std::fabs(s->position.x), std::fabs(s->position.z));
       if (out > 0.5f + margin) {
         EXPECT_EQ(got, vec3(0.0f)) << x << "," << row;
-        EXPECT_EQ(r.vertexColor.at(x, row, 0), 0.0f) << x << "," << row;  // the two maps agree
+        EXPECT_EQ(r.map(bake::Map::VertexColor).at(x, row, 0), 0.0f) << x << "," << row;  // the two maps agree
         ++black;
       } else if (out < 0.5f - margin) {
         EXPECT_EQ(got, steel) << x << "," << row;
@@ -268,11 +268,11 @@ TEST(BakeVertexColor, LinearGradientIsReproduced) {
   bake::BakeOptions options;
   options.width = options.height = 48;
   options.samples = 4;
-  options.vertexColor = true;
+  options.maps.add(bake::Map::VertexColor);
   options.progress = false;
   const bake::BakeResult r = bake::bake(part(low, "plane"), high, bake::GroupMatch{}, options);
-  ASSERT_FALSE(r.vertexColor.empty());
-  const Image map = r.vertexColor.converted(PixelType::U8);
+  ASSERT_FALSE(r.map(bake::Map::VertexColor).empty());
+  const Image map = r.map(bake::Map::VertexColor).converted(PixelType::U8);
   double worst = 0.0;
   int n = 0;
   for (int row = 0; row < 48; ++row) {

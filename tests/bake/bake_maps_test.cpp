@@ -57,12 +57,12 @@ TEST(BakeMaps, AmbientOcclusionMatchesFormFactor) {
   high.append(roof);
   bake::BakeOptions options;
   options.width = options.height = 48;
-  options.ambientOcclusion = true;
+  options.maps.add(bake::Map::Ao);
   options.aoSamples = 256;
   options.aoDistance = {100.0f, false};
   options.maxFront = options.maxRear = {0.01f, false};
   const auto r = bake::bake(low, high, options);
-  ASSERT_FALSE(r.ao.empty());
+  ASSERT_FALSE(r.map(bake::Map::Ao).empty());
   double sumError = 0, worst = 0;
   int n = 0;
   for (int row = 0; row < 48; ++row) {
@@ -70,7 +70,7 @@ TEST(BakeMaps, AmbientOcclusionMatchesFormFactor) {
       const auto s = surfaceAt(r.low, texelCentre(x, row, 48, 48));
       ASSERT_TRUE(s);
       const double expected = openFraction(s->position.x, s->position.z, 0.5, 0.4);
-      const double err = std::abs(r.ao.at(x, row, 0) - expected);
+      const double err = std::abs(r.map(bake::Map::Ao).at(x, row, 0) - expected);
       sumError += err;
       worst = std::max(worst, err);
       ++n;
@@ -89,7 +89,7 @@ TEST(BakeMaps, HeightIsSignedRayDistance) {
     Mesh low = makeUvSphere(radius, 16, 8);
     bake::BakeOptions options;
     options.width = options.height = 64;
-    options.heightMap = true;
+    options.maps.add(bake::Map::Height);
     options.maxFront = options.maxRear = {0.1f, false};
     const auto r = bake::bake(low, high, options);
     double worst = 0;
@@ -102,7 +102,7 @@ TEST(BakeMaps, HeightIsSignedRayDistance) {
         const auto t = rayRoot(sphereSdf, glm::dvec3(s->position), dir, 0.1, 0.1);
         ASSERT_TRUE(t);
         EXPECT_EQ(*t > 0, radius < 1.0f);  // inside: the surface is in front
-        worst = std::max(worst, std::abs(r.height.at(x, row, 0) - *t));
+        worst = std::max(worst, std::abs(r.map(bake::Map::Height).at(x, row, 0) - *t));
         ++n;
       }
     EXPECT_GT(n, 2000);
@@ -120,14 +120,14 @@ TEST(BakeMaps, MissMaskMarksRaysThatFindNothing) {
   const Mesh lowFar = makeUvSphere(1.5f, 16, 8);
   bake::BakeOptions options;
   options.width = options.height = 32;
-  options.missMask = true;
+  options.maps.add(bake::Map::MissMask);
   options.maxFront = options.maxRear = {0.1f, false};
   auto r = bake::bake(lowFar, high, options);
   EXPECT_EQ(r.stats.hits, 0u);
   EXPECT_EQ(r.stats.misses, r.stats.samples);
   EXPECT_FALSE(r.warnings.empty());
   for (int row = 0; row < 32; ++row)
-    for (int x = 0; x < 32; ++x) EXPECT_EQ(r.missMask.at(x, row, 0), r.coverage.at(x, row, 0) > 0.99f ? 1.0f : 0.0f);
+    for (int x = 0; x < 32; ++x) EXPECT_EQ(r.map(bake::Map::MissMask).at(x, row, 0), r.coverage.at(x, row, 0) > 0.99f ? 1.0f : 0.0f);
   // Missed samples keep the low poly's own normal: flat (0, 0, 1) in tangent space.
   const vec3 m = texel(r.normal, 16, 16) * 2.0f - 1.0f;
   EXPECT_NEAR(m.z, 1.0f, 1e-3f);
@@ -216,7 +216,7 @@ TEST(BakeMaps, HitSelectionClosestOrFrontFirst) {
     options.width = options.height = 16;
     options.space = NormalSpace::Object;
     options.maxFront = options.maxRear = {0.5f, false};
-    options.heightMap = true;
+    options.maps.add(bake::Map::Height);
     const auto closest = bake::bake(low, high, options);
     options.selection = bake::HitSelection::FrontFirst;
     const auto frontFirst = bake::bake(low, high, options);
@@ -230,9 +230,9 @@ TEST(BakeMaps, HitSelectionClosestOrFrontFirst) {
         const float toAbove = up + std::tan(0.1f) * s->position.x, toBelow = down + std::tan(0.1f) * s->position.z;
         const vec3 expected = toBelow < toAbove ? nBelow : nAbove;
         EXPECT_LT(glm::length(texel(closest.normal, x, row) * 2.0f - 1.0f - expected), 1e-4f) << up << " " << down;
-        EXPECT_NEAR(closest.height.at(x, row, 0), toBelow < toAbove ? -toBelow : toAbove, 1e-4f);
+        EXPECT_NEAR(closest.map(bake::Map::Height).at(x, row, 0), toBelow < toAbove ? -toBelow : toAbove, 1e-4f);
         EXPECT_LT(glm::length(texel(frontFirst.normal, x, row) * 2.0f - 1.0f - nAbove), 1e-4f);
-        EXPECT_NEAR(frontFirst.height.at(x, row, 0), toAbove, 1e-4f);
+        EXPECT_NEAR(frontFirst.map(bake::Map::Height).at(x, row, 0), toAbove, 1e-4f);
       }
     // Two surfaces on every ray's segment: the sweep meets the far one first, so each sample
     // takes three rays (see HeightIsSignedRayDistance for the one-ray case).
@@ -274,9 +274,9 @@ TEST(BakeMaps, OutputDoesNotDependOnThreadCount) {
   bake::BakeOptions options;
   options.width = options.height = 80;
   options.samples = 4;
-  options.ambientOcclusion = true;
+  options.maps.add(bake::Map::Ao);
   options.aoSamples = 8;
-  options.heightMap = true;
+  options.maps.add(bake::Map::Height);
   bake::BakeResult one;
   {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
@@ -284,8 +284,8 @@ TEST(BakeMaps, OutputDoesNotDependOnThreadCount) {
   }
   const auto many = bake::bake(low, high, options);
   EXPECT_TRUE(one.normal == many.normal);
-  EXPECT_TRUE(one.ao == many.ao);
-  EXPECT_TRUE(one.height == many.height);
+  EXPECT_TRUE(one.map(bake::Map::Ao) == many.map(bake::Map::Ao));
+  EXPECT_TRUE(one.map(bake::Map::Height) == many.map(bake::Map::Height));
   EXPECT_EQ(one.stats.rays, many.stats.rays);
 }
 
@@ -416,6 +416,6 @@ TEST(BakeMaps, ReportAndMemoryEstimate) {
   big.width = big.height = 1024;
   EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5);
   EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {file, "", "missing.obj"}), 64.0 + 1.0 + 19.5);
-  big.ambientOcclusion = big.missMask = true;
+  big.maps.add(bake::Map::Ao).add(bake::Map::MissMask);
   EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5 + 16.0);
 }

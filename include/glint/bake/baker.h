@@ -24,14 +24,15 @@
 //   triangle, so island borders are never empty. Finally the map is dilated into unused
 //   texels so bilinear fetches and mipmaps do not pull in the background.
 //
-// Maps (each only when asked: a plain normal bake does no extra work; all in the same pass,
-// sharing the BVH and the normal-pass rays; texel values average the texel's samples)
+// Maps (bake/maps.h's table, by Map; each only when asked in BakeOptions::maps: a plain
+// normal bake does no extra work; all in the same pass, sharing the BVH and the normal-pass
+// rays; texel values average the texel's samples)
 //   normal       the hit's high-poly normal in `space` (above)
 //   ao           open fraction of aoSamples cosine-weighted hemisphere rays, aoDistance long,
 //                around the high-poly normal at the hit (1 = unoccluded)
 //   height       signed distance along the low poly's normal to the hit (+ in front)
-//   missMask     fraction of the texel's samples whose rays found nothing (not dilated)
-//   bentNormal   normalize(sum of the AO rays that escaped): the direction light mostly
+//   miss mask    fraction of the texel's samples whose rays found nothing (not dilated)
+//   bent normal  normalize(sum of the AO rays that escaped): the direction light mostly
 //                comes from; the high-poly normal where every ray is blocked, the low
 //                poly's where the sample missed. Same space and encoding as `normal`
 //                (painted detail is not applied). Casts the AO rays even without `ao`.
@@ -62,8 +63,8 @@
 //   opacity      hits / samples per texel (samples outside the UV islands count as
 //                misses, so island borders are antialiased), 0 outside the islands; not
 //                dilated. A texel filled by the closest-point rule counts its one sample.
-//   materialId   a flat colour per high-poly material (majority of the texel's hits; dilation
-//                copies, never blends), vertexColor the high poly's interpolated vertex
+//   material ID  a flat colour per high-poly material (majority of the texel's hits; dilation
+//                copies, never blends); vertex colour the high poly's interpolated vertex
 //                colour: both need the high poly's parts, see bake/groups.h (bake groups too)
 //
 // Notes for artists (from the original tool's authors)
@@ -102,6 +103,7 @@
 /// std::cout << report.dump(2) << '\n' << mib << '\n';
 /// ```
 
+#include "glint/bake/maps.h"
 #include "glint/core/math.h"
 #include "glint/image/image.h"
 #include "glint/image/normalmap.h"
@@ -109,6 +111,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
@@ -162,30 +165,21 @@ struct BakeOptions {
   bool fillAll = false;           ///< dilate until every texel is filled
   std::optional<HeightDetail> detail;
 
-  bool ambientOcclusion = false;  ///< also bake AO: hemisphere rays against the high poly
+  /// The maps to bake besides the normal map (bake/maps.h: AO, height, miss mask, bent
+  /// normals, thickness, curvature, position, opacity, material ID, vertex colour). Bent
+  /// normals cast the AO rays (aoSamples, aoDistance) whether or not AO is asked; thickness
+  /// casts aoSamples rays from the high-poly hit into the surface, cosine-distributed around
+  /// the negated normal, the mean distance to where they leave it, each capped at
+  /// thicknessDistance, divided by it; curvature is the high poly's signed mean curvature
+  /// (convex positive), measured by the normals at curvatureRadius around the hit (8
+  /// closest-hit rays per sample hit); material ID and vertex colour need the high poly read
+  /// as parts (bake/groups.h: bake() of plain meshes gives one material colour, and no vertex
+  /// colours: Error(Input)).
+  MapSet maps;
   int aoSamples = 16;             ///< AO rays per sample (cosine-weighted, stratified)
   Distance aoDistance{0.1f, true};///< AO ray length
-  bool heightMap = false;         ///< also bake the signed ray distance (+ outside the low poly)
-  bool missMask = false;          ///< also output the fraction of samples whose rays missed
-  /// Also bake bent normals: the mean unoccluded direction of the AO hemisphere rays, in the
-  /// normal map's space. Casts the AO rays (aoSamples, aoDistance) whether or not
-  /// ambientOcclusion is set.
-  bool bentNormals = false;
-  /// Also bake thickness (for subsurface scattering and translucency): aoSamples rays from
-  /// the high-poly hit into the surface, cosine-distributed around the negated normal; the
-  /// mean distance to where they leave it, each capped at thicknessDistance, divided by it.
-  bool thickness = false;
   Distance thicknessDistance{0.1f, true};  ///< thickness ray length, and the distance that reads 1
-  /// Also bake the high poly's signed mean curvature (convex positive), measured by the
-  /// normals at curvatureRadius around the hit (8 closest-hit rays per sample hit).
-  bool curvature = false;
   Distance curvatureRadius{0.01f, true};   ///< the scale curvature is measured at; also the radius that reads white/black in 8/16-bit files
-  bool positionMap = false;       ///< also bake the high-poly hit point (object space)
-  bool opacity = false;           ///< also bake the fraction of each texel's samples that hit the high poly
-  /// Also bake material ID / vertex colour (bake/groups.h: they need the high poly read as
-  /// parts; bake() of plain meshes gives one material colour, and no vertex colours: Error(Input)).
-  bool materialId = false;
-  bool vertexColor = false;
   /// Pixel type of BakeResult::normal: F32, or U8/U16 quantized as Image::converted does —
   /// what an integer file holds, without a float copy of the map on the way.
   PixelType normalType = PixelType::F32;
@@ -246,18 +240,17 @@ struct BakeStats {
 struct BakeResult {
   Image normal;     ///< RGB encoded 0..1 (encodeNormal, image/normalmap.h), green flipped if directX; F32
                     ///< unless BakeOptions::normalType says otherwise
-  Image ao;         ///< R F32 0..1 (1 = unoccluded), when asked
-  Image height;     ///< R F32 signed distance in scene units, when asked
-  Image missMask;   ///< R F32 0..1 fraction of missed samples, when asked (not dilated)
-  Image bentNormal; ///< RGB encoded 0..1 like `normal` (same space, directX flip), F32, when asked
-  Image thickness;  ///< R F32 0..1 (1 = no exit within thicknessDistance), when asked
-  Image curvature;  ///< R F32 signed mean curvature, 1 / scene units (convex +), when asked; see
-                    ///< output.h's curvatureForOutput for 8/16-bit files
-  Image position;   ///< RGB F32 object-space hit points (raw coordinates), when asked; see
-                    ///< output.h's positionForOutput for 8/16-bit files
-  Image opacity;    ///< R F32 0..1 hits / samples per texel, 0 outside islands (not dilated), when asked
-  Image materialId; ///< RGB F32, each channel k/255 (bake/groups.h's materialColor), when asked
-  Image vertexColor;///< RGB F32 the high poly's interpolated vertex colour, when asked
+  /// The other maps asked for (BakeOptions::maps), by bake/maps.h's Map, F32 (maps[Map::Normal]
+  /// stays empty: the normal map is `normal`): AO R 0..1 (1 = unoccluded); height R signed
+  /// distance in scene units; miss mask R 0..1 fraction of missed samples (not dilated); bent
+  /// normal RGB encoded like `normal`; thickness R 0..1 (1 = no exit within
+  /// thicknessDistance); curvature R signed mean curvature, 1 / scene units (convex +);
+  /// position RGB object-space hit points; opacity R 0..1 hits / samples per texel, 0 outside
+  /// islands (not dilated); material ID RGB, each channel k/255 (materialColor); vertex colour
+  /// RGB. MapInfo::forOutput turns each into a file's pixels.
+  std::array<Image, kMapCount> maps;
+  /// Any map by name: `normal` for Map::Normal, else maps[map].
+  const Image& map(Map m) const { return m == Map::Normal ? normal : maps[std::size_t(m)]; }
   Image coverage;   ///< R U8: 255 inside UV islands, 128 padding, 0 unused
   Mesh low;         ///< the low poly as baked: MikkTSpace tangents, split vertices — render this
   BakeStats stats;

@@ -26,7 +26,7 @@
 //   - Distances given as a share of the model (5%) are the whole low poly's diagonal in
 //     every group.
 //
-// Material ID (BakeOptions::materialId)
+// Material ID (Map::MaterialId in BakeOptions::maps)
 //   A flat colour per high-poly material: the colour of the material the majority of a
 //   texel's hitting samples landed on (ties: the earliest sample), so every texel holds
 //   exactly one material's colour — no averaging across materials, and dilation copies
@@ -36,7 +36,7 @@
 //   exactly k/255). A high poly without materials bakes one colour (the colour of ""),
 //   with a warning. Texels none of whose samples hit are black.
 //
-// Vertex colour (BakeOptions::vertexColor)
+// Vertex colour (Map::VertexColor in BakeOptions::maps)
 //   The high poly's vertex colour (RGB, as the file stores it) interpolated at each hit,
 //   averaged over the texel's hitting samples; black where none hit. Error(Input) when the
 //   high poly has no vertex colours.
@@ -47,7 +47,7 @@
 /// const glint::MeshParts high = glint::loadMeshParts("parts_high.fbx", {.joinVertices = false});
 /// const glint::bake::GroupMatch match = glint::bake::matchGroups(low, high);  // {"_low", "_high"}
 /// glint::bake::BakeOptions options;
-/// options.materialId = true;
+/// options.maps.add(glint::bake::Map::MaterialId);
 /// const glint::bake::BakeResult result = glint::bake::bake(low, high, match, options);
 /// ```
 

@@ -9,7 +9,7 @@
 /// job.low = "crate_low.obj";
 /// job.high = "crate_high.ply";
 /// job.output = "crate_n.png";
-/// job.ao = "crate_ao.png";
+/// job.maps[std::size_t(glint::bake::Map::Ao)] = "crate_ao.png";  // --ao
 /// job.size = "512x512";
 /// glint::ToolRun run("bake", job.tool);
 /// glint::bake::runJob(job, run);  // checks, bakes, stages both maps
@@ -24,11 +24,13 @@
 // The command (`glint bake`), batch files, `glint farm bake` and the Python module parse
 // options with addOptions: a batch file's key is an option's long name, so the four take the
 // same options with the same checks and defaults.
+#include "glint/bake/maps.h"
 #include "glint/core/tool.h"
 #include "glint/farm/farm.h"
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -43,8 +45,12 @@ namespace glint::bake {
 struct BakeJob {
   std::string low, high, output, size = "1024x1024", space = "tangent", worldMatrix;
   std::string maxFront = "5%", maxRear = "5%", aoDistance = "10%", thicknessDistance = "10%", curvatureRadius = "1%";
-  std::string cage, detail, ao, height, missMask, bentNormal, thickness, curvature, position, opacity, materialId,
-      vertexColor;
+  std::string cage, detail;
+  /// Each extra map's file, by bake/maps.h's Map (`--ao`, `--curvature`, ...); empty: not
+  /// baked. maps[Map::Normal] is unused: the normal map is `output`.
+  std::array<std::string, kMapCount> maps;
+  /// The file of any map: `output` for the normal map.
+  const std::string& path(Map m) const { return m == Map::Normal ? output : maps[std::size_t(m)]; }
   std::string lowSuffix = "_low", highSuffix = "_high";
   int samples = 1, padding = 16, bits = 0, aoSamples = 16;
   float detailScale = 8.0f;
@@ -62,8 +68,9 @@ enum class Meshes {
 /// Every option of `glint bake` but the batch ones (--batch, --job, --list), bound to `job`,
 /// the tool options (--threads, -q, --max-memory, --json) included.
 void addOptions(CLI::App& command, BakeJob& job, Meshes meshes);
-/// `glint bake --help`'s footer: examples, batch files, maps, UDIM, bake groups, notes.
-const char* helpFooter();
+/// `glint bake --help`'s footer: UDIM, examples, batch files, the maps (from bake/maps.h's
+/// table), bake groups, notes.
+std::string helpFooter();
 
 /// The files a bake reads and writes, as its messages name them ("the low poly", "--ao").
 std::vector<FileUse> inputFiles(const BakeJob& job);
