@@ -1,7 +1,7 @@
 // glint farm TOOL ... — a tool job split over a Slurm cluster (or this machine): the pieces
 // as a job array, the join as a job that depends on it (farm/farm.h). Each `glint farm TOOL`
 // takes every option of `glint TOOL` — the tool's library defines them (cut/job.h,
-// render/post/job.h, scenes/render_job.h, bake/job.h) and plans the job with the command's
+// post/job.h, scenes/render_job.h, bake/job.h) and plans the job with the command's
 // own checks — plus the farm's options. Thin: parse, plan, submit, follow.
 #include "common.h"
 
@@ -10,7 +10,7 @@
 #include "glint/core/text.h"
 #include "glint/farm/farm.h"
 #include "glint/farm/run.h"
-#include "glint/render/post/job.h"
+#include "glint/post/job.h"
 #include "glint/scenes/render_job.h"
 #if GLINT_HAS_CUT
 #include "glint/cut/job.h"
@@ -118,12 +118,12 @@ std::vector<FarmTool> farmTools() {
   tools.push_back({"post", "`glint post` over a Slurm cluster: `--frames a:b` tasks starting on keyframes, then "
                    "`--concat`", "--chunks",
                    "Chunks: `glint post --frames a:b` tasks starting on keyframes, then `--concat`", [](CLI::App& cmd) {
-                     auto args = std::make_shared<render::post::PostArgs>();
+                     auto args = std::make_shared<post::PostArgs>();
                      auto settings = std::make_shared<ToolSettings>();
-                     render::post::addOptions(cmd, *args);
+                     post::addOptions(cmd, *args);
                      addToolOptions(cmd, *settings, "the join's report");
                      return std::function<farm::Plan(const farm::Split&)>([args, settings](const farm::Split& split) {
-                       return render::post::farmPlan(render::post::makeJob(*args), *settings, split);
+                       return post::farmPlan(post::makeJob(*args), *settings, split);
                      });
                    }});
   tools.push_back({"render", "`glint render` over a Slurm cluster: `--frames a:b` tasks, then `glint post --concat`",

@@ -1,9 +1,10 @@
 // glint post IN -o OUT -e EFFECT... — seed 001's post-processing on an image, every frame of
 // a video, a camera or an FFmpeg lavfi source. Thin: the options, the job, its run and its
-// report are the library's (render/post/job.h).
+// report are the library's (post/job.h); the GPU backend is render/post's (render/post/gpu.h).
 #include "common.h"
 
-#include "glint/render/post/job.h"
+#include "glint/post/job.h"
+#include "glint/render/post/gpu.h"
 
 #include <fmt/format.h>
 
@@ -11,23 +12,24 @@ namespace glint::app {
 
 Command postCommand(CLI::App& app, const GlobalOptions& global) {
   struct Args {
-    render::post::PostArgs post;
+    post::PostArgs post;
     ToolSettings tool;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("post", "Post-process an image, a video, a camera or a lavfi source on the GPU "
                                          "(sepia, Sobel, Kuwahara, FFT filters)");
-  cmd->footer(render::post::helpFooter());
-  render::post::addOptions(*cmd, a->post);
+  cmd->footer(post::helpFooter());
+  post::addOptions(*cmd, a->post);
   addToolOptions(*cmd, a->tool, "input, output, effects, frames read/written/dropped, fps, audio, rotation, partial");
   return Command{.run = [a, &global] {
                    if (a->post.listEffects) {
-                     fmt::print("{}", render::post::effectHelp());
+                     fmt::print("{}", post::effectHelp());
                      return 0;
                    }
                    ToolRun run("post", a->tool);
-                   const render::post::PostJob job = render::post::makeJob(a->post, global.glDebug);
-                   return render::post::finishJob(render::post::runJob(job, run), run);
+                   const post::PostJob job = post::makeJob(a->post, global.glDebug);
+                   const auto gpu = render::post::gpuBackend();
+                   return post::finishJob(post::runJob(job, run, gpu.get()), run);
                  },
                  .readsImages = false};  // images load OpenImageIO themselves (runImage, runStill)
 }

@@ -1,5 +1,5 @@
 // bench post — seed 001's effects per frame at the seed's camera size (640×480), 1080p and
-// 4K, on the GPU and on the CPU backend (render/post/cpu.h), each against its CPU
+// 4K, on the GPU and on the CPU backend (post/cpu.h), each against its CPU
 // equivalent in OpenCV (and the FFT against FFTW) measured in the same run, alternating
 // runs, medians; and `glint post` end to end (decode → effect → encode, H.264) at 640×480
 // and 1080p against FFmpeg's nearest filter chain on the same file with the same encoder
@@ -10,8 +10,8 @@
 // bandwidth bound the issue asks each effect to be compared with on a GPU.
 #include "glint/bench/bench.h"
 #include "glint/gl/timer.h"
+#include "glint/post/cpu.h"
 #include "glint/render/post/chain.h"
-#include "glint/render/post/cpu.h"
 #include "glint/render/post/fft.h"
 #include "glint/render/post/passes.h"
 #include "glint/video/sink.h"
@@ -100,11 +100,11 @@ void runEffects(Recorder& recorder) {
     // The CPU backend on the same frame, against the same peer (same run, alternating).
     video::Frame frame{.image = input};  // run in place, frame after frame (the cost does not depend on the content)
     const auto cpuRow = [&](const std::string& spec, const std::string& peerName, const peers::Work& peer) {
-      post::CpuChain chain(size, post::parseEffects(std::vector<std::string>{spec}));
+      glint::post::CpuChain chain(size, post::parseEffects(std::vector<std::string>{spec}));
       const auto [cpuMs, peerMs] = alternating([&] { chain.run(frame); }, peer, rounds);
       (void)peerMs;
       recorder.record({.group = group, .name = spec + " cpu", .value = cpuMs, .unit = "ms", .ratioTo = peerName,
-                       .note = fmt::format("render/post/cpu.h on RGBA8, {:.0f} Mpixel/s",
+                       .note = fmt::format("post/cpu.h on RGBA8, {:.0f} Mpixel/s",
                                            pixels / (cpuMs * 1e3))});
       if (!chain.worksOnYuv()) return;
       // The video path: the decoder's 4:2:0 planes in, the encoder's out (no RGB at all).

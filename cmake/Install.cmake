@@ -9,12 +9,12 @@
 #   lib/glint/libglint_ffmpeg.so      the dlopen()ed video module (src/video/backend.h)
 #   lib/cmake/glint/                  glintConfig.cmake, glintConfigVersion.cmake, one
 #                                     glint-<component>-targets*.cmake per component,
-#                                     PeerDependencies.cmake (FFTW, OpenCV targets; with post or bench)
+#                                     PeerDependencies.cmake (FFTW, OpenCV targets: post's CPU backend, bench)
 #   share/glint/env, share/glint/bunny  data/ from scripts/setup, when it is there (core/locations.h)
 #
 # Exported targets, namespace glint:: (the same names work in this build as aliases), one
 # package component each, named as the target (find_package(glint COMPONENTS render)):
-#   glint::core glint::farm glint::image glint::mesh glint::raytrace glint::bake glint::raster glint::sim
+#   glint::core glint::farm glint::image glint::post glint::mesh glint::raytrace glint::bake glint::raster glint::sim
 #   glint::gl glint::render glint::scenes glint::video (without GLINT_BUILD_VIDEO: no FFmpeg module),
 #   glint::cut (GLINT_BUILD_CUT), glint::bench (GLINT_BUILD_BENCH), glint::window (GLINT_BUILD_VIEWER)
 #   glint::glint (component glint: the command, an imported executable)
@@ -27,16 +27,14 @@ include(CMakePackageConfigHelpers)
 # Layer order, lowest first: an installed package loads the targets files in this order.
 # video is always a component: without GLINT_BUILD_VIDEO it is the library without its
 # FFmpeg module (opening a video is a usage error naming the option), which scenes links for
-# `glint render`'s clips.
-set(glint_components core farm image video)
+# `glint render`'s clips and post's job reads and writes through. post (GL-free: the effect
+# table, the CPU backend, the job) sits below render, whose GPU passes register against it.
+set(glint_components core farm image video post)  # post: GL-free (post/effects.h, cpu.h, job.h)
 list(APPEND glint_components mesh raytrace bake)
 if(GLINT_BUILD_CUT)
   list(APPEND glint_components cut)
 endif()
 list(APPEND glint_components raster sim gl render)
-if(GLINT_BUILD_VIDEO)
-  list(APPEND glint_components post)  # `glint post`'s job (render/post/job.h): render + video
-endif()
 list(APPEND glint_components scenes)
 if(GLINT_BUILD_BENCH)
   list(APPEND glint_components bench)
@@ -136,17 +134,10 @@ foreach(component IN LISTS glint_components)
     if(component STREQUAL "scenes" AND NOT GLINT_BUILD_CUT)
       set(exclude PATTERN pipedream.h EXCLUDE)  # the pipedream stage: a cut
     endif()
-    if(component STREQUAL "render")
-      set(exclude PATTERN job.h EXCLUDE PATTERN cpu.h EXCLUDE)  # render/post/{job,cpu}.h are post's (they need video)
-    endif()
     install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/glint/${component}" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/glint
             COMPONENT ${component} ${exclude})
   endif()
 endforeach()
-if(GLINT_BUILD_VIDEO)
-  install(FILES "${PROJECT_SOURCE_DIR}/include/glint/render/post/job.h" "${PROJECT_SOURCE_DIR}/include/glint/render/post/cpu.h"
-          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/glint/render/post COMPONENT post)
-endif()
 add_executable(glint::glint ALIAS glint)
 install(TARGETS glint EXPORT glint-glint RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT glint)
 install(EXPORT glint-glint FILE glint-glint-targets.cmake NAMESPACE glint:: DESTINATION ${GLINT_INSTALL_CMAKE_DIR}
@@ -163,9 +154,9 @@ write_basic_package_version_file("${PROJECT_BINARY_DIR}/glintConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES "${PROJECT_BINARY_DIR}/glintConfig.cmake" "${PROJECT_BINARY_DIR}/glintConfigVersion.cmake"
   DESTINATION ${GLINT_INSTALL_CMAKE_DIR} COMPONENT core)
-if(GLINT_BUILD_BENCH OR GLINT_BUILD_VIDEO)  # glint::post's CPU backend and glint::bench's peers link FFTW and OpenCV
-  install(FILES "${PROJECT_SOURCE_DIR}/cmake/PeerDependencies.cmake" DESTINATION ${GLINT_INSTALL_CMAKE_DIR} COMPONENT core)
-endif()
+# glint::post's CPU backend (and so glint::render, whose GPU passes register against post's
+# table) and glint::bench's peers link FFTW and OpenCV.
+install(FILES "${PROJECT_SOURCE_DIR}/cmake/PeerDependencies.cmake" DESTINATION ${GLINT_INSTALL_CMAKE_DIR} COMPONENT core)
 
 # Data, where scripts/setup put it; absent data is not an install error (the scenes
 # that need it then fail with a one-line Error naming where they looked).

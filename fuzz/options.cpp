@@ -1,12 +1,12 @@
 // Fuzz harness: the values users type on command lines — sizes (--size), numbers, vectors
 // integers and memory sizes (core/text.h), lights (`glint cut --light`, cut/cutter.h), and effect chains
-// with their settings (`glint post -e NAME:p=v --set p=v`, render/post/effects.h). The first
+// with their settings (`glint post -e NAME:p=v --set p=v`, post/effects.h). The first
 // byte chooses the parser; the rest is the text. What parses must be in range and finite.
 #include "support.h"
 
 #include "glint/core/text.h"
 #include "glint/cut/cutter.h"
-#include "glint/render/post/effects.h"
+#include "glint/post/effects.h"
 
 #include <cmath>
 #include <string>
@@ -45,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             if (!field.empty()) list->emplace_back(field);
           }
         }
-        (void)render::post::parseEffects(specs, settings);
+        (void)post::parseEffects(specs, settings);
         break;
       }
       case 6: {

@@ -1,4 +1,4 @@
-// glint post's CPU backend (render/post/cpu.h): every CPU effect against the CPU references
+// glint post's CPU backend (post/cpu.h): every CPU effect against the CPU references
 // (image/post.h, image/fourier.h) and against the GPU passes on llvmpipe, the YUV path
 // against the RGB path it replaces (decode to RGB, effect, encode to BT.709 YUV), the
 // backend's parsing and the choice `auto` makes, and `glint post --backend` as a user runs it.
@@ -6,8 +6,8 @@
 #include "glint/gl/context.h"
 #include "glint/image/fourier.h"
 #include "glint/image/post.h"
+#include "glint/post/cpu.h"
 #include "glint/render/post/chain.h"
-#include "glint/render/post/cpu.h"
 #include "glint/video/sink.h"
 #include "glint/video/source.h"
 
@@ -20,6 +20,7 @@
 #include <cstdio>
 
 using namespace glint;
+using namespace glint::post;
 using namespace glint::render::post;
 using glint::testing::compareSteps;
 using glint::testing::crop;

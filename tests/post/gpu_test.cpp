@@ -207,3 +207,20 @@ TEST_F(PostGpu, EffectParsingAndValidation) {
   EXPECT_THROW(Chain(ivec2(64, 64), parseEffects(std::vector<std::string>{"kuwahara:size=9"})), Error);
   EXPECT_THROW(Chain(ivec2(16, 16), parseEffects(std::vector<std::string>{"blur:sigma=12"})), Error);
 }
+
+// post's table is GL-free and the GPU registers its passes against it by name: every entry
+// (aliases aside) must find its pass here and carry its CPU stage there, or an effect would
+// parse and then fail on one backend.
+TEST_F(PostGpu, EveryEffectOfTheTableHasAGpuPassAndACpuStage) {
+  int effects = 0;
+  for (const EffectDef& def : effectTable()) {
+    if (!def.expandsTo.empty()) continue;
+    ++effects;
+    EXPECT_TRUE(gpuHas(def)) << def.name;
+    EXPECT_NE(def.cpu, nullptr) << def.name;
+    EXPECT_NE(gpuStage(def), nullptr) << def.name;  // (backend_test builds a CpuChain of each)
+  }
+  EXPECT_GE(effects, 9);  // sepia, sobel, edges, kuwahara, spectrum and the five FFT filters
+  EXPECT_FALSE(gpuHas(EffectDef{.name = "no-such-effect"}));
+  EXPECT_THROW(gpuStage(EffectDef{.name = "no-such-effect"}), Error);
+}

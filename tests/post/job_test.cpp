@@ -1,9 +1,9 @@
-// A program linking glint::post runs `glint post`'s job (render/post/job.h): the same checks,
+// A program linking glint::post runs `glint post`'s job (post/job.h): the same checks,
 // the same output and the same report as the command.
 #include "glint/core/error.h"
 #include "glint/core/tool.h"
 #include "glint/image/image.h"
-#include "glint/render/post/job.h"
+#include "glint/post/job.h"
 
 #include "post_test_util.h"
 #include "support/cli.h"
@@ -17,7 +17,7 @@
 
 namespace fs = std::filesystem;
 using namespace glint;
-using namespace glint::render::post;
+using namespace glint::post;
 
 namespace {
 nlohmann::ordered_json readJson(const fs::path& path) {
@@ -109,6 +109,22 @@ TEST(PostJob, TheChecksComeBeforeAnythingIsOpened) {
   // The memory estimate, against --max-memory: refused before the GPU starts.
   EXPECT_EQ(refusal(imageJob(d / "in.png", d / "o.png", {"sepia"}), {.maxMemory = "100"}), ErrorKind::Usage);
   EXPECT_EQ(glint::testing::fileCount(d), 1u) << "nothing written";
+}
+
+// glint::post is GL-free: a program that hands runJob no GPU backend (render/post/gpu.h)
+// runs every effect on the CPU, and asking for the GPU is a usage error that says why.
+TEST(PostJob, WithoutAGpuBackendTheJobRunsOnTheCpuAndRefusesGpu) {
+  const fs::path d = glint::testing::freshDir("post-job", "no-gpu");
+  saveImage(glint::testing::noiseImage(64, 48, 7), d / "in.png");
+  PostJob gpu = imageJob(d / "in.png", d / "gpu.png", {"sepia"});
+  gpu.backend = Backend::Gpu;
+  EXPECT_EQ(refusal(gpu), ErrorKind::Usage);
+  EXPECT_FALSE(fs::exists(d / "gpu.png"));
+  ToolRun run("post", {.quiet = true});
+  const PostStats stats = runJob(imageJob(d / "in.png", d / "auto.png", {"kuwahara", "spectrum"}), run);
+  EXPECT_EQ(stats.backend, "cpu");
+  EXPECT_EQ(finishJob(stats, run), 0);
+  EXPECT_TRUE(fs::is_regular_file(d / "auto.png"));
 }
 
 TEST(PostJob, AVideoReportHasTheCommandsFields) {

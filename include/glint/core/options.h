@@ -1,7 +1,7 @@
 #pragma once
 // glint/core/options.h — the command-line options the tools share, defined once (CLI11).
 //
-// Each tool's library defines its options (cut/job.h, bake/job.h, render/post/job.h,
+// Each tool's library defines its options (cut/job.h, bake/job.h, post/job.h,
 // scenes/clip.h): `glint TOOL`, `glint farm TOOL`, batch files and the Python module parse
 // with those very definitions, so a name, a default or a check cannot differ between them.
 // This header holds what every tool has: ToolSettings (core/tool.h) as --threads, -q,

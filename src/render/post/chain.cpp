@@ -42,7 +42,7 @@ struct Stage {
   Effect effect;
   std::unique_ptr<EffectStage> pass;
 
-  explicit Stage(Effect e) : effect(std::move(e)), pass(effect.def->stage()) {}
+  explicit Stage(Effect e) : effect(std::move(e)), pass(gpuStage(*effect.def)) {}
   void run(const gl::Texture& in, const gl::Texture& out) { pass->run(in, out, effect); }
 };
 

@@ -1,73 +1,35 @@
 #pragma once
-// glint/render/post/effects.h — the effects of `glint post -e NAME`, by name, with their
-// typed parameters: one table (effectTable()) from which the command line's parsing,
-// `glint post --effects`, the GPU chain (render/post/chain.h) and the viewer's panel (the
-// post/* scenes) all come.
+// glint/render/post/effects.h — the GPU side of post's effect table (post/effects.h): each
+// effect's pass, registered under the effect's name in one list (src/render/post/effects.cpp),
+// which the chain (render/post/chain.h) runs. The table itself, its parsing and the CPU
+// backend are GL-free (glint::post); this header brings their vocabulary into
+// glint::render::post for the GPU code.
 //
 /// ```cpp
 /// #include <glint/render/post/effects.h>
-/// // glint post in.mp4 -o out.mp4 -e kuwahara -e edges:scale=3 --set size=4
 /// const std::vector<std::string> specs = {"kuwahara", "edges:scale=3"};
-/// const std::vector<std::string> settings = {"size=4"};
-/// std::vector<glint::render::post::Effect> effects = glint::render::post::parseEffects(specs, settings);
-/// // effects[0].describe() == "kuwahara(size=4)", effects[1].value("scale") == 3
-/// effects[1].set("threshold", "0.5");              // as a slider or a program would
-/// glint::render::post::validateEffect(effects[1], {1920, 1080});
+/// const std::vector<glint::render::post::Effect> effects = glint::render::post::parseEffects(specs);
+/// const bool onGpu = glint::render::post::gpuHas(*effects[0].def);  // true: every effect has a pass
 /// ```
-//
-// The effects, their parameters, defaults and ranges are the table's: effectHelp() (`glint
-// post --effects`) prints it, docs/post.md shows each effect.
-//
-// Parameters go after the name ("sobel:output=horizontal,scale=2") or in settings
-// ("scale=2" applies to every effect in the chain that has a `scale`; "sobel.scale=2" to
-// sobel only). Numbers are read by core/text.h's strict parsers; a value outside the
-// parameter's range (EffectParam::min/max), a setting no effect takes, an unknown name or a
-// bad value is Error(Usage), one line, naming it. The image/ headers (image/post.h,
-// image/fourier.h) define what each parameter means.
-//
-// Adding an effect: one entry in the table in src/render/post/effects.cpp (name, summary,
-// typed parameters, and its stage), its pass (passes.h, fft.h: a class with typed options,
-// tested against the image/ reference the entry's options feed), its shader under
-// shaders/post/, and its CPU version (cpu.h). Parsing, --effects, the chain and the viewer's
-// panel follow from the entry.
-
-#include "glint/core/math.h"
 #include "glint/gl/objects.h"
+#include "glint/post/effects.h"
 
-#include <functional>
-#include <limits>
 #include <memory>
-#include <span>
-#include <string>
-#include <string_view>
-#include <variant>
-#include <vector>
 
 namespace glint::render::post {
 
-enum class ParamType {
-  Float,  ///< a finite number in [min, max] (min excluded when minExcluded)
-  Int,    ///< a whole number in [min, max]
-  Choice  ///< one of `choices`, held as its index
-};
-
-/// One parameter of an effect.
-struct EffectParam {
-  const char* name;  ///< as typed: "scale" in "sobel:scale=2"
-  const char* help;  ///< one line
-  ParamType type = ParamType::Float;
-  float value = 0.0f;  ///< the default (Choice: its index)
-  float min = -std::numeric_limits<float>::infinity();  ///< accepted values (Float, Int)
-  float max = std::numeric_limits<float>::infinity();
-  bool minExcluded = false;  ///< (min, max]: a parameter that must be above `min`
-  float sliderMin = 0.0f, sliderMax = 1.0f;  ///< the viewer's slider (inside the accepted range)
-  std::vector<const char*> choices = {};     ///< Choice: the names, in index order
-
-  /// "[-1, 1]", "(0, 0.75]", "(0, ∞)", "2..8", "magnitude|horizontal|...".
-  std::string rangeText() const;
-};
-
-struct Effect;
+// The table's vocabulary, as the GPU code speaks it.
+using glint::post::Effect;
+using glint::post::EffectDef;
+using glint::post::EffectParam;
+using glint::post::effectHelp;
+using glint::post::effectNames;
+using glint::post::effectTable;
+using glint::post::findEffect;
+using glint::post::makeEffect;
+using glint::post::ParamType;
+using glint::post::parseEffects;
+using glint::post::validateEffect;
 
 /// An effect's GPU work, built once per chain stage and run per frame with the effect's
 /// current parameters (a stage keeps its GL objects while only parameters change).
@@ -77,58 +39,10 @@ public:
   virtual void run(const gl::Texture& input, const gl::Texture& output, const Effect& effect) = 0;
 };
 
-/// One entry of the effect table.
-struct EffectDef {
-  const char* name;     ///< "-e NAME"
-  const char* summary;  ///< one line for --effects
-  std::vector<EffectParam> params = {};
-  /// The effect's pass (absent for an alias).
-  std::function<std::unique_ptr<EffectStage>()> stage = {};
-  /// Checks that need the frame size or several parameters at once (a kernel larger than
-  /// half the image, a band whose low edge is above its high one): Error(Usage). Optional.
-  std::function<void(const Effect&, ivec2 size)> validate = {};
-  /// An alias: expands to these effects ("posterize": kuwahara, edges). Empty otherwise.
-  std::vector<const char*> expandsTo = {};
-};
-
-/// Every effect, in the order `--effects` lists them.
-std::span<const EffectDef> effectTable();
-/// The entry named `name`; nullptr when there is none.
-const EffectDef* findEffect(std::string_view name);
-
-/// One effect of a chain: its entry and a value per parameter (Float as float, Int and
-/// Choice as int), in the entry's order. The viewer's sliders point into `values`.
-struct Effect {
-  const EffectDef* def = nullptr;
-  std::vector<std::variant<float, int>> values;
-
-  const char* name() const { return def->name; }
-  /// A parameter's value as a number (Choice: its index). Error(Internal) for a name the
-  /// effect does not have.
-  float value(std::string_view param) const;
-  /// Parses `text` for parameter `param` (a number or a choice's name) and checks its range:
-  /// false when the effect has no such parameter, Error(Usage) for a bad value.
-  bool set(std::string_view param, std::string_view text);
-  /// "kuwahara(size=3)": the name and every parameter's value, for reports.
-  std::string describe() const;
-  /// "kuwahara:size=3": the name and every parameter's value as `-e` takes them
-  /// (parseEffects gives this effect back).
-  std::string spec() const;
-};
-
-/// Parses effect specs ("NAME" or "NAME:param=value,...") in chain order, then applies
-/// `settings` ("param=value" or "effect.param=value", comma-separated lists allowed).
-/// "posterize" expands to kuwahara and edges. Error(Usage) as described above.
-std::vector<Effect> parseEffects(std::span<const std::string> specs, std::span<const std::string> settings = {});
-/// One effect by name with default parameters (no alias such as "posterize": it is two effects).
-Effect makeEffect(std::string_view name);
-/// Every effect name, in the order of the table above.
-std::vector<std::string> effectNames();
-/// The table of names, parameters, ranges and defaults (for --help and --effects).
-std::string effectHelp();
-
-/// Error(Usage) when `effect` cannot run at this frame size: a parameter outside its range
-/// (values set by a program or a slider), then the entry's own checks.
-void validateEffect(const Effect& effect, ivec2 size);
+/// The GPU pass of the table's entry `def` (not an alias). Error(Internal) when the GPU has
+/// none registered under its name.
+std::unique_ptr<EffectStage> gpuStage(const EffectDef& def);
+/// Whether the GPU has a pass for `def` (every effect of the table today).
+bool gpuHas(const EffectDef& def);
 
 }  // namespace glint::render::post

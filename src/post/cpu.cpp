@@ -1,4 +1,4 @@
-#include "glint/render/post/cpu.h"
+#include "glint/post/cpu.h"
 
 #include "cpu_kernels.h"
 
@@ -22,7 +22,7 @@
 
 static_assert(std::endian::native == std::endian::little, "the RGBA8 tables assume R in the low byte");
 
-namespace glint::render::post {
+namespace glint::post {
 
 Backend parseBackend(std::string_view name) {
   if (name == "auto") return Backend::Auto;
@@ -159,25 +159,6 @@ void PlaneFilter::run() {
   fftwf_execute(static_cast<fftwf_plan>(m_inverse));
 }
 
-bool frequencyFilterOf(const Effect& e, FrequencyFilter& f) {
-  const std::string_view name = e.name();
-  f = {};
-  if (name == "lowpass" || name == "highpass" || name == "bandpass") {
-    f.kind = name == "lowpass" ? FilterKind::LowPass : name == "highpass" ? FilterKind::HighPass : FilterKind::BandPass;
-    f.cutoff = e.value(name == "bandpass" ? "high" : "cutoff");
-    if (name == "bandpass") f.low = e.value("low");
-    f.order = int(e.value("order"));
-    f.offset = e.value("offset");
-    return true;
-  }
-  if (name == "blur" || name == "bokeh") {
-    f.kind = FilterKind::Kernel;
-    f.kernel = name == "blur" ? KernelShape::Gaussian : KernelShape::Disk;
-    f.size = e.value(name == "blur" ? "sigma" : "radius");
-    return true;
-  }
-  return false;
-}
 
 }  // namespace cpu
 
@@ -186,12 +167,7 @@ using cpu::parallelRows;
 
 inline std::uint8_t toU8(float v) { return std::uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); }
 
-// One effect on U8 RGBA frames (alpha passes through).
-class RgbaStage {
-public:
-  virtual ~RgbaStage() = default;
-  virtual void run(const Image& in, Image& out) = 0;
-};
+using RgbaStage = CpuStage;
 
 // The YIQ luma of every pixel, in [0, 1] (float, as the shader's dot product).
 void lumaPlane(const Image& in, std::vector<float>& luma) {
@@ -202,6 +178,23 @@ void lumaPlane(const Image& in, std::vector<float>& luma) {
   parallelRows(h, [&](int begin, int end) {
     for (std::size_t i = std::size_t(begin) * w; i < std::size_t(end) * w; ++i) {
       luma[i] = r * float(px[4 * i]) + g * float(px[4 * i + 1]) + b * float(px[4 * i + 2]);
+    }
+  });
+}
+
+// The Sobel gradient of `in`'s luma at every pixel: pixel(src, dst, gx, gy) writes dst's
+// RGBA from src's and the gradient (sobel and edges differ only there).
+template <typename Pixel>
+void eachSobelPixel(const Image& in, Image& out, std::vector<float>& luma, Pixel pixel) {
+  lumaPlane(in, luma);
+  const int w = in.width();
+  const std::uint8_t* src = in.pixels<std::uint8_t>().data();
+  std::uint8_t* dst = out.pixels<std::uint8_t>().data();
+  cpu::sobelRows(luma.data(), w, in.height(), [&](int y, const float* gx, const float* gy) {
+    const std::size_t row = std::size_t(y) * std::size_t(w);
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = 4 * (row + std::size_t(x));
+      pixel(src + i, dst + i, gx[x], gy[x]);
     }
   });
 }
@@ -253,18 +246,9 @@ public:
     m_output = outputs[int(e.value("output"))];
   }
   void run(const Image& in, Image& out) override {
-    lumaPlane(in, m_luma);
-    const int w = in.width();
-    const std::uint8_t* src = in.pixels<std::uint8_t>().data();
-    std::uint8_t* dst = out.pixels<std::uint8_t>().data();
-    cpu::sobelRows(m_luma.data(), w, in.height(), [&](int y, const float* gx, const float* gy) {
-      const std::size_t row = std::size_t(y) * std::size_t(w);
-      for (int x = 0; x < w; ++x) {
-        const std::uint8_t v = toU8(cpu::sobelValue(gx[x], gy[x], m_output, m_scale));
-        std::uint8_t* p = dst + 4 * (row + std::size_t(x));
-        p[0] = p[1] = p[2] = v;
-        p[3] = src[4 * (row + std::size_t(x)) + 3];
-      }
+    eachSobelPixel(in, out, m_luma, [&](const std::uint8_t* src, std::uint8_t* dst, float gx, float gy) {
+      dst[0] = dst[1] = dst[2] = toU8(cpu::sobelValue(gx, gy, m_output, m_scale));
+      dst[3] = src[3];
     });
   }
 
@@ -278,18 +262,10 @@ class EdgesStage final : public RgbaStage {
 public:
   explicit EdgesStage(const Effect& e) : m_scale(e.value("scale")), m_threshold(e.value("threshold")) {}
   void run(const Image& in, Image& out) override {
-    lumaPlane(in, m_luma);
-    const int w = in.width();
-    const std::uint8_t* src = in.pixels<std::uint8_t>().data();
-    std::uint8_t* dst = out.pixels<std::uint8_t>().data();
-    cpu::sobelRows(m_luma.data(), w, in.height(), [&](int y, const float* gx, const float* gy) {
-      const std::size_t row = std::size_t(y) * std::size_t(w);
-      for (int x = 0; x < w; ++x) {
-        const float e = std::clamp(m_scale * (std::sqrt(gx[x] * gx[x] + gy[x] * gy[x]) - m_threshold), 0.0f, 1.0f);
-        const std::size_t i = 4 * (row + std::size_t(x));
-        for (int c = 0; c < 3; ++c) dst[i + std::size_t(c)] = toU8(float(src[i + std::size_t(c)]) / 255.0f * (1.0f - e));
-        dst[i + 3] = src[i + 3];
-      }
+    eachSobelPixel(in, out, m_luma, [&](const std::uint8_t* src, std::uint8_t* dst, float gx, float gy) {
+      const float e = std::clamp(m_scale * (std::sqrt(gx * gx + gy * gy) - m_threshold), 0.0f, 1.0f);
+      for (int c = 0; c < 3; ++c) dst[c] = toU8(float(src[c]) / 255.0f * (1.0f - e));
+      dst[3] = src[3];
     });
   }
 
@@ -441,46 +417,35 @@ private:
   std::vector<float> m_luma;
 };
 
-std::unique_ptr<RgbaStage> makeStage(const Effect& e, ivec2 size) {
-  const std::string_view name = e.name();
-  if (name == "sepia") return std::make_unique<SepiaStage>(e);
-  if (name == "sobel") return std::make_unique<SobelStage>(e);
-  if (name == "edges") return std::make_unique<EdgesStage>(e);
-  if (name == "kuwahara") return std::make_unique<KuwaharaStage>(e);
-  if (name == "spectrum") return std::make_unique<SpectrumStage>(size);
-  if (FrequencyFilter f; cpu::frequencyFilterOf(e, f)) return std::make_unique<FilterStage>(f, size);
-  return nullptr;
-}
-
-bool cpuHas(const Effect& e) {
-  const std::string_view name = e.name();
-  FrequencyFilter f;
-  return name == "sepia" || name == "sobel" || name == "edges" || name == "kuwahara" || name == "spectrum" ||
-         cpu::frequencyFilterOf(e, f);
-}
 }  // namespace
+
+namespace cpu {
+std::unique_ptr<CpuStage> sepia(const Effect& e, ivec2) { return std::make_unique<SepiaStage>(e); }
+std::unique_ptr<CpuStage> sobel(const Effect& e, ivec2) { return std::make_unique<SobelStage>(e); }
+std::unique_ptr<CpuStage> edges(const Effect& e, ivec2) { return std::make_unique<EdgesStage>(e); }
+std::unique_ptr<CpuStage> kuwahara(const Effect& e, ivec2) { return std::make_unique<KuwaharaStage>(e); }
+std::unique_ptr<CpuStage> spectrum(const Effect&, ivec2 size) { return std::make_unique<SpectrumStage>(size); }
+std::unique_ptr<CpuStage> filter(const Effect& e, ivec2 size) {
+  return std::make_unique<FilterStage>(e.def->filter(e), size);
+}
+}  // namespace cpu
 
 std::string cpuMissing(std::span<const Effect> effects) {
   std::string missing;
   for (const Effect& e : effects) {
-    if (cpuHas(e) || missing.find(e.name()) != std::string::npos) continue;
+    if (e.def->cpu || missing.find(e.name()) != std::string::npos) continue;
     missing += (missing.empty() ? "" : ", ") + std::string(e.name());
   }
   return missing;
 }
 
-bool cpuWorksOnYuv(std::span<const Effect> effects) {
-  if (effects.size() != 1) return false;
-  FrequencyFilter f;
-  const std::string_view name = effects[0].name();
-  return name == "sepia" || name == "sobel" || cpu::frequencyFilterOf(effects[0], f);
-}
+bool cpuWorksOnYuv(std::span<const Effect> effects) { return effects.size() == 1 && effects[0].def->yuv; }
 
 struct CpuChain::Impl {
   ivec2 size;
   std::vector<Effect> effects;
-  std::vector<std::unique_ptr<RgbaStage>> stages;
-  std::unique_ptr<cpu::YuvStage> yuv;  // a one-effect chain with a YUV path
+  std::vector<std::unique_ptr<CpuStage>> stages;
+  std::unique_ptr<YuvStage> yuv;  // a one-effect chain with a YUV path
   Image scratch;
 };
 
@@ -490,8 +455,9 @@ CpuChain::CpuChain(ivec2 size, std::vector<Effect> effects) : m_impl(std::make_u
     fail(ErrorKind::Usage, "--backend cpu: no CPU version of {} yet (use --backend gpu)", missing);
   }
   m_impl->size = size;
-  for (const Effect& e : effects) m_impl->stages.push_back(makeStage(e, size));
-  if (effects.size() == 1) m_impl->yuv = cpu::YuvStage::make(effects[0], size);
+  for (const Effect& e : effects) m_impl->stages.push_back(e.def->cpu(e, size));
+  if (effects.size() == 1 && effects[0].def->yuv && size.x % 2 == 0 && size.y % 2 == 0)
+    m_impl->yuv = effects[0].def->yuv(effects[0], size);
   m_impl->effects = std::move(effects);
 }
 
@@ -543,4 +509,4 @@ std::string CpuChain::describe() const {
   return s;
 }
 
-}  // namespace glint::render::post
+}  // namespace glint::post

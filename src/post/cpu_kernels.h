@@ -1,5 +1,5 @@
 #pragma once
-// Private to render/post's CPU backend (cpu.cpp: RGBA frames, cpu_yuv.cpp: YUV planes): the
+// Private to post's CPU backend (cpu.cpp: RGBA frames, cpu_yuv.cpp: YUV planes): the
 // pieces both use. Named namespace (not anonymous): both files may share a unity batch.
 #include "glint/core/math.h"
 #include "glint/image/fourier.h"
@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-namespace glint::render::post::cpu {
+namespace glint::post::cpu {
 
 /// body(rowBegin, rowEnd) over [0, rows) in bands, on OpenCV's thread pool.
 void parallelRows(int rows, const std::function<void(int, int)>& body);
@@ -52,29 +52,42 @@ private:
   void* m_inverse = nullptr;
 };
 
-}  // namespace glint::render::post::cpu
+}  // namespace glint::post::cpu
 
 namespace glint::video {
 struct Frame;
 }
 
-namespace glint::render::post {
+namespace glint::post {
 struct Effect;
-}
 
-namespace glint::render::post::cpu {
+/// An effect on the CPU, U8 RGBA frames (alpha passes through); EffectDef::cpu makes it.
+class CpuStage {
+public:
+  virtual ~CpuStage() = default;
+  virtual void run(const Image& in, Image& out) = 0;
+};
 
-/// FrequencyFilter of an FFT effect ("lowpass", ..., "bokeh"); false for other effects.
-bool frequencyFilterOf(const Effect& effect, FrequencyFilter& filter);
-
-/// An effect on Yuv420 planes (cpu.h's YUV path); made by cpu_yuv.cpp.
+/// An effect on Yuv420 planes (cpu.h's YUV path); EffectDef::yuv makes it.
 class YuvStage {
 public:
   virtual ~YuvStage() = default;
   /// In place; the frame leaves in BT.709.
   virtual void run(video::Frame& frame) = 0;
-  /// The stage for `effect` on w × h frames; nullptr when the effect has no YUV path.
-  static std::unique_ptr<YuvStage> make(const Effect& effect, ivec2 size);
 };
+}  // namespace glint::post
 
-}  // namespace glint::render::post::cpu
+namespace glint::post::cpu {
+
+// The table's factories (src/post/effects.cpp's EffectDef::cpu and ::yuv), one per effect.
+std::unique_ptr<CpuStage> sepia(const Effect& effect, ivec2 size);
+std::unique_ptr<CpuStage> sobel(const Effect& effect, ivec2 size);
+std::unique_ptr<CpuStage> edges(const Effect& effect, ivec2 size);
+std::unique_ptr<CpuStage> kuwahara(const Effect& effect, ivec2 size);
+std::unique_ptr<CpuStage> spectrum(const Effect& effect, ivec2 size);
+std::unique_ptr<CpuStage> filter(const Effect& effect, ivec2 size);  ///< the FFT filters (EffectDef::filter)
+std::unique_ptr<YuvStage> sepiaYuv(const Effect& effect, ivec2 size);
+std::unique_ptr<YuvStage> sobelYuv(const Effect& effect, ivec2 size);
+std::unique_ptr<YuvStage> filterYuv(const Effect& effect, ivec2 size);
+
+}  // namespace glint::post::cpu

@@ -1,6 +1,5 @@
 #pragma once
-// glint/render/post/cpu.h — glint post's CPU backend: every effect of
-// render/post/effects.h on the CPU, threaded (OpenCV's parallel_for_) and vectorised, with
+// glint/post/cpu.h — glint post's CPU backend: every effect of post/effects.h on the CPU, threaded (OpenCV's parallel_for_) and vectorised, with
 // FFTW (single precision, threads) for the spectrum view and the frequency-domain filters
 // and OpenCV's box filter for Kuwahara's statistics. `glint post --backend cpu` uses it,
 // and `--backend auto` (the default) whenever the GL renderer is a software one (Mesa's
@@ -9,9 +8,9 @@
 //
 /// ```cpp
 /// #include <glint/image/post.h>
-/// #include <glint/render/post/cpu.h>
+/// #include <glint/post/cpu.h>
 /// const std::vector<std::string> specs = {"sepia"};
-/// glint::render::post::CpuChain chain({1920, 1080}, glint::render::post::parseEffects(specs));
+/// glint::post::CpuChain chain({1920, 1080}, glint::post::parseEffects(specs));
 /// glint::video::Frame frame;                  // from a Source opened with options.yuv420 = chain.worksOnYuv()
 /// chain.run(frame);                           // in place: Rgba stays Rgba, Yuv420 stays Yuv420 (BT.709)
 /// const glint::Image photo = glint::postInput(glint::loadImage("photo.png"));
@@ -43,7 +42,7 @@
 
 #include "glint/core/math.h"
 #include "glint/image/image.h"
-#include "glint/render/post/effects.h"
+#include "glint/post/effects.h"
 #include "glint/video/frame.h"
 
 #include <memory>
@@ -52,12 +51,12 @@
 #include <string_view>
 #include <vector>
 
-namespace glint::render::post {
+namespace glint::post {
 
 /// Where `glint post` runs its effects.
 enum class Backend {
   Auto,  ///< the CPU when the GL renderer is a software one and the CPU has every effect; else the GPU
-  Gpu,   ///< OpenGL (render/post/chain.h), whatever the renderer
+  Gpu,   ///< OpenGL (render/post/chain.h, through the job's GpuBackend), whatever the renderer
   Cpu    ///< this header's CpuChain; no GL context is made
 };
 
@@ -68,7 +67,7 @@ const char* backendName(Backend backend);
 /// SwiftShader, Microsoft's "GDI Generic" and Apple's "Software Renderer".
 bool isSoftwareRenderer(std::string_view glRenderer);
 /// The effects of `effects` the CPU backend lacks, comma-separated; empty when it has them
-/// all (today it has every effect of render/post/effects.h).
+/// all (today it has every effect of post/effects.h: each entry carries its CPU stage).
 std::string cpuMissing(std::span<const Effect> effects);
 
 /// Whether a CpuChain of `effects` keeps Yuv420 frames in YUV (one effect with a YUV path;
@@ -104,4 +103,4 @@ private:
   std::unique_ptr<Impl> m_impl;
 };
 
-}  // namespace glint::render::post
+}  // namespace glint::post

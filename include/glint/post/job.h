@@ -1,41 +1,44 @@
 #pragma once
-// glint/render/post/job.h — `glint post` as a library call: one job (an image, every frame
+// glint/post/job.h — `glint post` as a library call: one job (an image, every frame
 // of a video, a camera or a lavfi source through an effect chain, or --frames parts joined),
 // with the command's checks, memory estimate, warnings and report. The command parses its
 // options into a PostJob and calls runJob and finishJob; so can any program (library
-// glint::post: glint::render and glint::video).
+// glint::post: GL-free; its GPU backend comes from glint::render, render/post/gpu.h, and is
+// handed to runJob: a program without it runs the effects on the CPU).
 //
 /// ```cpp
-/// glint::render::post::PostJob job;
+/// glint::post::PostJob job;
 /// job.input = "photo.png";
 /// job.output = "npr.png";
 /// const std::vector<std::string> specs = {"posterize"};
-/// job.effects = glint::render::post::parseEffects(specs);
+/// job.effects = glint::post::parseEffects(specs);
 /// glint::ToolSettings settings;
 /// settings.json = "report.json";
 /// glint::ToolRun run("post", settings);
-/// const glint::render::post::PostStats stats = glint::render::post::runJob(job, run);
-/// glint::render::post::finishJob(stats, run);  // writes report.json; returns the exit status
+/// const glint::post::PostStats stats = glint::post::runJob(job, run);  // the CPU backend (no GPU given)
+/// glint::post::finishJob(stats, run);  // writes report.json; returns the exit status
 /// ```
 //
 // Checks, before anything is opened: one input (input, camera, lavfi or parts), an output,
 // camera options only for a camera, a --frames range that selects frames, an image output
 // for an image input, outputs (and the --json report) writable; then, once the size is known,
 // the memory estimate against --max-memory, the GPU's largest texture, and each effect at the
-// frame size (render/post/effects.h). Errors are glint::Error, one line (core/error.h).
+// frame size (post/effects.h). Errors are glint::Error, one line (core/error.h).
 
 #include "glint/core/math.h"
 #include "glint/core/text.h"
 #include "glint/core/tool.h"
-#include "glint/render/post/cpu.h"
-#include "glint/render/post/effects.h"
+#include "glint/post/cpu.h"
+#include "glint/post/effects.h"
 #include "glint/video/sink.h"
+#include "glint/video/transcode.h"
 
 #include "glint/farm/farm.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,7 +47,7 @@ namespace CLI {
 class App;
 }
 
-namespace glint::render::post {
+namespace glint::post {
 
 /// Where a job's frames come from: decided once, by inputKind().
 enum class InputKind {
@@ -86,7 +89,7 @@ struct PostJob {
   /// (a video's frames are RGB), in colour when the effects turn a grey input into colour.
   int channels = 0;
   bool glDebug = false;            ///< a GL debug context
-  /// Where the effects run (render/post/cpu.h): auto picks the CPU on a software GL
+  /// Where the effects run (post/cpu.h): auto picks the CPU on a software GL
   /// renderer (llvmpipe) when it has every effect of the chain.
   Backend backend = Backend::Auto;
 };
@@ -168,13 +171,36 @@ struct PostStats {
   nlohmann::ordered_json toJson() const;
 };
 
+/// The GPU side of a job, which render/post provides (render::post::gpuBackend(),
+/// render/post/gpu.h): the job asks it about devices and hands it the frames, and stays
+/// free of GL itself.
+class GpuBackend {
+public:
+  virtual ~GpuBackend() = default;
+  /// Whether every device EGL lists is a software rasterizer (known without a context).
+  virtual bool onlySoftwareDevices() = 0;
+  /// Makes the headless context the work runs in (once; kept until the backend is
+  /// destroyed) and returns the GL renderer's name. Error(NoGpu) without OpenGL 4.5.
+  virtual std::string start(bool debug) = 0;
+  /// The largest texture side of the context.
+  virtual int maxTextureSize() = 0;
+  /// `frame` (U8 or F32 RGBA) through the effects; `described` gets the chain's description.
+  virtual Image runImage(const std::vector<Effect>& effects, const Image& frame, std::string& described) = 0;
+  /// A video's frames (U8 RGBA) through the effects, a few in flight, as the transcoder's
+  /// middle stage; `described` gets the chain's description.
+  virtual std::unique_ptr<video::FrameProcessor> videoProcessor(ivec2 size, const std::vector<Effect>& effects,
+                                                                std::string& described) = 0;
+};
+
 /// Runs the job: the checks above, then the work, with phases, progress and warnings on
 /// `run` (its cancel flag stops a video cleanly: a playable partial video; an image is then
-/// not written, Error(Interrupted)). Needs no GL context: it makes its own headless one.
-PostStats runJob(const PostJob& job, ToolRun& run);
+/// not written, Error(Interrupted)). `gpu`: the GPU backend (render/post/gpu.h's
+/// gpuBackend()), which makes its own headless context when used; null: the CPU only
+/// (--backend gpu is then a usage error).
+PostStats runJob(const PostJob& job, ToolRun& run, GpuBackend* gpu = nullptr);
 
 /// Adds stats.toJson() to the report and finishes it (ToolRun::finish writes --json); then
 /// Error(Input) when the source broke off, and the exit status: 0, or 130 when interrupted.
 int finishJob(const PostStats& stats, ToolRun& run);
 
-}  // namespace glint::render::post
+}  // namespace glint::post

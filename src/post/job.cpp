@@ -1,13 +1,11 @@
-#include "glint/render/post/job.h"
+#include "glint/post/job.h"
 
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
 #include "glint/core/progress.h"
-#include "glint/gl/context.h"
 #include "glint/image/image.h"
 #include "glint/image/srgb.h"
-#include "glint/render/post/chain.h"
 #include "glint/video/source.h"
 #include "glint/core/options.h"
 #include "glint/video/transcode.h"
@@ -19,7 +17,7 @@
 #include <chrono>
 #include <filesystem>
 
-namespace glint::render::post {
+namespace glint::post {
 
 namespace {
 
@@ -65,54 +63,63 @@ Image withOutputChannels(const Image& rgba, int inputChannels, int asked, const 
   return rgba.withChannels(channels);
 }
 
-std::unique_ptr<gl::HeadlessContext> makeContext(const PostJob& job, ivec2 size) {
-  auto context = gl::HeadlessContext::create({.profile = gl::Profile::Core, .debug = job.glDebug});
-  const int largest = gl::queryContextInfo().maxTextureSize;
-  if (size.x > largest || size.y > largest) {
-    fail(ErrorKind::Input, "the frames are {}x{}: larger than this GPU's largest texture ({}x{})", size.x, size.y,
-         largest, largest);
+// The GPU, started (its context made) when the job first needs it.
+class Gpu {
+public:
+  explicit Gpu(GpuBackend* backend, bool debug) : m_backend(backend), m_debug(debug) {}
+  bool available() const { return m_backend != nullptr; }
+  GpuBackend& backend() { return *m_backend; }
+  /// Starts the backend (once) and returns the renderer's name.
+  const std::string& start() {
+    if (!m_started) {
+      m_renderer = m_backend->start(m_debug);
+      m_started = true;
+    }
+    return m_renderer;
   }
-  return context;
-}
+  /// Starts it and checks that frames of `size` fit its textures.
+  void startFor(ivec2 size) {
+    start();
+    const int largest = m_backend->maxTextureSize();
+    if (size.x > largest || size.y > largest) {
+      fail(ErrorKind::Input, "the frames are {}x{}: larger than this GPU's largest texture ({}x{})", size.x, size.y,
+           largest, largest);
+    }
+  }
 
-// Where the effects run. Auto picks the CPU at once when EGL has only software devices;
-// otherwise it makes the GL context to read its renderer: kept for the GPU, dropped for the
-// CPU (a software renderer, and the CPU has every effect of the chain).
-Backend chooseBackend(const PostJob& job, std::unique_ptr<gl::HeadlessContext>& context, bool floatFrames = false) {
+private:
+  GpuBackend* m_backend;
+  bool m_debug;
+  bool m_started = false;
+  std::string m_renderer;
+};
+
+// Where the effects run. Auto picks the CPU at once when EGL has only software devices (or
+// no GPU backend was given); otherwise it makes the GL context to read its renderer: kept
+// for the GPU, and the CPU for a software renderer when the CPU has every effect of the chain.
+Backend chooseBackend(const PostJob& job, Gpu& gpu, bool floatFrames = false) {
+  if (job.backend == Backend::Gpu && !gpu.available())
+    fail(ErrorKind::Usage, "--backend gpu: this program was built without glint post's GPU backend");
   if (job.backend != Backend::Auto) return job.backend;
+  if (!gpu.available()) return Backend::Cpu;
   if (floatFrames) {  // the CPU backend works on 8-bit frames: a float image keeps its range on the GPU
     log::debug("post: a float image: the effects run on the GPU in float (the CPU backend is 8-bit)");
     return Backend::Gpu;
   }
   // Cheap first: when EGL has only software devices, no context is needed to know (a
   // context costs ~50 ms of a short video's run).
-  if (gl::onlySoftwareDevices() && cpuMissing(job.effects).empty()) {
+  if (gpu.backend().onlySoftwareDevices() && cpuMissing(job.effects).empty()) {
     log::debug("post: EGL lists only software devices (no GPU): the effects run on the CPU");
     return Backend::Cpu;
   }
-  context = gl::HeadlessContext::create({.profile = gl::Profile::Core, .debug = job.glDebug});
-  const std::string renderer = gl::queryContextInfo().renderer;
+  const std::string renderer = gpu.start();
   if (!isSoftwareRenderer(renderer)) return Backend::Gpu;
   if (const std::string missing = cpuMissing(job.effects); !missing.empty()) {
     log::info("post: {} is a software renderer, but {} has no CPU version: on the GPU", renderer, missing);
     return Backend::Gpu;
   }
   log::debug("post: {} is a software renderer: the effects run on the CPU", renderer);
-  context.reset();
   return Backend::Cpu;
-}
-
-// The GPU's context for frames of `size`: the one chooseBackend made, or a new one.
-void ensureContext(const PostJob& job, ivec2 size, std::unique_ptr<gl::HeadlessContext>& context) {
-  if (!context) {
-    context = makeContext(job, size);
-    return;
-  }
-  const int largest = gl::queryContextInfo().maxTextureSize;
-  if (size.x > largest || size.y > largest) {
-    fail(ErrorKind::Input, "the frames are {}x{}: larger than this GPU's largest texture ({}x{})", size.x, size.y,
-         largest, largest);
-  }
 }
 
 // The CPU backend as transcode's middle stage: frames processed in place, on this thread
@@ -190,7 +197,7 @@ PostStats runParts(const PostJob& job, ToolRun& run) {
   return stats;
 }
 
-PostStats runImage(const PostJob& job, ToolRun& run) {
+PostStats runImage(const PostJob& job, ToolRun& run, Gpu& gpu) {
   requireImageIo();
   Image input;
   {
@@ -202,9 +209,8 @@ PostStats runImage(const PostJob& job, ToolRun& run) {
   const ivec2 size(input.width(), input.height());
   run.checkMemory(estimatePeakMemoryMiB(size, true) * (linear ? 4.0 : 1.0),
                   fmt::format("processing a {}x{} image", size.x, size.y));
-  std::unique_ptr<gl::HeadlessContext> context;
-  const Backend backend = chooseBackend(job, context, linear);
-  if (backend == Backend::Gpu) ensureContext(job, size, context);
+  const Backend backend = chooseBackend(job, gpu, linear);
+  if (backend == Backend::Gpu) gpu.startFor(size);
   const Image frame = toFrame(input, job.input, backend == Backend::Gpu, run);
   input = Image();
   PostStats stats{.kind = InputKind::Image, .input = job.input, .output = job.output, .size = size, .framesRead = 1,
@@ -218,9 +224,7 @@ PostStats runImage(const PostJob& job, ToolRun& run) {
       result = chain.run(frame);
       stats.effects = chain.describe();
     } else {
-      Chain chain(size, job.effects, frame.type());
-      result = chain.run(frame);
-      stats.effects = chain.describe();
+      result = gpu.backend().runImage(job.effects, frame, stats.effects);
     }
   }
   run.throwIfInterrupted();
@@ -235,7 +239,7 @@ PostStats runImage(const PostJob& job, ToolRun& run) {
 }
 
 // A video in, an image out: one frame (the first of --frames), processed.
-PostStats runStill(const PostJob& job, video::Source& source, Backend backend, ToolRun& run) {
+PostStats runStill(const PostJob& job, video::Source& source, Backend backend, ToolRun& run, Gpu& gpu) {
   requireImageIo();
   video::Frame frame;
   if (!source.read(frame)) fail(ErrorKind::Input, "{} has no frame to take a still from", source.info().name);
@@ -246,9 +250,7 @@ PostStats runStill(const PostJob& job, video::Source& source, Backend backend, T
     result = chain.run(frame.image);
     effects = chain.describe();
   } else {
-    Chain chain(source.info().size, job.effects);
-    result = chain.run(frame.image);
-    effects = chain.describe();
+    result = gpu.backend().runImage(job.effects, frame.image, effects);
   }
   run.throwIfInterrupted();
   if (floatImageOutput(job.output, job.format)) result = srgbDecoded(result);  // a float file holds linear light
@@ -310,7 +312,7 @@ std::string countOf(const video::SourceInfo& info) {
   return fmt::format("it has {} frames, 0..{}", info.frameCount, info.frameCount - 1);
 }
 
-PostStats runVideo(const PostJob& job, ToolRun& run) {
+PostStats runVideo(const PostJob& job, ToolRun& run, Gpu& gpu) {
   const InputKind kind = inputKind(job);
   const std::string& name = kind == InputKind::Camera ? job.camera : !job.lavfi.empty() ? job.lavfi : job.input;
   video::SourceOptions options{.camera = kind == InputKind::Camera, .realtime = job.realtime,
@@ -324,8 +326,7 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
     options.lastFrame = job.frames->end;
   }
   const bool still = imageOutput(job);
-  std::unique_ptr<gl::HeadlessContext> context;
-  const Backend backend = chooseBackend(job, context);
+  const Backend backend = chooseBackend(job, gpu);
   // The CPU's luma effects take the decoder's YUV planes as they are and hand them to an
   // H.264 encoder, itself 4:2:0 (cpu.h); FFV1 (lossless RGB) gets the exact RGB path.
   options.yuv420 = backend == Backend::Cpu && !still && job.codec == video::Codec::H264 && cpuWorksOnYuv(job.effects);
@@ -344,13 +345,17 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
     fail(ErrorKind::Input, "--frames {} selects no frame of '{}' ({})", rangeText(*job.frames), name, countOf(info));
   }
   run.checkMemory(estimatePeakMemoryMiB(info.size, still), fmt::format("processing {}x{} video", info.size.x, info.size.y));
-  if (backend == Backend::Gpu) ensureContext(job, info.size, context);
-  if (still) return runStill(job, source, backend, run);
-  std::optional<FrameStream> stream;
+  if (backend == Backend::Gpu) gpu.startFor(info.size);
+  if (still) return runStill(job, source, backend, run, gpu);
   std::optional<CpuChain> cpuChain;
-  if (backend == Backend::Cpu) cpuChain.emplace(info.size, job.effects);
-  else stream.emplace(info.size, job.effects);
-  const std::string described = cpuChain ? cpuChain->describe() : stream->chain().describe();
+  std::unique_ptr<video::FrameProcessor> gpuProcessor;
+  std::string described;
+  if (backend == Backend::Cpu) {
+    cpuChain.emplace(info.size, job.effects);
+    described = cpuChain->describe();
+  } else {
+    gpuProcessor = gpu.backend().videoProcessor(info.size, job.effects, described);
+  }
   video::Sink sink(job.output, {.codec = job.codec, .size = info.size, .frameRate = info.frameRate,
                                 .timeBase = info.timeBase, .crf = job.crf, .preset = job.preset,
                                 .threads = run.settings().threads, .noReordering = job.frames.has_value(),
@@ -369,10 +374,8 @@ PostStats runVideo(const PostJob& job, ToolRun& run) {
   Progress progress("post", std::uint64_t(std::max<std::int64_t>(total, 0)));
   const auto start = std::chrono::steady_clock::now();
   auto lastDetail = start;
-  std::optional<video::StreamProcessor<FrameStream>> gpuProcessor;
   std::optional<CpuProcessor> cpuProcessor;
   if (cpuChain) cpuProcessor.emplace(*cpuChain);
-  else gpuProcessor.emplace(*stream);
   video::FrameProcessor& processor = cpuChain ? static_cast<video::FrameProcessor&>(*cpuProcessor) : *gpuProcessor;
   const video::TranscodeStats t = video::transcode(
       source, sink, processor,
@@ -508,13 +511,14 @@ nlohmann::ordered_json PostStats::toJson() const {
   return j;
 }
 
-PostStats runJob(const PostJob& job, ToolRun& run) {
+PostStats runJob(const PostJob& job, ToolRun& run, GpuBackend* gpuBackend) {
   // Usage errors first: fail in a millisecond, before opening anything.
   checkJob(job, run.settings());
   const InputKind kind = inputKind(job);
   if (kind == InputKind::Parts) return runParts(job, run);
   if (kind == InputKind::Image || imageOutput(job)) preloadImageIo();  // while the GPU starts
-  return kind == InputKind::Image ? runImage(job, run) : runVideo(job, run);
+  Gpu gpu(gpuBackend, job.glDebug);
+  return kind == InputKind::Image ? runImage(job, run, gpu) : runVideo(job, run, gpu);
 }
 
 namespace {
@@ -736,4 +740,4 @@ farm::Plan farmPlan(const PostJob& given, const ToolSettings& settings, const fa
   return plan;
 }
 
-}  // namespace glint::render::post
+}  // namespace glint::post

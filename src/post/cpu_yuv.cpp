@@ -3,7 +3,7 @@
 
 #include "glint/core/error.h"
 #include "glint/image/post.h"
-#include "glint/render/post/effects.h"
+#include "glint/post/effects.h"
 #include "glint/video/frame.h"
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 #include <cstring>
 #include <tuple>
 
-namespace glint::render::post::cpu {
+namespace glint::post::cpu {
 
 namespace yuv {
 
@@ -265,13 +265,10 @@ private:
 
 }  // namespace yuv
 
-std::unique_ptr<YuvStage> YuvStage::make(const Effect& e, ivec2 size) {
-  if (size.x % 2 != 0 || size.y % 2 != 0) return nullptr;
-  const std::string_view name = e.name();
-  if (name == "sepia") return std::make_unique<yuv::SepiaYuv>(e, size);
-  if (name == "sobel") return std::make_unique<yuv::SobelYuv>(e, size);
-  if (FrequencyFilter f; frequencyFilterOf(e, f)) return std::make_unique<yuv::FilterYuv>(f, size);
-  return nullptr;
+std::unique_ptr<YuvStage> sepiaYuv(const Effect& e, ivec2 size) { return std::make_unique<yuv::SepiaYuv>(e, size); }
+std::unique_ptr<YuvStage> sobelYuv(const Effect& e, ivec2 size) { return std::make_unique<yuv::SobelYuv>(e, size); }
+std::unique_ptr<YuvStage> filterYuv(const Effect& e, ivec2 size) {
+  return std::make_unique<yuv::FilterYuv>(e.def->filter(e), size);
 }
 
-}  // namespace glint::render::post::cpu
+}  // namespace glint::post::cpu
