@@ -1,5 +1,5 @@
 // glint bench cut — the shadow cutter's speed targets (issue 13, item 6):
-//   (a) the ~550k-triangle Pipe Dream stand-in (mesh/machine_room.h) with its two lights:
+//   (a) the ~550k-triangle Pipe Dream stand-in (pipedream/machine_room.h) with its two lights:
 //       seconds, target ≤ 60 (ATI's brute force: about 20 minutes), median of the runs;
 //   (b) time and peak memory as the stage grows 10k → 100k → 1M triangles, with the
 //       exponent of time ∝ triangles^k fitted over them;
@@ -12,7 +12,7 @@
 #include "glint/bench/bench.h"
 #include "glint/core/log.h"
 #include "glint/cut/cutter.h"
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 
 #include <fmt/format.h>
 #include <malloc.h>

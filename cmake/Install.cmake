@@ -14,7 +14,7 @@
 #
 # Exported targets, namespace glint:: (the same names work in this build as aliases), one
 # package component each, named as the target (find_package(glint COMPONENTS render)):
-#   glint::core glint::farm glint::image glint::post glint::mesh glint::raytrace glint::bake glint::raster glint::sim
+#   glint::core glint::farm glint::image glint::post glint::mesh glint::pipedream glint::raytrace glint::bake glint::raster glint::sim
 #   glint::gl glint::render glint::scenes glint::video (without GLINT_BUILD_VIDEO: no FFmpeg module),
 #   glint::cut (GLINT_BUILD_CUT), glint::bench (GLINT_BUILD_BENCH), glint::window (GLINT_BUILD_VIEWER)
 #   glint::glint (component glint: the command, an imported executable)
@@ -30,7 +30,7 @@ include(CMakePackageConfigHelpers)
 # `glint render`'s clips and post's job reads and writes through. post (GL-free: the effect
 # table, the CPU backend, the job) sits below render, whose GPU passes register against it.
 set(glint_components core farm image video post)  # post: GL-free (post/effects.h, cpu.h, job.h)
-list(APPEND glint_components mesh raytrace bake)
+list(APPEND glint_components mesh pipedream raytrace bake)
 if(GLINT_BUILD_CUT)
   list(APPEND glint_components cut)
 endif()

@@ -7,7 +7,7 @@
 #include "glint/core/log.h"
 #include "glint/cut/output.h"
 #include "glint/mesh/adjacency.h"
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 #include "glint/mesh/mesh.h"
 
 #include "support/cli.h"

@@ -2,7 +2,7 @@
 // input triangle, the edge topology of the result; the seed's hard cases.
 #include "glint/core/error.h"
 #include "glint/cut/cutter.h"
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 
 #include "cut_test_util.h"
 

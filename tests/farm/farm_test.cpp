@@ -6,7 +6,7 @@
 // and a rerun redoes only them.
 #include "glint/bake/samples.h"
 #include "glint/farm/farm.h"
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 #include <algorithm>
 #include "glint/mesh/mesh.h"
 #include "support/cli.h"

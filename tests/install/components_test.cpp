@@ -52,7 +52,7 @@ TEST(Install, AConsumerOfGlintRenderAloneBuildsOnAPrefixWithoutTheOptionalParts)
   ASSERT_EQ(configure.status, 0) << configure.output;
   const auto build = runShell(fmt::format("{} --build {} --target glint_render", cmake, shellQuote(glintBuild)));
   ASSERT_EQ(build.status, 0) << build.output;
-  for (const char* component : {"core", "farm", "image", "video", "post", "mesh", "sim", "gl", "render"}) {
+  for (const char* component : {"core", "farm", "image", "video", "post", "mesh", "pipedream", "sim", "gl", "render"}) {
     const auto install = runShell(fmt::format("{} --install {} --prefix {} --component {}", cmake, shellQuote(glintBuild),
                                               shellQuote(prefix), component));
     ASSERT_EQ(install.status, 0) << install.output;

@@ -4,7 +4,7 @@
 #include "glint/core/error.h"
 #include "glint/cut/cache.h"
 #include "glint/mesh/adjacency.h"
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 #include "glint/render/pipedream/motion_blur.h"
 #include "glint/render/pipedream/score.h"
 #include "glint/scenes/pipedream.h"

@@ -5,7 +5,7 @@
 #include "support/cli.h"
 
 #include "glint/bake/samples.h"
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 #include "glint/mesh/mesh.h"
 
 #include <gtest/gtest.h>

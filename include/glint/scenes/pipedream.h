@@ -10,7 +10,7 @@
 //   StageOptions, Stage, loadStage   everything a frame needs, built once per process
 //   NamedCamera, namedCameras, namedCamera   the seed's camera moves
 //
-// The stage is deterministic: the machine is generated in code (mesh/machine_room.h), the
+// The stage is deterministic: the machine is generated in code (pipedream/machine_room.h), the
 // score is data (render/pipedream/score.h), and the cut is glint::cut's exact output for
 // the machine's static geometry and lights. The cut takes seconds, so it is kept on disk
 // (cut/cache.h: named by a hash of the geometry, the lights and the cutter's version, so a
@@ -28,7 +28,7 @@
 /// ```
 
 #include "glint/cut/cache.h"
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 #include "glint/render/camera.h"
 #include "glint/render/pipedream/renderer.h"
 #include "glint/render/pipedream/score.h"

@@ -1,5 +1,5 @@
 // pipedream — seed 001's Animusic "Pipe Dream" demo as a glint scene: an instrument machine
-// (mesh/machine_room.h) playing its score (render/pipedream/score.h), static shadows cut in
+// (pipedream/machine_room.h) playing its score (render/pipedream/score.h), static shadows cut in
 // by glint::cut, dynamic ones from GPU-extruded volumes, joined through the destination-
 // alpha dim factor, motion-blurred balls (render/pipedream/renderer.h). Variants are the
 // seed's demo toggles; `camera` picks one of its camera moves, `detail` the polygon count.

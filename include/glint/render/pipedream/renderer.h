@@ -72,7 +72,7 @@
 #include "glint/gl/objects.h"
 #include "glint/gl/render_target.h"
 #include "glint/gl/shader.h"
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 #include "glint/render/camera.h"
 #include "glint/render/env/dynamic_cube.h"
 #include "glint/render/gpu_mesh.h"

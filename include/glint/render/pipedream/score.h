@@ -29,7 +29,7 @@
 /// ```
 
 #include "glint/core/math.h"
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 
 #include <vector>
 

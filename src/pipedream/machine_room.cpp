@@ -1,6 +1,6 @@
 // The procedural "Pipe Dream" stand-in (machine_room.h). Parts are appended one by one;
 // each closed part shares its own vertices, so it is watertight on its own.
-#include "glint/mesh/machine_room.h"
+#include "glint/pipedream/machine_room.h"
 
 #include "glint/core/hash.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// glint/mesh/machine_room.h — a procedural stand-in for the static geometry of Animusic's
+// glint/pipedream/machine_room.h — a procedural stand-in for the static geometry of Animusic's
 // "Pipe Dream" stage (seed 001): drums, banks of upright pipes, horizontal pipes, struts
 // and platforms on a floor with two walls.
 //
