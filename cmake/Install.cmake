@@ -16,7 +16,7 @@
 # package component each, named as the target (find_package(glint COMPONENTS render)):
 #   glint::core glint::farm glint::image glint::post glint::mesh glint::pipedream glint::raytrace glint::bake glint::raster glint::sim
 #   glint::gl glint::render glint::scenes glint::video (without GLINT_BUILD_VIDEO: no FFmpeg module),
-#   glint::cut (GLINT_BUILD_CUT), glint::bench (GLINT_BUILD_BENCH), glint::window (GLINT_BUILD_VIEWER)
+#   glint::cut (GLINT_BUILD_CUT), glint::bench (GLINT_BUILD_BENCH), glint::window and glint::viewer (GLINT_BUILD_VIEWER)
 #   glint::glint (component glint: the command, an imported executable)
 # Each library brings the layers below it: linking glint::scenes is enough to render
 # registered scenes. Each component is also an install component (cmake --install
@@ -40,10 +40,10 @@ if(GLINT_BUILD_BENCH)
   list(APPEND glint_components bench)
 endif()
 if(GLINT_BUILD_VIEWER)
-  list(APPEND glint_components window)
+  list(APPEND glint_components window viewer)
 endif()
 # The parts a configuration can leave out, and the option that does (glintConfig names it).
-set(glint_optional_components cut=GLINT_BUILD_CUT bench=GLINT_BUILD_BENCH window=GLINT_BUILD_VIEWER)
+set(glint_optional_components cut=GLINT_BUILD_CUT bench=GLINT_BUILD_BENCH window=GLINT_BUILD_VIEWER viewer=GLINT_BUILD_VIEWER)
 
 # How an installed glint finds each third-party target its libraries link: a name that
 # glintConfig.cmake's glint_find_dependency knows. A linked target missing here stops the
@@ -52,7 +52,7 @@ set(glint_dependency_names
   fmt::fmt=fmt glm::glm=glm nlohmann_json::nlohmann_json=nlohmann_json Threads::Threads=Threads TBB::tbb=TBB
   assimp::assimp=assimp tinyobjloader::tinyobjloader=tinyobjloader draco::draco=draco embree=embree
   CGAL::CGAL=CGAL TinyGLTF::TinyGLTF=TinyGLTF glfw=glfw3 CLI11::CLI11=CLI11
-  PkgConfig::EPOXY=epoxy PkgConfig::EGL=egl PkgConfig::SPNG=spng
+  PkgConfig::EPOXY=epoxy PkgConfig::EGL=egl PkgConfig::SPNG=spng PkgConfig::IMGUI=imgui
   PkgConfig::FFTW=peers glint_deps::fftw_threads=peers glint_deps::opencv=peers)
 
 # What linking glint_<component> brings, read from the link graph: its direct glint
