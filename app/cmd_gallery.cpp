@@ -35,7 +35,8 @@ struct Entry {
 
 std::string timing(double ms) { return ms < 0 ? "–" : fmt::format("{:.2f} ms", ms); }
 
-std::string html(const std::vector<Entry>& entries, const gl::ContextInfo& info) {
+// The page's body: a table of contents, then a section per scene with a figure per variant.
+std::string sections(const std::vector<Entry>& entries) {
   std::string body;
   const scenes::SceneDesc* current = nullptr;
   for (const auto& e : entries) {
@@ -67,7 +68,10 @@ std::string html(const std::vector<Entry>& entries, const gl::ContextInfo& info)
     listed = e.ref.scene;
     nav += fmt::format("<a href=\"#{0}\">{0}</a> ", escapeHtml(listed->name));
   }
-  body = "<nav>" + nav + "</nav>\n" + body;
+  return "<nav>" + nav + "</nav>\n" + body;
+}
+
+std::string html(const std::vector<Entry>& entries, const gl::ContextInfo& info) {
   return fmt::format(R"(<!doctype html>
 <html lang=en><head><meta charset=utf-8><title>glint gallery</title>
 <meta name=viewport content="width=device-width, initial-scale=1">
@@ -114,7 +118,7 @@ document.getElementById('filter').addEventListener('input', (event) => {{
                      info.software ? " This is a software rasterizer: it defers rasterization to the next flush, so its "
                                      "GPU timer queries miss most of the work; the CPU time is the meaningful figure here."
                                    : "",
-                     body);
+                     sections(entries));
 }
 
 std::string json(const std::vector<Entry>& entries, const gl::ContextInfo& info) {

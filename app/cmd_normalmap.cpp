@@ -44,6 +44,62 @@ bool looksLikeNormalMap(const Image& image) {
     return false;
   }
 }
+
+// --check: is the input a usable normal map? A report line, or Error(Input) saying why not.
+int checkNormalMap(const NormalMapArgs& args) {
+  const Image map = loadImage(args.input);
+  NormalMapReport report;
+  prepareNormalMap(map, args.input, args.objectSpace ? NormalSpace::Object : NormalSpace::Tangent, &report);
+  fmt::print("{}: {}x{} {} {}-channel {} normal map; mean vector length {:.3f}, {:.1f}% pointing out{}\n",
+             args.input, map.width(), map.height(), pixelTypeName(map.type()), map.channels(),
+             args.objectSpace ? "object-space" : "tangent-space", report.meanLength, 100.0 * report.outwardFraction,
+             report.conversion.empty() ? "" : "; " + report.conversion);
+  return 0;
+}
+
+// The height map → the normal map, on the CPU or the GPU, written with the input's alpha.
+int makeNormalMap(const NormalMapArgs& args, const GlobalOptions& global) {
+  if (args.output.empty()) fail(ErrorKind::Usage, "normalmap needs -o OUTPUT (or --check)");
+  if (!std::isfinite(args.scale)) fail(ErrorKind::Usage, "--scale must be a finite number");
+  if (!args.format.empty() && args.output != "-") {
+    fail(ErrorKind::Usage, "--format is for -o - (stdout); a file's format follows its extension");
+  }
+  checkDistinctFiles({{args.input, "the height map"}}, {{args.output, "-o"}});
+  checkImageOutput(args.output, args.format);  // fail before working, not after
+  const Image input = loadImage(args.input);
+  if (input.channels() >= 3) {
+    log::warn("{} has {} channels; using its luminance (0.2126 R + 0.7152 G + 0.0722 B) as the height", args.input,
+              input.channels());
+    if (looksLikeNormalMap(input))
+      log::warn("{} already looks like a normal map (its colours decode to unit vectors pointing out); the result "
+                "will not mean much", args.input);
+  } else if (input.channels() == 2) {
+    log::info("{} has gray + alpha; using the gray channel as the height", args.input);
+  }
+  const NormalMapOptions options{.scale = args.scale,
+                                 .wrap = args.wrap,
+                                 .formula = args.formula == "slide" ? NormalFormula::Slide : NormalFormula::Gradient};
+  Image normals;
+  if (args.gpu) {
+    scenes::ContextPool contexts(global.glDebug);
+    contexts.use(gl::Profile::Core);
+    normals = render::bump::heightToNormalMapGpu(input, options);
+  } else {
+    normals = heightToNormalMap(input, options);
+  }
+  // RGB, the three components of the normal; RGBA carrying the input's alpha when it has one.
+  const bool alpha = input.channels() == 2 || input.channels() == 4;
+  Image written = normals.withChannels(alpha ? 4 : 3);
+  if (alpha) {
+    for (int y = 0; y < input.height(); ++y)
+      for (int x = 0; x < input.width(); ++x) written.set(x, y, 3, input.at(x, y, input.channels() - 1));
+  }
+  saveImage(written, args.output, args.format);
+  log::info("{} ({}x{}, {}) → {} ({} normals, scale {}{})", args.input, input.width(), input.height(),
+            pixelTypeName(input.type()), args.output, args.gpu ? "GPU" : "CPU", args.scale,
+            args.wrap ? ", wrapped" : "");
+  return 0;
+}
 }  // namespace
 
 Command normalmapCommand(CLI::App& app, const GlobalOptions& global) {
@@ -74,58 +130,7 @@ Command normalmapCommand(CLI::App& app, const GlobalOptions& global) {
                 "Instead: check that the input is a usable normal map (encoding, unit length, orientation) and "
                 "report; exit 3 with the reason when it is not");
   cmd->add_flag("--object-space", args->objectSpace, "With --check: the map is object-space (any direction is fine)");
-  return Command{.run = [args, &global] {
-    if (args->check) {
-      const Image map = loadImage(args->input);
-      NormalMapReport report;
-      prepareNormalMap(map, args->input, args->objectSpace ? NormalSpace::Object : NormalSpace::Tangent, &report);
-      fmt::print("{}: {}x{} {} {}-channel {} normal map; mean vector length {:.3f}, {:.1f}% pointing out{}\n",
-                 args->input, map.width(), map.height(), pixelTypeName(map.type()), map.channels(),
-                 args->objectSpace ? "object-space" : "tangent-space", report.meanLength, 100.0 * report.outwardFraction,
-                 report.conversion.empty() ? "" : "; " + report.conversion);
-      return 0;
-    }
-    if (args->output.empty()) fail(ErrorKind::Usage, "normalmap needs -o OUTPUT (or --check)");
-    if (!std::isfinite(args->scale)) fail(ErrorKind::Usage, "--scale must be a finite number");
-    if (!args->format.empty() && args->output != "-") {
-      fail(ErrorKind::Usage, "--format is for -o - (stdout); a file's format follows its extension");
-    }
-    checkDistinctFiles({{args->input, "the height map"}}, {{args->output, "-o"}});
-    checkImageOutput(args->output, args->format);  // fail before working, not after
-    const Image input = loadImage(args->input);
-    if (input.channels() >= 3) {
-      log::warn("{} has {} channels; using its luminance (0.2126 R + 0.7152 G + 0.0722 B) as the height", args->input,
-                input.channels());
-      if (looksLikeNormalMap(input))
-        log::warn("{} already looks like a normal map (its colours decode to unit vectors pointing out); the result "
-                  "will not mean much", args->input);
-    } else if (input.channels() == 2) {
-      log::info("{} has gray + alpha; using the gray channel as the height", args->input);
-    }
-    const NormalMapOptions options{.scale = args->scale,
-                                   .wrap = args->wrap,
-                                   .formula = args->formula == "slide" ? NormalFormula::Slide : NormalFormula::Gradient};
-    Image normals;
-    if (args->gpu) {
-      scenes::ContextPool contexts(global.glDebug);
-      contexts.use(gl::Profile::Core);
-      normals = render::bump::heightToNormalMapGpu(input, options);
-    } else {
-      normals = heightToNormalMap(input, options);
-    }
-    // RGB, the three components of the normal; RGBA carrying the input's alpha when it has one.
-    const bool alpha = input.channels() == 2 || input.channels() == 4;
-    Image written = normals.withChannels(alpha ? 4 : 3);
-    if (alpha) {
-      for (int y = 0; y < input.height(); ++y)
-        for (int x = 0; x < input.width(); ++x) written.set(x, y, 3, input.at(x, y, input.channels() - 1));
-    }
-    saveImage(written, args->output, args->format);
-    log::info("{} ({}x{}, {}) → {} ({} normals, scale {}{})", args->input, input.width(), input.height(),
-              pixelTypeName(input.type()), args->output, args->gpu ? "GPU" : "CPU", args->scale,
-              args->wrap ? ", wrapped" : "");
-    return 0;
-  }};
+  return Command{.run = [args, &global] { return args->check ? checkNormalMap(*args) : makeNormalMap(*args, global); }};
 }
 
 }  // namespace glint::app

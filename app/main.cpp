@@ -21,6 +21,28 @@ namespace glint::app {
 #include "commands.inc"
 #undef GLINT_COMMAND
 
+namespace {
+// Runs the chosen command: a glint::Error becomes its one-line message and its exit status.
+int run(const Command& command) {
+  try {
+    // OpenImageIO is a module of ~260 libraries (~0.3 s to load): commands that touch
+    // images load it on the second core while they parse meshes or set up GL.
+    if (command.readsImages) preloadImageIo();
+    return command.run();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "glint: %s\n", e.what());
+    return exitCode(e.kind());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "glint: out of memory: the job needed more than this machine could give (a smaller job, or "
+                 "--max-memory to be told before it starts)\n");
+    return exitCode(ErrorKind::OutOfMemory);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "glint: internal error: %s\n", e.what());
+    return 1;
+  }
+}
+}  // namespace
+
 }  // namespace glint::app
 
 int main(int argc, char** argv) {
@@ -72,24 +94,6 @@ int main(int argc, char** argv) {
     return exitCode(ErrorKind::Usage);
   }
   log::setLevel(global.verbose ? log::Level::Debug : global.quiet ? log::Level::Warn : log::Level::Info);
-  try {
-    for (CLI::App* sub : cli.get_subcommands()) {
-      const app::Command& command = byName.at(sub);
-      // OpenImageIO is a module of ~260 libraries (~0.3 s to load): commands that touch
-      // images load it on the second core while they parse meshes or set up GL.
-      if (command.readsImages) preloadImageIo();
-      return command.run();
-    }
-  } catch (const Error& e) {
-    std::fprintf(stderr, "glint: %s\n", e.what());
-    return exitCode(e.kind());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "glint: out of memory: the job needed more than this machine could give (a smaller job, or "
-                 "--max-memory to be told before it starts)\n");
-    return exitCode(ErrorKind::OutOfMemory);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "glint: internal error: %s\n", e.what());
-    return 1;
-  }
+  for (CLI::App* sub : cli.get_subcommands()) return app::run(byName.at(sub));
   return 0;
 }
