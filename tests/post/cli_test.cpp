@@ -193,19 +193,8 @@ TEST(PostCli, CtrlCFinishesAPlayablePartialVideo) {
     _exit(127);
   }
   // Wait until frames are being written (the temporary file grows), then Ctrl-C.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  bool writing = false;
-  while (!writing && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    for (const auto& e : fs::directory_iterator(d))
-      if (e.path().filename().string().starts_with(".live.tmp") && e.file_size() > 20000) writing = true;
-  }
-  ASSERT_TRUE(writing) << "glint post never started writing";
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  ASSERT_TRUE(glint::testing::waitUntilWriting(d, ".live.tmp", 20000)) << "glint post never started writing";
+  EXPECT_EQ(glint::testing::interruptAndWait(pid), 130);
   ASSERT_TRUE(fs::exists(out)) << "the partial video is finished and put in place";
   const auto report = readJson(json);
   EXPECT_EQ(report["partial"], true);

@@ -39,14 +39,11 @@
 
 namespace fs = std::filesystem;
 using namespace glint;
-using glint::testing::oneLine;
-using glint::testing::readBytes;
-using glint::testing::runGlint;
-using glint::testing::runShell;
+using namespace glint::testing;
 
 namespace {
 
-constexpr auto q = glint::testing::shellQuote;
+constexpr auto q = shellQuote;
 
 fs::path dir(const std::string& name) { return glint::testing::freshDir("trust", name); }
 
@@ -247,11 +244,7 @@ TEST(TrustFarm, CtrlCStopsFollowingAndSaysTheJobsGoOn) {
   for (int i = 0; i < 300 && readBytes(log).find("submitted") == std::string::npos; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130) << readBytes(log);
+  EXPECT_EQ(glint::testing::interruptAndWait(pid), 130) << readBytes(log);
   EXPECT_NE(readBytes(log).find("the jobs keep running"), std::string::npos) << readBytes(log);
   // They do: following again finishes the job.
   const auto r = glintIn(d, "farm post clip.mkv -o out.mkv --codec ffv1 -e kuwahara --chunks 2 --scheduler local --wait");
@@ -279,23 +272,27 @@ TEST(TrustOutputs, AFullDiskLeavesEveryOutputOfTheRunAsItWas) {
   SmallDisk disk(d / "disk", 1 << 20);
   NEED_ROOT_MOUNT(disk);
   const fs::path out = disk.dir();
+  // The run again with `files` (path → old bytes) in place and `free` bytes left on the
+  // disk: exit 4, one line saying so, every file as it was, no temporary left.
+  const auto expectRefused = [&](const std::string& command, const std::map<fs::path, std::string>& files,
+                                 std::uintmax_t free) {
+    for (const auto& [path, bytes] : files) std::ofstream(path) << bytes;
+    disk.leave(free);
+    const auto full = runGlint(command);
+    EXPECT_EQ(full.status, 4) << full.output;
+    EXPECT_NE(full.output.find("no space left on device"), std::string::npos) << full.output;
+    for (const auto& [path, bytes] : files) EXPECT_EQ(readBytes(path), bytes) << path;
+    EXPECT_EQ(temporaries(out), 0);
+    fs::remove(out / "filler");
+    return full;
+  };
 
   // cut, two outputs: the second does not fit; the first is not replaced either.
   bake::writeObj(makeTorus(1.0f, 0.35f, 48, 24), d / "room.obj");
   const std::string cut = "-q cut " + q(d / "room.obj") + " --light 0,3,0 -o " + q(out / "c.glb") + " -o " + q(out / "c.ply");
   ASSERT_EQ(runGlint(cut).status, 0);
   const auto glb = fs::file_size(out / "c.glb"), ply = fs::file_size(out / "c.ply");
-  std::ofstream(out / "c.glb") << "old glb";
-  std::ofstream(out / "c.ply") << "old ply";
-  disk.leave(glb + ply / 2 + 8192);
-  const auto full = runGlint(cut);
-  EXPECT_EQ(full.status, 4) << full.output;
-  EXPECT_TRUE(oneLine(full.output)) << full.output;
-  EXPECT_NE(full.output.find("no space left on device"), std::string::npos) << full.output;
-  EXPECT_EQ(readBytes(out / "c.glb"), "old glb");
-  EXPECT_EQ(readBytes(out / "c.ply"), "old ply");
-  EXPECT_EQ(temporaries(out), 0);
-  fs::remove(out / "filler");
+  EXPECT_TRUE(oneLine(expectRefused(cut, {{out / "c.glb", "old glb"}, {out / "c.ply", "old ply"}}, glb + ply / 2 + 8192).output));
 
   // bake, a PNG and an EXR map.
   bake::writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
@@ -304,16 +301,7 @@ TEST(TrustOutputs, AFullDiskLeavesEveryOutputOfTheRunAsItWas) {
                               q(out / "n.png") + " --ao " + q(out / "ao.exr") + " --ao-samples 2";
   ASSERT_EQ(runGlint(bakeCmd).status, 0);
   const auto png = fs::file_size(out / "n.png"), exr = fs::file_size(out / "ao.exr");
-  std::ofstream(out / "n.png") << "old png";
-  std::ofstream(out / "ao.exr") << "old exr";
-  disk.leave(std::min(png, exr) + 4096);
-  const auto bakeFull = runGlint(bakeCmd);
-  EXPECT_EQ(bakeFull.status, 4) << bakeFull.output;
-  EXPECT_NE(bakeFull.output.find("no space left on device"), std::string::npos) << bakeFull.output;
-  EXPECT_EQ(readBytes(out / "n.png"), "old png");
-  EXPECT_EQ(readBytes(out / "ao.exr"), "old exr");
-  EXPECT_EQ(temporaries(out), 0);
-  fs::remove(out / "filler");
+  expectRefused(bakeCmd, {{out / "n.png", "old png"}, {out / "ao.exr", "old exr"}}, std::min(png, exr) + 4096);
 
   // post, a video and its --json report: the video fits, the report does not.
   makeClip(d / "clip.mkv", 1);
@@ -321,16 +309,7 @@ TEST(TrustOutputs, AFullDiskLeavesEveryOutputOfTheRunAsItWas) {
                            q(out / "r.json");
   ASSERT_EQ(runGlint(post).status, 0);
   const auto video = fs::file_size(out / "v.mkv");
-  std::ofstream(out / "v.mkv") << "old video";
-  std::ofstream(out / "r.json") << "{}";
-  disk.leave((video + 4095) / 4096 * 4096);
-  const auto postFull = runGlint(post);
-  EXPECT_EQ(postFull.status, 4) << postFull.output;
-  EXPECT_NE(postFull.output.find("no space left on device"), std::string::npos) << postFull.output;
-  EXPECT_EQ(readBytes(out / "v.mkv"), "old video");
-  EXPECT_EQ(readBytes(out / "r.json"), "{}");
-  EXPECT_EQ(temporaries(out), 0);
-  fs::remove(out / "filler");
+  expectRefused(post, {{out / "v.mkv", "old video"}, {out / "r.json", "{}"}}, (video + 4095) / 4096 * 4096);
 
   // render, a clip that does not fit.
   disk.leave(64 * 1024);
@@ -357,18 +336,8 @@ TEST(TrustOutputs, CtrlCOverAnExistingVideoWritesThePartialBesideIt) {
           static_cast<char*>(nullptr));
     _exit(127);
   }
-  bool writing = false;
-  for (int i = 0; i < 600 && !writing; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    for (const auto& e : fs::directory_iterator(d))
-      if (e.path().filename().string().starts_with(".graded.tmp") && e.file_size() > 100000) writing = true;
-  }
-  ASSERT_TRUE(writing) << "glint post never started writing";
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  ASSERT_TRUE(glint::testing::waitUntilWriting(d, ".graded.tmp", 100000)) << "glint post never started writing";
+  EXPECT_EQ(glint::testing::interruptAndWait(pid), 130);
   EXPECT_TRUE(readBytes(out) == complete) << "the complete video was replaced by a part";
   EXPECT_TRUE(fs::exists(d / "graded.partial.mkv"));
   EXPECT_NE(readBytes(log).find("'" + out.string() + "' was left as it was"), std::string::npos) << readBytes(log);
@@ -385,7 +354,7 @@ TEST(TrustColour, FloatImagesComeBackLinear) {
     for (int x = 0; x < ramp.width(); ++x)
       for (int c = 0; c < 3; ++c) ramp.set(x, y, c, c == 0 ? 0.2f : c == 1 ? float(x) / 16.0f : float(y) / 31.0f);
   saveImage(ramp, d / "in.exr");
-  for (const fs::path input : {d / "in.exr", fs::path(GLINT_SOURCE_DIR) / "data/env/city.exr"}) {
+  for (const fs::path& input : {d / "in.exr", fs::path(GLINT_SOURCE_DIR) / "data/env/city.exr"}) {
     if (!fs::exists(input)) continue;
     const fs::path output = d / ("out-" + input.filename().string());
     const auto r = runGlint("-q post " + q(input) + " -o " + q(output) + " -e blur:sigma=0.001");

@@ -155,19 +155,8 @@ TEST(RenderClip, CtrlCLeavesAnExistingFileAsItWas) {
     _exit(127);
   }
   // Wait until frames are being written (the temporary file grows), then Ctrl-C.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  bool writing = false;
-  while (!writing && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    for (const auto& e : fs::directory_iterator(d))
-      if (e.path().filename().string().starts_with(".clip.tmp") && e.file_size() > 20000) writing = true;
-  }
-  ASSERT_TRUE(writing) << "glint render never started writing";
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  ASSERT_TRUE(glint::testing::waitUntilWriting(d, ".clip.tmp", 20000)) << "glint render never started writing";
+  EXPECT_EQ(glint::testing::interruptAndWait(pid), 130);
   EXPECT_EQ(readBytes(out), "the previous clip") << "the existing file is untouched";
   EXPECT_EQ(fileCount(d), 1u) << "no temporary file left";
 }

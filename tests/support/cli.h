@@ -4,11 +4,14 @@
 // of the built glint) and depend on the glint target.
 #include <sys/wait.h>
 
+#include <csignal>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 namespace glint::testing {
 
@@ -79,5 +82,27 @@ inline std::string shellQuote(const std::filesystem::path& p) {
 
 /// glint's errors are exactly one line.
 inline bool oneLine(const std::string& s) { return !s.empty() && s.find('\n') == s.size() - 1; }
+
+/// Waits (up to `seconds`) until a file in `dir` whose name starts with `prefix` (a
+/// tool's temporary output, ".clip.tmp") holds more than `bytes`: the run is writing.
+inline bool waitUntilWriting(const std::filesystem::path& dir, const std::string& prefix, std::uintmax_t bytes,
+                             int seconds = 60) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+      if (e.path().filename().string().starts_with(prefix) && e.file_size(ec) > bytes) return true;
+  }
+  return false;
+}
+
+/// Ctrl-C to a child process, and its exit status once it has ended (-1: killed by a signal).
+inline int interruptAndWait(pid_t pid) {
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
 
 }  // namespace glint::testing
