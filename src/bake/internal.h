@@ -29,3 +29,10 @@ vec3 detailNormal(const HeightDetail& detail, vec2 uv);
 vec3 combineDetail(const vec3& base, const vec3& detail);
 
 }  // namespace glint::bake::detail
+
+namespace glint::bake {
+/// frameLowPoly's last steps (bake/asset.h), in place: unit normals, then MikkTSpace
+/// tangents; returns the vertices added. prepareInputs and the asset share it, so the
+/// asset's tangents are the frames the baker encoded against.
+std::size_t frameLowPolyInPlace(Mesh& low);
+}  // namespace glint::bake

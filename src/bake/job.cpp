@@ -3,6 +3,7 @@
 // finishes: all of a bake's maps or none), the report filled.
 #include "glint/bake/job.h"
 
+#include "glint/bake/asset.h"
 #include "glint/bake/baker.h"
 #include "glint/bake/groups.h"
 #include "glint/bake/output.h"
@@ -26,6 +27,8 @@
 #include <functional>
 #include <future>
 #include <iterator>
+#include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -189,6 +192,12 @@ void addOptions(CLI::App& cmd, BakeJob& a, Meshes meshes) {
     if (m.map == Map::Normal) continue;
     cmd.add_option(std::string("--") + m.name, a.maps[std::size_t(m.map)], m.help)->type_name(kFile);
   }
+  cmd.add_option("--asset", a.asset, "The low poly with its maps as a glTF asset (.glb, or .gltf with everything "
+                 "inside): MikkTSpace tangents, the normal map (OpenGL +Y) and AO wired into a PBR material, the "
+                 "other maps as images named in its extras; one material per UDIM tile or bake group")
+      ->type_name(kFile);
+  cmd.add_option("--preview", a.preview, "A folder for a web page that shows the bake on its model (orbit, a "
+                 "toggle per map); opens offline, from disk or any web server")->type_name("DIR");
   cmd.add_option("--low-suffix", a.lowSuffix, "Bake groups: low parts are named <group><suffix>")->capture_default_str();
   cmd.add_option("--high-suffix", a.highSuffix, "Bake groups: high parts are named <group><suffix> or "
                  "<group><suffix>_*")->capture_default_str();
@@ -241,11 +250,105 @@ std::vector<FileUse> outputFiles(const BakeJob& a) {
   std::vector<FileUse> files{{a.output, "-o"}};
   for (const MapInfo& m : mapTable())
     if (m.map != Map::Normal) files.push_back({a.path(m.map), std::string("--") + m.name});
+  files.push_back({a.asset, "--asset"});
+  if (!a.preview.empty())
+    for (const std::string& f : previewFiles()) files.push_back({fs::path(a.preview) / f, "--preview"});
   files.push_back({a.tool.json, "--json"});
   return files;
 }
 
 namespace {
+
+/// --asset and --preview: a glTF file name, a tangent-space bake, places that can be written.
+void checkAssetOptions(const BakeJob& a) {
+  if (a.asset.empty() && a.preview.empty()) return;
+  if (a.space != "tangent") {
+    fail(ErrorKind::Usage, "--asset and --preview hold a tangent-space normal map (glTF's normalTexture): they need "
+         "--space tangent, got {}", a.space);
+  }
+  if (!a.asset.empty()) {
+    std::string ext = fs::path(a.asset).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".glb" && ext != ".gltf") fail(ErrorKind::Usage, "--asset '{}': a glTF asset ends in .glb or .gltf", a.asset);
+    if (hasUdimToken(a.asset)) fail(ErrorKind::Usage, "--asset '{}': one asset holds every UDIM tile; name it without <UDIM>", a.asset);
+    checkWritable(a.asset);
+  }
+  if (!a.preview.empty()) {
+    std::error_code ec;
+    const fs::path dir(a.preview);
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+      fail(ErrorKind::Output, "--preview '{}' is a file, not a folder", a.preview);
+    checkWritable(fs::is_directory(dir, ec) ? dir / "index.html" : dir);
+  }
+}
+
+/// The bake's maps as an asset holds them: 8-bit as an 8-bit file would, the normal map in
+/// OpenGL's +Y convention whatever --directx did to the loose file.
+std::shared_ptr<const AssetMaps> assetMaps(const BakeJob& a, const BakeResult& result) {
+  auto maps = std::make_shared<AssetMaps>();
+  Image normal = result.normal.type() == PixelType::U8 ? result.normal : result.normal.converted(PixelType::U8);
+  if (a.directX) {
+    auto px = normal.pixels<std::uint8_t>();
+    for (std::size_t i = 1; i < px.size(); i += std::size_t(normal.channels())) px[i] = std::uint8_t(255 - px[i]);
+  }
+  (*maps)[std::size_t(Map::Normal)] = std::move(normal);
+  for (const MapInfo& m : mapTable())
+    if (m.map != Map::Normal && !a.path(m.map).empty())
+      (*maps)[std::size_t(m.map)] = m.forOutput(result.map(m.map), PixelType::U8, result.stats);
+  return maps;
+}
+
+/// One tile's low poly as baked (result.low: its tangents, its split vertices) into the
+/// asset: one part per bake group (`groupOf`: a triangle's group, empty for none), each its
+/// own material named "<tile> <group>", sharing the tile's maps.
+void addToAsset(Asset& asset, const Mesh& low, std::shared_ptr<const AssetMaps> maps, const std::string& tile,
+                const std::function<std::string(std::size_t)>& groupOf) {
+  std::map<std::string, std::vector<std::uint32_t>> groups;  // group -> triangles
+  for (std::size_t t = 0; t < low.triangleCount(); ++t) groups[groupOf ? groupOf(t) : std::string()].push_back(std::uint32_t(t));
+  for (const auto& [group, triangles] : groups) {
+    AssetPart part;
+    part.material = int(asset.materials.size());
+    std::string name = tile;
+    if (!group.empty()) name = name.empty() ? group : tile + " " + group;
+    asset.materials.push_back({name.empty() ? asset.name : name, maps});
+    std::vector<std::uint32_t> remap(low.vertexCount(), UINT32_MAX);
+    Mesh& m = part.mesh;
+    for (const std::uint32_t t : triangles)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = low.indices[3 * std::size_t(t) + std::size_t(k)];
+        if (remap[v] == UINT32_MAX) {
+          remap[v] = std::uint32_t(m.positions.size());
+          m.positions.push_back(low.positions[v]);
+          m.normals.push_back(low.normals[v]);
+          m.uvs.push_back(low.uvs[v]);
+          m.tangents.push_back(low.tangents[v]);
+        }
+        m.indices.push_back(remap[v]);
+      }
+    asset.parts.push_back(std::move(part));
+  }
+}
+
+/// --asset and --preview, staged with the maps; their part of the report.
+void writeAsset(const BakeJob& a, Asset& asset, ToolRun& run) {
+  ToolRun::Phase writing(run, "asset");
+  Json& report = run.report();
+  asset.extras = {{"low", fs::path(a.low).filename().string()}, {"high", fs::path(a.high).filename().string()},
+                  {"size", a.size}, {"samples", a.samples}, {"maps", report["maps"]}};
+  if (report.contains("hard_edge_vertices")) asset.extras["hard_edge_vertices"] = report["hard_edge_vertices"];
+  if (!a.asset.empty()) {
+    saveAsset(asset, a.asset);
+    report["asset"] = a.asset;
+  }
+  if (!a.preview.empty()) {
+    savePreview(asset, a.preview);
+    report["preview"] = (fs::path(a.preview) / "index.html").string();
+  }
+  std::size_t triangles = 0;
+  for (const AssetPart& p : asset.parts) triangles += p.mesh.triangleCount();
+  report["asset_materials"] = asset.materials.size();
+  report["asset_triangles"] = triangles;
+}
 
 /// What checkBake worked out for runBake.
 struct BakePlan {
@@ -298,6 +401,7 @@ BakePlan prepare(const BakeJob& a, ToolRun& run) {
     fail(ErrorKind::Usage, "--bits {}: no map of this bake is in a format with {}-bit channels (PNG 8/16, TGA 8, TIFF "
          "8/16, EXR 32 float)", a.bits, a.bits);
   }
+  checkAssetOptions(a);
   if (!a.tool.json.empty() && a.tool.json != "-") outputs.push_back(a.tool.json);
   for (const auto& path : outputs) checkWritable(path);
   run.checkMemory(estimateMemoryMiB(a), fmt::format("a {}x{} bake", plan.size.x, plan.size.y));
@@ -453,18 +557,31 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
   if (match.grouped()) report.update(toJson(match));
   Json tileReports = Json::array();
   const std::string label = options.progressLabel;
+  const bool wantsAsset = !a.asset.empty() || !a.preview.empty();
+  Asset asset;
+  asset.name = fs::path(a.low).stem().string();
   for (const UdimTile& tile : tiles) {
     const auto file = [&](const std::string& path) { return udim ? udimPath(path, tile.number) : path; };
     if (udim) options.progressLabel = fmt::format("{} tile {}", label, tile.number);
     if (udim && wholeCage) options.cage = tileCage(tile);
     BakeResult result;
+    GroupMatch tileMatch;
     if (udim && lowParts) {  // the tile's parts, matched as the whole low poly's were
       const MeshParts parts = tileParts(tile);
-      result = bake(parts, *highParts, matchGroups(parts, *highParts, naming), options);
+      tileMatch = matchGroups(parts, *highParts, naming);
+      result = bake(parts, *highParts, tileMatch, options);
     } else if (highParts) {
       result = bake(lowParts ? *lowParts : MeshParts{.mesh = tile.low}, *highParts, match, options);
     } else {
       result = bake(tile.low, *high, options);
+    }
+    if (wantsAsset) {  // the tile as baked, its groups apart
+      const GroupMatch& m = udim ? tileMatch : match;
+      const auto groupOf = [&m](std::size_t t) {
+        const std::uint32_t g = m.grouped() ? m.lowTriangleGroup[t] : GroupMatch::kNone;
+        return g == GroupMatch::kNone ? std::string() : m.groups[g].name;
+      };
+      addToAsset(asset, result.low, assetMaps(a, result), udim ? std::to_string(tile.number) : std::string(), groupOf);
     }
     const BakeStats& s = result.stats;
     run.addSeconds("prepare", s.prepareSeconds);
@@ -501,6 +618,7 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
     run.throwIfInterrupted();
   }
   if (udim) report["udim_tiles"] = std::move(tileReports);
+  if (wantsAsset) writeAsset(a, asset, run);
 }
 
 }  // namespace glint::bake

@@ -125,14 +125,8 @@ Prepared prepareInputs(const Mesh& low, const Mesh& high, const BakeOptions& opt
                                stats.hardEdgeVertices));
   }
 
-  // Unit vertex normals: the renderer normalizes them per vertex before interpolating
-  // (render/bump/normal_mapping.h), so the baker's frame must start from the same vectors.
-  for (vec3& n : p.low.normals) {
-    const float len = glm::length(n);
-    n = len > 0.0f ? n / len : vec3(0.0f, 0.0f, 1.0f);
-  }
   p.originalIndices = p.low.indices;
-  stats.addedVertices = generateTangents(p.low);
+  stats.addedVertices = frameLowPolyInPlace(p.low);  // unit normals, MikkTSpace tangents
   return p;
 }
 

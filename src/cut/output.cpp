@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/text.h"
+#include "glint/mesh/gltf.h"
 
 #include "lights.h"
 
@@ -123,46 +124,6 @@ nlohmann::json primitiveExtras(LightMask mask, const std::vector<Light>& lights)
   return {{"light_mask", mask}, {"lit_by", litBy}};
 }
 
-/// The buffer as base64 text, written in pieces (a .gltf's embedded buffer).
-void writeBase64(std::ostream& out, const std::vector<unsigned char>& data) {
-  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  constexpr std::size_t kPiece = 3 << 14;
-  for (std::size_t start = 0; start < data.size(); start += kPiece) {
-    text.clear();
-    const std::size_t end = std::min(data.size(), start + kPiece);
-    for (std::size_t i = start; i < end; i += 3) {
-      const std::size_t n = std::min<std::size_t>(3, end - i);
-      const std::uint32_t v = std::uint32_t(data[i]) << 16 | (n > 1 ? std::uint32_t(data[i + 1]) << 8 : 0u) |
-                              (n > 2 ? std::uint32_t(data[i + 2]) : 0u);
-      text += kDigits[(v >> 18) & 63];
-      text += kDigits[(v >> 12) & 63];
-      text += n > 1 ? kDigits[(v >> 6) & 63] : '=';
-      text += n > 2 ? kDigits[v & 63] : '=';
-    }
-    out.write(text.data(), std::streamsize(text.size()));
-  }
-}
-
-/// A .glb: the header, the JSON chunk (padded with spaces) and the binary chunk (padded with
-/// zeros), all lengths little-endian.
-void writeGlb(std::ostream& out, std::string json, const std::vector<unsigned char>& bin, const std::filesystem::path& path) {
-  static_assert(std::endian::native == std::endian::little, "GLB is written little-endian");
-  json.resize((json.size() + 3) / 4 * 4, ' ');
-  const std::size_t binPadded = (bin.size() + 3) / 4 * 4;
-  const std::size_t total = 12 + 8 + json.size() + (bin.empty() ? 0 : 8 + binPadded);
-  if (total > 0xFFFFFFFFu) fail(ErrorKind::Output, "cannot write '{}': {} bytes do not fit a .glb (4 GiB at most)", path.string(), total);
-  const std::uint32_t header[5] = {0x46546C67u /* glTF */, 2u, std::uint32_t(total), std::uint32_t(json.size()),
-                                   0x4E4F534Au /* JSON */};
-  out.write(reinterpret_cast<const char*>(header), sizeof header);
-  out.write(json.data(), std::streamsize(json.size()));
-  if (bin.empty()) return;
-  const std::uint32_t chunk[2] = {std::uint32_t(binPadded), 0x004E4942u /* BIN */};
-  out.write(reinterpret_cast<const char*>(chunk), sizeof chunk);
-  out.write(reinterpret_cast<const char*>(bin.data()), std::streamsize(bin.size()));
-  out.write("\0\0\0", std::streamsize(binPadded - bin.size()));
-}
-
 /// The lights as KHR_lights_punctual point lights, each on a node of `scene`.
 void addLights(tinygltf::Model& model, tinygltf::Scene& scene, const std::vector<Light>& lights) {
   for (std::size_t l = 0; l < lights.size(); ++l) {
@@ -225,27 +186,7 @@ void saveGltf(const CutMesh& mesh, const std::vector<Light>& lights, const std::
   if (gltf.is_discarded() || gltf["meshes"][0]["primitives"].size() != extras.size())
     fail(ErrorKind::Output, "cannot write '{}': tinygltf's JSON is not the model's", path.string());
   for (std::size_t i = 0; i < extras.size(); ++i) gltf["meshes"][0]["primitives"][i]["extras"] = extras[i];
-  // A .gltf embeds its buffer (one file, so the write stays atomic) where this stands: the
-  // first string of the JSON that can hold it ("accessors", "asset" and "bufferViews", the
-  // keys before "buffers", hold none that is given).
-  constexpr std::string_view kHole = "\"glint-cut: the buffer goes here\"";
-  gltf["buffers"] = nlohmann::json::array({{{"byteLength", bin.size()}}});
-  if (!binary) gltf["buffers"][0]["uri"] = std::string(kHole.substr(1, kHole.size() - 2));
-  const std::string json = gltf.dump();
-  const std::size_t hole = json.find(kHole);
-  if (!binary && hole == std::string::npos) fail(ErrorKind::Output, "cannot write '{}': no place for the buffer", path.string());
-  writeAtomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    if (binary) {
-      writeGlb(out, json, bin, path);
-    } else {
-      out.write(json.data(), std::streamsize(hole + 1));
-      out << "data:application/octet-stream;base64,";
-      writeBase64(out, bin);
-      out.write(json.data() + hole + kHole.size() - 1, std::streamsize(json.size() - hole - kHole.size() + 1));
-    }
-    if (!out) fail(ErrorKind::Output, "cannot write '{}'", path.string());
-  });
+  gltf::saveFile(path, std::move(gltf), bin, binary);  // one file either way: the write stays atomic
 }
 
 void savePly(const CutMesh& mesh, const std::vector<Light>& lights, const std::filesystem::path& path) {

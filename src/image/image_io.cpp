@@ -24,6 +24,8 @@
 #include <cerrno>
 #include <cstdint>
 #include <exception>
+#include <functional>
+#include <cstdlib>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -182,14 +184,10 @@ constexpr std::size_t kErrorSize = 1024;
 constexpr int kPngLevel = 4;
 constexpr int kPngFilter = SPNG_FILTER_CHOICE_UP;
 
-void writePng(const Image& image, const fs::path& path, const fs::path& tmp) {
-  const auto check = [&](int status) {
-    if (status != 0) fail(ErrorKind::Output, "cannot write '{}': {}", path.string(), spng_strerror(status));
-  };
+/// An spng encoder set up for `image` (8 or 16 bits, 1 to 4 channels) at glint's settings.
+std::unique_ptr<spng_ctx, decltype(&spng_ctx_free)> pngEncoder(const Image& image, const std::function<void(int)>& check) {
   std::unique_ptr<spng_ctx, decltype(&spng_ctx_free)> ctx(spng_ctx_new(SPNG_CTX_ENCODER), &spng_ctx_free);
   if (!ctx) throw std::bad_alloc();
-  std::unique_ptr<std::FILE, decltype(&std::fclose)> file(std::fopen(tmp.c_str(), "wb"), &std::fclose);
-  if (!file) fail(ErrorKind::Output, "cannot write '{}': {}", path.string(), std::strerror(errno));
   const bool wide = image.type() == PixelType::U16;
   static constexpr std::uint8_t kColorTypes[] = {SPNG_COLOR_TYPE_GRAYSCALE, SPNG_COLOR_TYPE_GRAYSCALE_ALPHA,
                                                  SPNG_COLOR_TYPE_TRUECOLOR, SPNG_COLOR_TYPE_TRUECOLOR_ALPHA};
@@ -201,6 +199,16 @@ void writePng(const Image& image, const fs::path& path, const fs::path& tmp) {
   check(spng_set_ihdr(ctx.get(), &ihdr));
   check(spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_LEVEL, kPngLevel));
   check(spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, kPngFilter));
+  return ctx;
+}
+
+void writePng(const Image& image, const fs::path& path, const fs::path& tmp) {
+  const auto check = [&](int status) {
+    if (status != 0) fail(ErrorKind::Output, "cannot write '{}': {}", path.string(), spng_strerror(status));
+  };
+  auto ctx = pngEncoder(image, check);
+  std::unique_ptr<std::FILE, decltype(&std::fclose)> file(std::fopen(tmp.c_str(), "wb"), &std::fclose);
+  if (!file) fail(ErrorKind::Output, "cannot write '{}': {}", path.string(), std::strerror(errno));
   check(spng_set_png_file(ctx.get(), file.get()));
   // SPNG_FMT_PNG takes 16-bit samples in host byte order and swaps them itself.
   const std::span<const std::byte> bytes = image.bytes();
@@ -209,6 +217,31 @@ void writePng(const Image& image, const fs::path& path, const fs::path& tmp) {
   if (std::fclose(f) != 0) fail(ErrorKind::Output, "cannot write '{}': {}", path.string(), std::strerror(errno));
 }
 }  // namespace
+
+std::vector<unsigned char> encodePng(const Image& image) {
+  if (image.empty()) fail(ErrorKind::Internal, "encodePng: an empty image");
+  const Image* toEncode = &image;
+  Image wide;
+  if (image.type() == PixelType::F32) {
+    wide = image.converted(PixelType::U16);
+    toEncode = &wide;
+  }
+  const auto check = [](int status) {
+    if (status != 0) fail(ErrorKind::Internal, "cannot encode a PNG: {}", spng_strerror(status));
+  };
+  auto ctx = pngEncoder(*toEncode, check);
+  check(spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1));
+  const std::span<const std::byte> bytes = toEncode->bytes();
+  check(spng_encode_image(ctx.get(), bytes.data(), bytes.size(), SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE));
+  std::size_t size = 0;
+  int status = 0;
+  void* buffer = spng_get_png_buffer(ctx.get(), &size, &status);
+  check(status);
+  if (!buffer) throw std::bad_alloc();
+  std::vector<unsigned char> png(static_cast<unsigned char*>(buffer), static_cast<unsigned char*>(buffer) + size);
+  std::free(buffer);
+  return png;
+}
 
 void preloadImageIo() { theModule().preload(); }
 

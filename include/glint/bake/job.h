@@ -46,6 +46,9 @@ struct BakeJob {
   std::string low, high, output, size = "1024x1024", space = "tangent", worldMatrix;
   std::string maxFront = "5%", maxRear = "5%", aoDistance = "10%", thicknessDistance = "10%", curvatureRadius = "1%";
   std::string cage, detail;
+  /// `--asset`: the low poly with its maps as a glTF asset (.glb, or .gltf with the buffer
+  /// embedded; bake/asset.h); `--preview`: a folder for the web page that shows it.
+  std::string asset, preview;
   /// Each extra map's file, by bake/maps.h's Map (`--ao`, `--curvature`, ...); empty: not
   /// baked. maps[Map::Normal] is unused: the normal map is `output`.
   std::array<std::string, kMapCount> maps;

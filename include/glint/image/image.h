@@ -97,6 +97,10 @@ Image loadImage(const std::filesystem::path& path);
 /// written.
 void saveImage(const Image& image, const std::filesystem::path& path, std::string_view format = {});
 
+/// The image as the bytes of a PNG file, encoded as saveImage writes one (8-bit stays 8-bit,
+/// 16-bit 16; float becomes 16-bit), for files that hold images inside them (a glTF asset).
+std::vector<unsigned char> encodePng(const Image& image);
+
 /// The checks a command makes before working on an image it will write: Error(Usage) when
 /// the extension names no image format glint writes (.png .jpg .jpeg .tga .tif .tiff .exr
 /// .hdr .bmp .webp .ppm .pgm), Error(Output) when the file cannot be created

@@ -1,0 +1,91 @@
+#pragma once
+// glint/bake/asset.h — a bake as a glTF 2.0 asset (`glint bake --asset OUT.glb`) and as a
+// web page that shows it (`glint bake --preview DIR`): the low poly with the baker's own
+// MikkTSpace tangents and its maps wired into a PBR material, so the bake can be seen where
+// it will be used.
+//
+// What the asset holds (docs/bake.md, "The asset"):
+//   - one mesh, one primitive per UDIM tile or bake group, each with its own material;
+//     POSITION, NORMAL, TEXCOORD_0 and TANGENT (xyz the unit MikkTSpace tangent the baker
+//     used, w = ±1 the bitangent sign): three.js and Blender read the tangents from the file
+//     instead of deriving their own, so the map decodes exactly as it was baked;
+//   - the normal map as the material's normalTexture, in OpenGL's convention (+Y, as glTF
+//     requires) whatever --directx did to the loose file; the AO map as its
+//     occlusionTexture (red channel);
+//   - every other map as an 8-bit PNG image with a texture, named in the material's
+//     extras: {"glint_maps": {"curvature": {"texture": 3, "color_space": "linear", ...}}};
+//     colour maps (vertex colour, material ID) are "srgb", data maps "linear".
+// UVs are written as glTF's (u, 1 − v) (image row 0 at the top), UDIM tiles' moved into
+// 0..1, and the tangents with them unchanged, as Blender's glTF exporter writes them.
+//
+/// ```cpp
+/// glint::bake::Asset asset;
+/// asset.name = "crate";
+/// glint::bake::AssetMaterial material;
+/// material.name = "crate";
+/// material.maps = std::make_shared<glint::bake::AssetMaps>();
+/// (*material.maps)[std::size_t(glint::bake::Map::Normal)] = glint::Image(64, 64, 3);  // 8-bit, OpenGL +Y
+/// asset.materials.push_back(material);
+/// glint::Mesh low = glint::makeCube(1.0f);
+/// asset.parts.push_back({glint::bake::frameLowPoly(low), 0});
+/// // glint::bake::saveAsset(asset, "crate.glb");
+/// ```
+#include "glint/bake/maps.h"
+#include "glint/image/image.h"
+#include "glint/mesh/mesh.h"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace glint::bake {
+
+/// A material's maps, by Map: 8-bit images as an 8-bit file of the map holds them (the normal
+/// map in OpenGL's +Y convention); an empty image: not baked.
+using AssetMaps = std::array<Image, kMapCount>;
+
+struct AssetMaterial {
+  std::string name;                         ///< the tile ("1001"), the bake group, or the low poly's name
+  std::shared_ptr<const AssetMaps> maps;    ///< shared by the groups of one bake (one image in the file)
+};
+
+/// Triangles of the low poly that share a material.
+struct AssetPart {
+  Mesh mesh;         ///< positions, unit normals, UVs in 0..1 (v up), MikkTSpace tangents (frameLowPoly)
+  int material = 0;  ///< index into Asset::materials
+};
+
+struct Asset {
+  std::string name;                     ///< the node's and the mesh's name (the low poly's file name)
+  std::vector<AssetMaterial> materials;
+  std::vector<AssetPart> parts;
+  nlohmann::json extras = nlohmann::json::object();  ///< the asset's "extras.glint_bake": what was baked, from what
+};
+
+/// The low poly's tangent frame as the baker builds it: smooth normals where it has none,
+/// unit normals, MikkTSpace tangents (vertices split where corners' frames differ).
+/// Error(Input) as generateTangents.
+Mesh frameLowPoly(Mesh low);
+
+/// The asset as a .glb or .gltf (the buffer embedded), written atomically. Error(Usage) for
+/// another extension, Error(Input) for an asset without parts or without a normal map.
+void saveAsset(const Asset& asset, const std::filesystem::path& path);
+
+/// The files `--preview DIR` writes, relative to DIR: the page, its script, the asset as a
+/// .glb and as a script (a page opened from disk, file://, may not fetch a .glb beside it),
+/// and three.js's files.
+std::vector<std::string> previewFiles();
+
+/// A page that shows the asset in a browser, written into `dir` (created): index.html with
+/// orbit controls, a studio light rig and one toggle per map (normal map, AO, each extra map
+/// as a colour, wireframe and UV seams), and three.js (copied from glint's data, where
+/// scripts/setup installs it from npm) beside it, so it opens offline from disk or from any
+/// static web server. Each file is written atomically. Error(Internal) when three.js is not
+/// installed, naming the command that installs it.
+void savePreview(const Asset& asset, const std::filesystem::path& dir);
+
+}  // namespace glint::bake

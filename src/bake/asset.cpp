@@ -1,0 +1,173 @@
+// A bake as a glTF 2.0 asset and a web page that shows it (bake/asset.h).
+#include "glint/bake/asset.h"
+
+#include "glint/core/error.h"
+#include "glint/core/file.h"
+#include "glint/core/locations.h"
+#include "glint/mesh/gltf.h"
+#include "glint/mesh/tangents.h"
+#include "internal.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <utility>
+
+namespace glint::bake {
+
+namespace fs = std::filesystem;
+using AssetJson = nlohmann::json;
+
+std::size_t frameLowPolyInPlace(Mesh& low) {
+  // Unit vertex normals: the renderer normalizes them per vertex before interpolating
+  // (render/bump/normal_mapping.h), so the baker's frame starts from the same vectors.
+  for (vec3& n : low.normals) {
+    const float len = glm::length(n);
+    n = len > 0.0f ? n / len : vec3(0.0f, 0.0f, 1.0f);
+  }
+  return generateTangents(low);
+}
+
+Mesh frameLowPoly(Mesh low) {
+  low.tangents.clear();
+  if (!low.hasNormals()) computeNormals(low);
+  frameLowPolyInPlace(low);
+  return low;
+}
+
+namespace {
+
+/// Maps whose 8-bit pixels are colours to look at (sRGB), not data.
+bool isColour(Map m) { return m == Map::VertexColor || m == Map::MaterialId; }
+
+/// One primitive: the part's vertices (glTF's UVs: v flipped) and triangles.
+AssetJson addPrimitive(gltf::Document& doc, const AssetPart& part) {
+  const Mesh& m = part.mesh;
+  if (m.indices.empty() || !m.hasNormals() || !m.hasUvs() || m.tangents.size() != m.positions.size())
+    fail(ErrorKind::Input, "asset: a part without triangles, normals, UVs or tangents");
+  vec3 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+  for (const vec3& p : m.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  std::vector<vec2> uvs(m.uvs.size());
+  std::transform(m.uvs.begin(), m.uvs.end(), uvs.begin(), [](vec2 uv) { return vec2(uv.x, 1.0f - uv.y); });
+  const std::size_t n = m.positions.size();
+  AssetJson attributes = {
+      {"POSITION", doc.addAccessor(m.positions.data(), n, gltf::kFloat, "VEC3", gltf::kVertices, {lo.x, lo.y, lo.z},
+                                   {hi.x, hi.y, hi.z})},
+      {"NORMAL", doc.addAccessor(m.normals.data(), n, gltf::kFloat, "VEC3", gltf::kVertices)},
+      {"TANGENT", doc.addAccessor(m.tangents.data(), n, gltf::kFloat, "VEC4", gltf::kVertices)},
+      {"TEXCOORD_0", doc.addAccessor(uvs.data(), n, gltf::kFloat, "VEC2", gltf::kVertices)}};
+  const int indices = doc.addAccessor(m.indices.data(), m.indices.size(), gltf::kUnsignedInt, "SCALAR", gltf::kIndices);
+  return {{"attributes", std::move(attributes)}, {"indices", indices}, {"material", part.material}, {"mode", 4}};
+}
+
+/// Each material with its maps' textures (one image per map of each map set, however many
+/// materials share the set).
+AssetJson addMaterials(gltf::Document& doc, const Asset& asset) {
+  std::map<std::pair<const AssetMaps*, Map>, int> textures;
+  AssetJson materials = AssetJson::array();
+  for (const AssetMaterial& material : asset.materials) {
+    if (!material.maps || (*material.maps)[std::size_t(Map::Normal)].empty())
+      fail(ErrorKind::Input, "asset: material '{}' has no normal map", material.name);
+    AssetJson maps = AssetJson::object();
+    for (const MapInfo& info : mapTable()) {
+      const Image& image = (*material.maps)[std::size_t(info.map)];
+      if (image.empty()) continue;
+      auto [at, added] = textures.try_emplace({material.maps.get(), info.map}, 0);
+      if (added) {
+        const Image u8 = image.type() == PixelType::U8 ? image : image.converted(PixelType::U8);
+        at->second = doc.addTexture(doc.addImage(encodePng(u8), fmt::format("{} {}", material.name, info.reportKey)));
+      }
+      maps[info.reportKey] = {{"texture", at->second},
+                              {"color_space", isColour(info.map) ? "srgb" : "linear"},
+                              {"channels", image.channels()},
+                              {"order", int(info.map)},  // the table's (JSON objects keep none)
+                              {"holds", info.summary}};
+    }
+    AssetJson m = {{"name", material.name},
+              {"pbrMetallicRoughness",
+               {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.55}}},
+              {"normalTexture", {{"index", maps["normal"]["texture"]}}},
+              {"extras", {{"glint_maps", maps}}}};
+    if (maps.contains("ao")) m["occlusionTexture"] = {{"index", maps["ao"]["texture"]}};
+    materials.push_back(std::move(m));
+  }
+  return materials;
+}
+
+gltf::Document assetDocument(const Asset& asset) {
+  if (asset.parts.empty()) fail(ErrorKind::Input, "asset: no triangles to write");
+  gltf::Document doc("glint bake");
+  AssetJson primitives = AssetJson::array();
+  for (const AssetPart& part : asset.parts) {
+    if (part.material < 0 || std::size_t(part.material) >= asset.materials.size())
+      fail(ErrorKind::Internal, "asset: a part's material {} does not exist", part.material);
+    primitives.push_back(addPrimitive(doc, part));
+  }
+  doc.json["materials"] = addMaterials(doc, asset);
+  doc.json["meshes"] = AssetJson::array({{{"name", asset.name}, {"primitives", std::move(primitives)}}});
+  doc.json["nodes"] = AssetJson::array({{{"name", asset.name}, {"mesh", 0}}});
+  doc.json["scenes"] = AssetJson::array({{{"nodes", {0}}}});
+  doc.json["scene"] = 0;
+  doc.json["extras"] = {{"glint_bake", asset.extras}};
+  return doc;
+}
+
+}  // namespace
+
+void saveAsset(const Asset& asset, const fs::path& path) { assetDocument(asset).save(path); }
+
+// ---------------------------------------------------------------- the preview page
+
+std::string_view previewPage();  // web/bake-preview.html, embedded by the build (preview_page.cpp)
+
+namespace {
+/// three.js's files the page loads (classic scripts, not modules: a page opened from disk
+/// may load a module from no file), where scripts/setup puts them in glint's data.
+constexpr const char* kThreeFiles[] = {"three.min.js", "OrbitControls.js", "GLTFLoader.js", "LICENSE"};
+}  // namespace
+
+std::vector<std::string> previewFiles() {
+  std::vector<std::string> files{"index.html", "model.glb", "model.js"};
+  for (const char* f : kThreeFiles) files.push_back(std::string("three/") + f);
+  return files;
+}
+
+void savePreview(const Asset& asset, const fs::path& dir) {
+  std::vector<fs::path> three;
+  for (const char* f : kThreeFiles)
+    three.push_back(findDataFile(fs::path("web/three") / f, "three.js for the preview page (scripts/setup installs it)"));
+  const std::vector<unsigned char> glb = assetDocument(asset).glb();
+  std::error_code ec;
+  fs::create_directories(dir / "three", ec);
+  if (ec) fail(ErrorKind::Output, "cannot make the folder '{}': {}", (dir / "three").string(), ec.message());
+  writeAtomically(dir / "model.glb", [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(glb.data()), std::streamsize(glb.size()));
+    if (!out) fail(ErrorKind::Output, "cannot write '{}'", (dir / "model.glb").string());
+  });
+  // The same bytes as a script: a page opened from disk (file://) may run a script beside
+  // it but not fetch a file (Chromium refuses), so the page reads the asset from here.
+  writeAtomically(dir / "model.js", [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << "// glint bake --preview: model.glb as base64, for a page opened from disk.\nwindow.glintModel = \"";
+    gltf::writeBase64(out, glb);
+    out << "\";\n";
+    if (!out) fail(ErrorKind::Output, "cannot write '{}'", (dir / "model.js").string());
+  });
+  std::string page(previewPage());
+  const std::string title = asset.name.empty() ? std::string("bake") : asset.name;
+  for (std::size_t at = page.find("{{title}}"); at != std::string::npos; at = page.find("{{title}}", at))
+    page.replace(at, 9, title);
+  writeTextAtomically(dir / "index.html", page);
+  for (std::size_t i = 0; i < three.size(); ++i) writeTextAtomically(dir / "three" / kThreeFiles[i], readTextFile(three[i]));
+}
+
+}  // namespace glint::bake

@@ -1,0 +1,379 @@
+// `glint bake --asset` and `--preview` as a user runs them (issue 35): the glTF asset passes
+// the Khronos glTF-Validator (npm gltf-validator: 0 errors, 0 warnings), holds the baker's
+// own MikkTSpace tangents and the maps as the loose files hold them (the normal map in
+// OpenGL's convention whatever --directx did), one material per UDIM tile and per bake
+// group; and the web page renders the bake in headless Chromium (WebGL through SwiftShader)
+// with no console error, the model where the camera frames it, and the normal map changing
+// the shading where the high poly has detail.
+#include "glint/bake/asset.h"
+#include "glint/image/image.h"
+#include "glint/mesh/mesh.h"
+#include "glint/mesh/tangents.h"
+
+#include "support/cli.h"
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace glint;
+using glint::testing::readBytes;
+using glint::testing::runGlint;
+using glint::testing::runShell;
+
+namespace {
+
+constexpr auto q = glint::testing::shellQuote;
+
+fs::path dir(const char* name) { return glint::testing::freshDir("bake-asset", name); }
+
+void writeObj(const Mesh& m, const fs::path& path, std::size_t base = 0, std::ostream* to = nullptr) {
+  std::ofstream file;
+  if (!to) file.open(path);
+  std::ostream& out = to ? *to : file;
+  for (const vec3& p : m.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (const vec2& t : m.uvs) out << "vt " << t.x << ' ' << t.y << '\n';
+  for (const vec3& n : m.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
+  for (std::size_t i = 0; i < m.indices.size(); i += 3) {
+    out << 'f';
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t v = base + m.indices[i + std::size_t(k)] + 1;
+      out << ' ' << v << '/' << v << '/' << v;
+    }
+    out << '\n';
+  }
+}
+
+/// The Khronos validator's verdict on a file (tests/support/gltf-validate.js).
+nlohmann::json validate(const fs::path& file) {
+  const auto r = runShell("node " + q(fs::path(GLINT_SOURCE_DIR) / "tests/support/gltf-validate.js") + " " + q(file));
+  if (r.status != 0) {
+    ADD_FAILURE() << "the validator did not run (scripts/setup --test installs it: node, npm gltf-validator): "
+                  << r.output;
+    return nlohmann::json::object();
+  }
+  return nlohmann::json::parse(r.output);
+}
+
+/// A .glb read back: its JSON and its binary chunk.
+struct Glb {
+  nlohmann::json json;
+  std::string bin;
+
+  explicit Glb(const fs::path& path) {
+    const std::string bytes = readBytes(path);
+    std::uint32_t header[5] = {};
+    if (bytes.size() < sizeof header) return;
+    std::memcpy(header, bytes.data(), sizeof header);
+    EXPECT_EQ(header[0], 0x46546C67u) << "glTF magic";
+    EXPECT_EQ(header[2], bytes.size()) << "the header's length is the file's";
+    json = nlohmann::json::parse(bytes.substr(20, header[3]));
+    const std::size_t binAt = 20 + header[3];
+    std::uint32_t chunk[2] = {};
+    std::memcpy(chunk, bytes.data() + binAt, sizeof chunk);
+    bin = bytes.substr(binAt + 8, chunk[0]);
+  }
+  /// An accessor's floats (or unsigned ints, as floats would lose them: T).
+  template <class T> std::vector<T> read(int accessor) const {
+    const auto& a = json["accessors"][accessor];
+    const auto& v = json["bufferViews"][a["bufferView"].get<int>()];
+    std::vector<T> out(v["byteLength"].get<std::size_t>() / sizeof(T));
+    std::memcpy(out.data(), bin.data() + v.value("byteOffset", 0), out.size() * sizeof(T));
+    return out;
+  }
+  /// A texture's image, decoded.
+  Image image(int texture, const fs::path& scratch) const {
+    const int source = json["textures"][texture]["source"];
+    const auto& v = json["bufferViews"][json["images"][source]["bufferView"].get<int>()];
+    std::ofstream(scratch, std::ios::binary)
+        << bin.substr(v.value("byteOffset", std::size_t(0)), v["byteLength"].get<std::size_t>());
+    return loadImage(scratch);
+  }
+};
+
+/// A bumpy sphere: the high poly whose detail the maps hold.
+Mesh bumpySphere() {
+  Mesh m = makeUvSphere(1.0f, 96, 48);
+  for (vec3& p : m.positions) {
+    const vec3 d = glm::normalize(p);
+    p = d * (1.0f + 0.04f * std::sin(9.0f * d.x) * std::sin(9.0f * d.y) * std::sin(9.0f * d.z));
+  }
+  computeNormals(m);
+  return m;
+}
+
+}  // namespace
+
+TEST(BakeAsset, TheGlbPassesTheValidatorAndHoldsTheBakersTangentsAndMaps) {
+  const auto d = dir("sphere");
+  writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
+  writeObj(bumpySphere(), d / "high.obj");
+  for (const bool directX : {false, true}) {
+    const std::string x = directX ? "dx" : "gl";
+    const auto bake = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / (x + "-n.png")) +
+                               " --ao " + q(d / (x + "-ao.png")) + " --curvature " + q(d / (x + "-curv.png")) +
+                               " --size 64x64 --samples 4 -q --asset " + q(d / (x + ".glb")) + " --json " +
+                               q(d / (x + ".json")) + (directX ? " --directx" : ""));
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    const nlohmann::json verdict = validate(d / (x + ".glb"));
+    EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
+    EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
+    const auto report = nlohmann::json::parse(readBytes(d / (x + ".json")));
+    EXPECT_EQ(report["asset"], (d / (x + ".glb")).string());
+    EXPECT_EQ(report["asset_materials"], 1);
+
+    const Glb glb(d / (x + ".glb"));
+    ASSERT_EQ(glb.json["meshes"].size(), 1u);
+    ASSERT_EQ(glb.json["meshes"][0]["primitives"].size(), 1u);
+    const auto& prim = glb.json["meshes"][0]["primitives"][0];
+    const auto& attributes = prim["attributes"];
+    for (const char* a : {"POSITION", "NORMAL", "TANGENT", "TEXCOORD_0"}) ASSERT_TRUE(attributes.contains(a)) << a;
+    const auto positions = glb.read<float>(attributes["POSITION"]), normals = glb.read<float>(attributes["NORMAL"]);
+    const auto tangents = glb.read<float>(attributes["TANGENT"]), uvs = glb.read<float>(attributes["TEXCOORD_0"]);
+    const auto indices = glb.read<std::uint32_t>(prim["indices"]);
+
+    // Corner by corner, the frame the baker encoded against: frameLowPoly of the low poly
+    // as glint reads it (the baker's own function), exactly; UVs as glTF's (u, 1 - v).
+    const Mesh framed = bake::frameLowPoly(loadMesh(d / "low.obj"));
+    ASSERT_EQ(indices.size(), framed.indices.size());
+    int different = 0;
+    for (std::size_t c = 0; c < indices.size(); ++c) {
+      const std::size_t g = indices[c], f = framed.indices[c];
+      for (int k = 0; k < 3; ++k) {
+        different += positions[3 * g + std::size_t(k)] != framed.positions[f][k];
+        different += normals[3 * g + std::size_t(k)] != framed.normals[f][k];
+      }
+      for (int k = 0; k < 4; ++k) different += tangents[4 * g + std::size_t(k)] != framed.tangents[f][k];
+      different += uvs[2 * g] != framed.uvs[f].x || uvs[2 * g + 1] != 1.0f - framed.uvs[f].y;
+    }
+    EXPECT_EQ(different, 0) << "values that differ from the baker's frame";
+
+    // The material: the normal map (OpenGL +Y), AO as occlusion, the rest named in extras.
+    const auto& material = glb.json["materials"][prim["material"].get<int>()];
+    const auto& maps = material["extras"]["glint_maps"];
+    ASSERT_TRUE(maps.contains("normal") && maps.contains("ao") && maps.contains("curvature")) << material.dump(1);
+    EXPECT_EQ(material["normalTexture"]["index"], maps["normal"]["texture"]);
+    EXPECT_EQ(material["occlusionTexture"]["index"], maps["ao"]["texture"]);
+    EXPECT_EQ(maps["curvature"]["color_space"], "linear");
+    const Image normal = glb.image(maps["normal"]["texture"], d / "scratch.png");
+    const Image loose = loadImage(d / (x + "-n.png"));
+    ASSERT_EQ(normal.width(), 64);
+    ASSERT_EQ(loose.channels(), 3);
+    int wrong = 0;
+    for (int y = 0; y < 64; ++y)
+      for (int px = 0; px < 64; ++px)
+        for (int c = 0; c < 3; ++c) {
+          const float expected = directX && c == 1 ? 1.0f - loose.at(px, y, c) : loose.at(px, y, c);
+          wrong += std::fabs(normal.at(px, y, c) - expected) > 0.5f / 255.0f;
+        }
+    EXPECT_EQ(wrong, 0) << x << ": the asset's normal map is the loose file's, in OpenGL's convention";
+    EXPECT_TRUE(glb.image(maps["ao"]["texture"], d / "scratch.png") == loadImage(d / (x + "-ao.png")));
+  }
+
+  // A .gltf holds the same document with its buffer inside; the validator passes it too.
+  const auto gltf = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "t.png") +
+                             " --size 32x32 -q --asset " + q(d / "t.gltf"));
+  ASSERT_EQ(gltf.status, 0) << gltf.output;
+  const nlohmann::json verdict = validate(d / "t.gltf");
+  EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
+  EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
+}
+
+TEST(BakeAsset, OneMaterialPerUdimTileAndPerBakeGroupAndBatchFilesTakeIt) {
+  const auto d = dir("tiles-groups");
+  // Two spheres apart: a in tile 1001, b in 1002.
+  Mesh a = makeUvSphere(1.0f, 16, 8), b = a;
+  b.transform(glm::translate(mat4(1.0f), vec3(3.0f, 0.0f, 0.0f)));
+  for (vec2& uv : b.uvs) uv.x += 1.0f;
+  Mesh low = a;
+  low.append(b);
+  writeObj(low, d / "low.obj");
+  Mesh high = bumpySphere(), highB = bumpySphere();
+  highB.transform(glm::translate(mat4(1.0f), vec3(3.0f, 0.0f, 0.0f)));
+  high.append(highB);
+  writeObj(high, d / "high.obj");
+  const auto udim = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "n.<UDIM>.png") +
+                             " --size 32x32 -q --asset " + q(d / "udim.glb"));
+  ASSERT_EQ(udim.status, 0) << udim.output;
+  nlohmann::json verdict = validate(d / "udim.glb");
+  EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
+  EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
+  const Glb tiles(d / "udim.glb");
+  ASSERT_EQ(tiles.json["materials"].size(), 2u);
+  EXPECT_EQ(tiles.json["materials"][0]["name"], "1001");
+  EXPECT_EQ(tiles.json["materials"][1]["name"], "1002");
+  EXPECT_EQ(tiles.json["meshes"][0]["primitives"].size(), 2u);
+  for (int t = 0; t < 2; ++t) {  // each tile's normal map is its file; its UVs are in 0..1
+    const auto& material = tiles.json["materials"][t];
+    EXPECT_TRUE(tiles.image(material["normalTexture"]["index"], d / "scratch.png") ==
+                loadImage(d / (t == 0 ? "n.1001.png" : "n.1002.png")));
+    const auto uv = tiles.read<float>(tiles.json["meshes"][0]["primitives"][t]["attributes"]["TEXCOORD_0"]);
+    EXPECT_LE(*std::max_element(uv.begin(), uv.end()), 1.0f);
+    EXPECT_GE(*std::min_element(uv.begin(), uv.end()), 0.0f);
+  }
+
+  // Bake groups: parts a_low and b_low (one map), a material each.
+  {
+    std::ofstream out(d / "parts.obj");
+    Mesh a1 = a, b1 = b;  // a's island in the left half of the map, b's in the right
+    for (vec2& uv : a1.uvs) uv *= 0.5f;
+    for (vec2& uv : b1.uvs) uv = vec2(uv.x - 1.0f, uv.y) * 0.5f + vec2(0.5f, 0.0f);
+    out << "o a_low\n";
+    writeObj(a1, {}, 0, &out);
+    out << "o b_low\n";
+    writeObj(b1, {}, a1.positions.size(), &out);
+  }
+  {
+    std::ofstream out(d / "parts_high.obj");
+    out << "o a_high\n";
+    writeObj(bumpySphere(), {}, 0, &out);
+    out << "o b_high\n";
+    writeObj(highB, {}, bumpySphere().positions.size(), &out);
+  }
+  const auto groups = runGlint("bake " + q(d / "parts.obj") + " " + q(d / "parts_high.obj") + " -o " + q(d / "g.png") +
+                               " --size 32x32 -q --asset " + q(d / "groups.glb"));
+  ASSERT_EQ(groups.status, 0) << groups.output;
+  verdict = validate(d / "groups.glb");
+  EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
+  EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
+  const Glb grouped(d / "groups.glb");
+  ASSERT_EQ(grouped.json["materials"].size(), 2u);
+  EXPECT_EQ(grouped.json["materials"][0]["name"], "a");
+  EXPECT_EQ(grouped.json["materials"][1]["name"], "b");
+  EXPECT_EQ(grouped.json["images"].size(), 1u) << "the groups share one normal map";
+
+  // A batch file's job takes the asset as a key; --list shows it as the option.
+  std::ofstream(d / "jobs.json") << R"({"bakes": [{"low": "low.obj", "high": "high.obj", "output": "b.<UDIM>.png",
+                                                   "size": "16x16", "asset": "batch.glb"}]})";
+  const auto batch = runGlint("bake -q --batch " + q(d / "jobs.json"));
+  ASSERT_EQ(batch.status, 0) << batch.output;
+  EXPECT_TRUE(fs::exists(d / "batch.glb"));
+  const auto list = runGlint("bake --batch " + q(d / "jobs.json") + " --list");
+  EXPECT_NE(list.output.find("--asset"), std::string::npos) << list.output;
+  const auto farm = runGlint("farm bake " + q(d / "jobs.json") + " --dry-run --work-dir " + q(d / "farm"));
+  EXPECT_EQ(farm.status, 0) << farm.output;
+}
+
+TEST(BakeAsset, BadAssetOptionsAreOneLineAndWriteNothing) {
+  const auto d = dir("bad");
+  writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
+  writeObj(bumpySphere(), d / "high.obj");
+  const std::string bake = "bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "n.png") + " --size 16x16 ";
+  struct Case {
+    std::string options, says;
+    int status;
+  };
+  std::ofstream(d / "file") << "x";
+  for (const Case& c : {Case{"--asset " + q(d / "a.obj"), ".glb or .gltf", 2},
+                        Case{"--asset " + q(d / "a.glb") + " --space object", "--space tangent", 2},
+                        Case{"--asset " + q(d / "low.obj"), "", 2},
+                        Case{"--asset " + q(d / "n.png"), "", 2},
+                        Case{"--asset " + q(d / "missing/a.glb"), "missing", 4},
+                        Case{"--preview " + q(d / "file"), "is a file", 4}}) {
+    const auto r = runGlint(bake + c.options);
+    EXPECT_EQ(r.status, c.status) << c.options << ": " << r.output;
+    EXPECT_TRUE(glint::testing::oneLine(r.output)) << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(d / "n.png")) << c.options;
+  }
+}
+
+// The page in headless Chromium (Debian's chromium; WebGL 2 through SwiftShader): a bumpy
+// sphere's bake on its 16×8 low poly, drawn with and without the normal map.
+TEST(BakePreview, ThePageRendersTheBakeInChromiumAndTheNormalMapShowsTheDetail) {
+  const auto d = dir("preview");
+  writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
+  writeObj(bumpySphere(), d / "high.obj");
+  const auto bake = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "n.png") +
+                             " --ao " + q(d / "ao.png") + " --size 256x128 --samples 4 -q --preview " + q(d / "web"));
+  ASSERT_EQ(bake.status, 0) << bake.output;
+  for (const std::string& f : bake::previewFiles()) EXPECT_TRUE(fs::exists(d / "web" / f)) << f;
+
+  // A fresh Chromium: its own profile; no sandbox (the tests may run as root).
+  const auto chromium = [&](const std::string& what, const std::string& hash, const std::string& name) {
+    return runShell(fmt::format(
+        "HOME={0} XDG_CONFIG_HOME={0}/config XDG_CACHE_HOME={0}/cache timeout 120 chromium --headless --no-sandbox "
+        "--use-angle=swiftshader --enable-unsafe-swiftshader --window-size=320,240 --hide-scrollbars "
+        "--virtual-time-budget=20000 --enable-logging=stderr {1} {2} > {3} 2> {4}",
+        q(d / "profile"), what, q("file://" + (d / "web/index.html").string() + "#" + hash), q(d / (name + ".out")),
+        q(d / (name + ".log"))));
+  };
+  const auto dom = chromium("--dump-dom", "clean=1", "dom");
+  ASSERT_EQ(dom.status, 0) << readBytes(d / "dom.log")
+                           << (dom.status == 127 ? "\nchromium is missing: scripts/setup --test installs it" : "");
+  std::string page = readBytes(d / "dom.out");
+  const std::string open = "<div id=\"status\" hidden=\"\">";
+  const auto at = page.find(open);
+  ASSERT_NE(at, std::string::npos) << page.substr(0, 2000);
+  std::string text = page.substr(at + open.size(), page.find("</div>", at) - at - open.size());
+  for (const auto& [from, to] : std::map<std::string, std::string>{{"&quot;", "\""}, {"&lt;", "<"}, {"&gt;", ">"}})
+    for (auto p = text.find(from); p != std::string::npos; p = text.find(from, p)) text.replace(p, from.size(), to);
+  for (auto p = text.find("&amp;"); p != std::string::npos; p = text.find("&amp;", p + 1)) text.replace(p, 5, "&");
+  ASSERT_FALSE(text.empty()) << "the page never finished loading; Chromium's log:\n" << readBytes(d / "dom.log");
+  const auto status = nlohmann::json::parse(text);
+  EXPECT_TRUE(status.value("ready", false)) << status.dump(1);
+  EXPECT_TRUE(status["problems"].empty()) << status["problems"].dump(1);
+  EXPECT_EQ(status["maps"], nlohmann::json::array({"normal", "ao"})) << "the table's order";
+  std::istringstream log(readBytes(d / "dom.log"));
+  for (std::string line; std::getline(log, line);) EXPECT_EQ(line.find(":CONSOLE"), std::string::npos) << line;
+
+  // Shaded with and without the normal map, at the same camera (straight on).
+  ASSERT_EQ(chromium("--screenshot=" + q(d / "with.png"), "clean=1&yaw=0&pitch=0", "with").status, 0);
+  ASSERT_EQ(chromium("--screenshot=" + q(d / "without.png"), "clean=1&yaw=0&pitch=0&normal=0", "without").status, 0);
+  const Image with = loadImage(d / "with.png"), without = loadImage(d / "without.png");
+  ASSERT_EQ(with.width(), 320);
+  ASSERT_EQ(with.height(), 240);
+  // The background is the page's (#2b2d31). The page frames the model's bounding sphere
+  // (radius 1 about its centre) to 1/1.05 of the vertical field of view (35°), so the unit
+  // sphere's silhouette is a disc of angular radius asin(sin(17.5°) / 1.05): in pixels,
+  // 120 · tan(that) / tan(17.5°). The 16-segment low poly is inscribed in it (a regular
+  // 16-gon holds 97.4 % of its circle's area): within 5 % of the disc's share of the frame.
+  const double half = 17.5 * 3.14159265358979 / 180.0;
+  const double radius = 120.0 * std::tan(std::asin(std::sin(half) / 1.05)) / std::tan(half);
+  const double expected = 3.14159265358979 * radius * radius / (320.0 * 240.0);
+  const auto background = [](const Image& im, int x, int y) {
+    return std::fabs(im.at(x, y, 0) - 0x2b / 255.0f) < 0.02f && std::fabs(im.at(x, y, 1) - 0x2d / 255.0f) < 0.02f &&
+           std::fabs(im.at(x, y, 2) - 0x31 / 255.0f) < 0.02f;
+  };
+  int model = 0, changed = 0;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 320; ++x) {
+      const bool inside = !background(with, x, y);
+      model += inside;
+      if (!inside) continue;
+      double diff = 0.0;
+      for (int c = 0; c < 3; ++c) diff += std::fabs(with.at(x, y, c) - without.at(x, y, c));
+      changed += diff > 6.0 / 255.0;
+    }
+  const double share = double(model) / (320.0 * 240.0);
+  EXPECT_NEAR(share / expected, 1.0, 0.05) << "the model covers " << share << " of the frame, the disc " << expected;
+  // The bumps (4 % of the radius, 9 waves) bend the shading over much of the sphere; the
+  // low poly's own smooth shading is all there is without the map.
+  EXPECT_GT(double(changed) / model, 0.25) << changed << " of " << model << " model pixels changed by the normal map";
+}
+
+// glint cut's glTF goes through the same writer (mesh/gltf.h): the validator passes both forms.
+TEST(GltfFiles, GlintCutsGlbAndGltfPassTheValidatorToo) {
+  const auto d = dir("cut");
+  writeObj(bumpySphere(), d / "ball.obj");
+  for (const char* file : {"cut.glb", "cut.gltf"}) {
+    const auto r = runGlint("-q cut " + q(d / "ball.obj") + " -o " + q(d / file) + " --light 0,3,2,key");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const nlohmann::json verdict = validate(d / file);
+    EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
+    EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
+    EXPECT_EQ(verdict.value("infos", -1), 0) << verdict.dump(1);
+  }
+}
