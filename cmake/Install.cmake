@@ -10,7 +10,7 @@
 #   lib/cmake/glint/                  glintConfig.cmake, glintConfigVersion.cmake, one
 #                                     glint-<component>-targets*.cmake per component,
 #                                     PeerDependencies.cmake (FFTW, OpenCV targets: post's CPU backend, bench)
-#   share/glint/env, share/glint/bunny  data/ from scripts/setup, when it is there (core/locations.h)
+#   share/glint/env, share/glint/bunny, share/glint/web  data/ from scripts/setup, when it is there (core/locations.h)
 #
 # Exported targets, namespace glint:: (the same names work in this build as aliases), one
 # package component each, named as the target (find_package(glint COMPONENTS render)):
@@ -162,3 +162,5 @@ install(FILES "${PROJECT_SOURCE_DIR}/cmake/PeerDependencies.cmake" DESTINATION $
 # that need it then fail with a one-line Error naming where they looked).
 install(DIRECTORY "${GLINT_DATA_DIR}/env" DESTINATION ${GLINT_INSTALL_DATA_DIR} COMPONENT data OPTIONAL)
 install(FILES "${GLINT_DATA_DIR}/bunny/bunny.ply" DESTINATION ${GLINT_INSTALL_DATA_DIR}/bunny COMPONENT data OPTIONAL)
+# three.js, copied beside every page `glint bake --preview` writes (bake/asset.h).
+install(DIRECTORY "${GLINT_DATA_DIR}/web" DESTINATION ${GLINT_INSTALL_DATA_DIR} COMPONENT data OPTIONAL)

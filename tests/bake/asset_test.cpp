@@ -11,6 +11,7 @@
 #include "glint/mesh/tangents.h"
 
 #include "support/cli.h"
+#include "support/gltf.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -32,6 +33,8 @@ using namespace glint;
 using glint::testing::readBytes;
 using glint::testing::runGlint;
 using glint::testing::runShell;
+using glint::testing::Glb;
+using glint::testing::validateGltf;
 
 namespace {
 
@@ -55,53 +58,6 @@ void writeObj(const Mesh& m, const fs::path& path, std::size_t base = 0, std::os
     out << '\n';
   }
 }
-
-/// The Khronos validator's verdict on a file (tests/support/gltf-validate.js).
-nlohmann::json validate(const fs::path& file) {
-  const auto r = runShell("node " + q(fs::path(GLINT_SOURCE_DIR) / "tests/support/gltf-validate.js") + " " + q(file));
-  if (r.status != 0) {
-    ADD_FAILURE() << "the validator did not run (scripts/setup --test installs it: node, npm gltf-validator): "
-                  << r.output;
-    return nlohmann::json::object();
-  }
-  return nlohmann::json::parse(r.output);
-}
-
-/// A .glb read back: its JSON and its binary chunk.
-struct Glb {
-  nlohmann::json json;
-  std::string bin;
-
-  explicit Glb(const fs::path& path) {
-    const std::string bytes = readBytes(path);
-    std::uint32_t header[5] = {};
-    if (bytes.size() < sizeof header) return;
-    std::memcpy(header, bytes.data(), sizeof header);
-    EXPECT_EQ(header[0], 0x46546C67u) << "glTF magic";
-    EXPECT_EQ(header[2], bytes.size()) << "the header's length is the file's";
-    json = nlohmann::json::parse(bytes.substr(20, header[3]));
-    const std::size_t binAt = 20 + header[3];
-    std::uint32_t chunk[2] = {};
-    std::memcpy(chunk, bytes.data() + binAt, sizeof chunk);
-    bin = bytes.substr(binAt + 8, chunk[0]);
-  }
-  /// An accessor's floats (or unsigned ints, as floats would lose them: T).
-  template <class T> std::vector<T> read(int accessor) const {
-    const auto& a = json["accessors"][accessor];
-    const auto& v = json["bufferViews"][a["bufferView"].get<int>()];
-    std::vector<T> out(v["byteLength"].get<std::size_t>() / sizeof(T));
-    std::memcpy(out.data(), bin.data() + v.value("byteOffset", 0), out.size() * sizeof(T));
-    return out;
-  }
-  /// A texture's image, decoded.
-  Image image(int texture, const fs::path& scratch) const {
-    const int source = json["textures"][texture]["source"];
-    const auto& v = json["bufferViews"][json["images"][source]["bufferView"].get<int>()];
-    std::ofstream(scratch, std::ios::binary)
-        << bin.substr(v.value("byteOffset", std::size_t(0)), v["byteLength"].get<std::size_t>());
-    return loadImage(scratch);
-  }
-};
 
 /// A bumpy sphere: the high poly whose detail the maps hold.
 Mesh bumpySphere() {
@@ -127,7 +83,7 @@ TEST(BakeAsset, TheGlbPassesTheValidatorAndHoldsTheBakersTangentsAndMaps) {
                                " --size 64x64 --samples 4 -q --asset " + q(d / (x + ".glb")) + " --json " +
                                q(d / (x + ".json")) + (directX ? " --directx" : ""));
     ASSERT_EQ(bake.status, 0) << bake.output;
-    const nlohmann::json verdict = validate(d / (x + ".glb"));
+    const nlohmann::json verdict = validateGltf(d / (x + ".glb"));
     EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
     EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
     const auto report = nlohmann::json::parse(readBytes(d / (x + ".json")));
@@ -186,7 +142,7 @@ TEST(BakeAsset, TheGlbPassesTheValidatorAndHoldsTheBakersTangentsAndMaps) {
   const auto gltf = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "t.png") +
                              " --size 32x32 -q --asset " + q(d / "t.gltf"));
   ASSERT_EQ(gltf.status, 0) << gltf.output;
-  const nlohmann::json verdict = validate(d / "t.gltf");
+  const nlohmann::json verdict = validateGltf(d / "t.gltf");
   EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
   EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
 }
@@ -207,7 +163,7 @@ TEST(BakeAsset, OneMaterialPerUdimTileAndPerBakeGroupAndBatchFilesTakeIt) {
   const auto udim = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "n.<UDIM>.png") +
                              " --size 32x32 -q --asset " + q(d / "udim.glb"));
   ASSERT_EQ(udim.status, 0) << udim.output;
-  nlohmann::json verdict = validate(d / "udim.glb");
+  nlohmann::json verdict = validateGltf(d / "udim.glb");
   EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
   EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
   const Glb tiles(d / "udim.glb");
@@ -245,7 +201,7 @@ TEST(BakeAsset, OneMaterialPerUdimTileAndPerBakeGroupAndBatchFilesTakeIt) {
   const auto groups = runGlint("bake " + q(d / "parts.obj") + " " + q(d / "parts_high.obj") + " -o " + q(d / "g.png") +
                                " --size 32x32 -q --asset " + q(d / "groups.glb"));
   ASSERT_EQ(groups.status, 0) << groups.output;
-  verdict = validate(d / "groups.glb");
+  verdict = validateGltf(d / "groups.glb");
   EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
   EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
   const Glb grouped(d / "groups.glb");
@@ -371,7 +327,7 @@ TEST(GltfFiles, GlintCutsGlbAndGltfPassTheValidatorToo) {
   for (const char* file : {"cut.glb", "cut.gltf"}) {
     const auto r = runGlint("-q cut " + q(d / "ball.obj") + " -o " + q(d / file) + " --light 0,3,2,key");
     ASSERT_EQ(r.status, 0) << r.output;
-    const nlohmann::json verdict = validate(d / file);
+    const nlohmann::json verdict = validateGltf(d / file);
     EXPECT_EQ(verdict.value("errors", -1), 0) << verdict.dump(1);
     EXPECT_EQ(verdict.value("warnings", -1), 0) << verdict.dump(1);
     EXPECT_EQ(verdict.value("infos", -1), 0) << verdict.dump(1);

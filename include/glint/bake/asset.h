@@ -21,11 +21,9 @@
 /// ```cpp
 /// glint::bake::Asset asset;
 /// asset.name = "crate";
-/// glint::bake::AssetMaterial material;
-/// material.name = "crate";
-/// material.maps = std::make_shared<glint::bake::AssetMaps>();
-/// (*material.maps)[std::size_t(glint::bake::Map::Normal)] = glint::Image(64, 64, 3);  // 8-bit, OpenGL +Y
-/// asset.materials.push_back(material);
+/// auto maps = std::make_shared<glint::bake::AssetMaps>();
+/// (*maps)[std::size_t(glint::bake::Map::Normal)] = glint::Image(64, 64, 3);  // 8-bit, OpenGL +Y
+/// asset.materials.push_back({"crate", maps});
 /// glint::Mesh low = glint::makeCube(1.0f);
 /// asset.parts.push_back({glint::bake::frameLowPoly(low), 0});
 /// // glint::bake::saveAsset(asset, "crate.glb");
