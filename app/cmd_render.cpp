@@ -7,13 +7,16 @@
 #include "glint/core/log.h"
 #include "glint/image/image.h"
 #include "glint/scenes/clip.h"
+#include "glint/scenes/model.h"
 #include "glint/scenes/render_job.h"
 #include "glint/scenes/runner.h"
 #include "glint/video/source.h"
 
 #include <algorithm>
+#include <filesystem>
 
 namespace glint::app {
+namespace fs = std::filesystem;
 
 Command renderCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<scenes::RenderArgs>();
@@ -23,10 +26,14 @@ Command renderCommand(CLI::App& app, const GlobalOptions& global) {
   std::vector<const void*> videoOnly;
   scenes::addOptions(*cmd, *args, &videoOnly);
   return Command{.run = [args, &global, videoOnly] {
-    const auto ref = scenes::Registry::builtin().resolve(args->scene);
+    std::string name = args->scene;
+    scenes::Registry model;  // a model file's own scene (scenes/model.h)
+    const auto ref = scenes::registryFor(name, model).resolve(name);
+    if (!args->camera.empty())
+      for (std::string& setting : scenes::cameraSettings(args->camera, ref)) args->options.push_back(std::move(setting));
     std::string output = args->output;
     if (output.empty()) {
-      output = ref.fullName() + ".png";
+      output = scenes::isModelFile(args->scene) ? fs::path(args->scene).stem().string() + ".png" : ref.fullName() + ".png";
       std::replace(output.begin(), output.end(), '/', '-');
     }
     scenes::ContextPool contexts(global.glDebug);

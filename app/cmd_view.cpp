@@ -2,11 +2,16 @@
 // directory it hot-reloads from (the source tree's shaders/ when it exists).
 #include "common.h"
 
+#include "glint/bake/asset.h"
 #include "glint/core/error.h"
+#include "glint/core/file.h"
+#include "glint/core/log.h"
 #include "glint/core/text.h"
 #include "glint/gl/shader.h"
+#include "glint/scenes/model.h"
 #include "glint/viewer/viewer.h"
 
+#include <cctype>
 #include <filesystem>
 
 namespace glint::app {
@@ -16,8 +21,29 @@ namespace {
 struct ViewArgs {
   std::string size = "1280x800";
   std::string shaderDir;
+  std::string exportWeb;
   viewer::ViewerOptions options;
 };
+/// `glint view FILE --export-web DIR`: the model in the page `glint bake --preview` writes.
+int exportWeb(const std::string& file, const std::string& dir) {
+  if (!scenes::isModelFile(file))
+    fail(ErrorKind::Usage, "--export-web needs a model file (.glb .gltf .obj .ply .fbx), got '{}'", file);
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) fail(ErrorKind::Output, "--export-web '{}' is a file, not a folder", dir);
+  std::vector<unsigned char> glb;
+  std::string ext = fs::path(file).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".glb") {
+    scenes::loadModelFile(file);  // a file the viewer reads, or its one-line error
+    const std::string bytes = readTextFile(file);
+    glb.assign(bytes.begin(), bytes.end());
+  } else {
+    glb = scenes::modelGlb(scenes::loadModelFile(file));
+  }
+  bake::savePreviewPage(glb, fs::path(file).filename().string(), dir);
+  log::info("view: {} → {}", file, (fs::path(dir) / "index.html").string());
+  return 0;
+}
 }  // namespace
 
 Command viewCommand(CLI::App& app, const GlobalOptions& global) {
@@ -27,7 +53,11 @@ Command viewCommand(CLI::App& app, const GlobalOptions& global) {
               "Esc quit. Mouse, in 3D scenes: left drag orbits, right or middle drag pans, the wheel zooms,\n"
               "C or Home returns to the scene's camera (kept across variants, reset on another scene).\n"
               "Without a display, run it under Xvfb: xvfb-run -s '-screen 0 1280x800x24' glint view");
-  cmd->add_option("scene", args->options.scene, "scene or scene/variant to start with (default: the first)");
+  cmd->add_option("scene", args->options.scene, "scene or scene/variant to start with (default: the first), or a model "
+                  "file to look at: .glb .gltf .obj .ply .fbx (a bake's asset shows its maps, misses and hard edges)");
+  cmd->add_option("--export-web", args->exportWeb, "With a model file: write a web page that shows it into this folder "
+                  "(opens offline, from disk or any web server; as glint bake --preview) instead of opening a window")
+      ->type_name("DIR");
   cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--shaders", args->shaderDir,
                   "Directory to hot-reload shaders from (default: the source tree's shaders/ when it exists)");
@@ -38,6 +68,7 @@ Command viewCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--set", args->options.settings, "name=value: set a scene option (as glint render --set), in every scene "
                                            "that has it, e.g. --set input=/dev/video0 for post/camera");
   return Command{.run = [args, &global] {
+    if (!args->exportWeb.empty()) return exportWeb(args->options.scene, args->exportWeb);
     viewer::ViewerOptions options = args->options;
     options.size = parseSize(args->size);
     options.glDebug = global.glDebug;
@@ -47,7 +78,9 @@ Command viewCommand(CLI::App& app, const GlobalOptions& global) {
     } else if (!args->shaderDir.empty()) {
       fail(ErrorKind::Usage, "--shaders: '{}' is not a directory", args->shaderDir);
     }
-    return viewer::run(options);
+    scenes::Registry model;  // a model file's own scene (scenes/model.h)
+    const scenes::Registry& registry = scenes::registryFor(options.scene, model);
+    return viewer::run(options, registry);
   }};
 }
 

@@ -141,10 +141,13 @@ std::vector<std::string> previewFiles() {
 }
 
 void savePreview(const Asset& asset, const fs::path& dir) {
+  savePreviewPage(assetDocument(asset).glb(), asset.name.empty() ? std::string("bake") : asset.name, dir);
+}
+
+void savePreviewPage(const std::vector<unsigned char>& glb, const std::string& title, const fs::path& dir) {
   std::vector<fs::path> three;
   for (const char* f : kThreeFiles)
     three.push_back(findDataFile(fs::path("web/three") / f, "three.js for the preview page (scripts/setup installs it)"));
-  const std::vector<unsigned char> glb = assetDocument(asset).glb();
   std::error_code ec;
   fs::create_directories(dir / "three", ec);
   if (ec) fail(ErrorKind::Output, "cannot make the folder '{}': {}", (dir / "three").string(), ec.message());
@@ -163,7 +166,6 @@ void savePreview(const Asset& asset, const fs::path& dir) {
     if (!out) fail(ErrorKind::Output, "cannot write '{}'", (dir / "model.js").string());
   });
   std::string page(previewPage());
-  const std::string title = asset.name.empty() ? std::string("bake") : asset.name;
   for (std::size_t at = page.find("{{title}}"); at != std::string::npos; at = page.find("{{title}}", at))
     page.replace(at, 9, title);
   writeTextAtomically(dir / "index.html", page);

@@ -29,6 +29,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <fmt/format.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 #include <imgui_stdlib.h>
 
 #include <algorithm>
@@ -76,6 +77,38 @@ fs::file_time_type newestShaderTime(const fs::path& dir) {
   return newest;
 }
 
+/// DejaVu Sans (Debian's fonts-dejavu-core): ImGui's built-in font has ASCII only, and the
+/// scenes' texts use —, ×, ·, ², √, −, →, σ.
+constexpr const char* kPanelFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+constexpr float kPanelFontPixels = 15.0f;
+
+/// Every text the panel shows of a registry: summaries, variants' and options' descriptions
+/// would be built from the scenes themselves, so the names and descriptions of the registry.
+std::string panelText(const scenes::Registry& registry) {
+  std::string text;
+  for (const scenes::SceneDesc& s : registry.scenes()) {
+    text += s.name + s.summary;
+    for (const scenes::VariantDesc& v : s.variants) text += v.name + v.description;
+  }
+  return text;
+}
+
+/// Loads the panel's font into the current ImGui context with a glyph for every character
+/// of `text` (and ASCII): false, and ImGui's own font, when the font file is missing.
+bool loadPanelFont(const std::string& text) {
+  ImGuiIO& io = ImGui::GetIO();
+  std::error_code ec;
+  if (!fs::exists(kPanelFont, ec)) return false;
+  ImFontGlyphRangesBuilder builder;
+  builder.AddRanges(io.Fonts->GetGlyphRangesDefault());
+  builder.AddText(text.c_str());
+  builder.AddText("—×·²√−→σ°…");  // option descriptions and notes are made as scenes load
+  static ImVector<ImWchar> ranges;  // ImGui keeps a pointer to them until the atlas is built
+  ranges.clear();
+  builder.BuildRanges(&ranges);
+  return io.Fonts->AddFontFromFileTTF(kPanelFont, kPanelFontPixels, nullptr, ranges.Data) != nullptr;
+}
+
 class Viewer {
 public:
   Viewer(const ViewerOptions& args, const scenes::Registry& registry)
@@ -84,6 +117,8 @@ public:
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini litter in the working directory
     ImGui::StyleColorsDark();
+    if (!loadPanelFont(panelText(registry)))
+      log::warn("view: {} is missing (Debian's fonts-dejavu-core): the panel shows ? for non-ASCII text", kPanelFont);
     installInputCallbacks();  // before ImGui's backend, which then chains to them
     ImGui_ImplGlfw_InitForOpenGL(m_window.handle(), true);
     ImGui_ImplOpenGL3_Init("#version 450");
@@ -456,6 +491,31 @@ int run(const ViewerOptions& options, const scenes::Registry& registry) {
     fail(ErrorKind::Usage, "--shot-dir: '{}' is not a directory", options.shotDir);
   Viewer viewer(options, registry);
   return viewer.run();
+}
+
+std::u32string glyphsMissingFromPanelFont(const scenes::Registry& registry) {
+  ImGuiContext* previous = ImGui::GetCurrentContext();
+  ImGuiContext* context = ImGui::CreateContext();
+  std::u32string missing;
+  const std::string text = panelText(registry);
+  if (!loadPanelFont(text)) {
+    missing = U"(no font)";
+  } else {
+    ImGuiIO& io = ImGui::GetIO();
+    unsigned char* pixels = nullptr;
+    int width = 0, height = 0;
+    io.Fonts->GetTexDataAsAlpha8(&pixels, &width, &height);  // builds the atlas: no GL needed
+    const ImFont* font = io.Fonts->Fonts.back();
+    for (const char* p = text.c_str(); *p;) {
+      unsigned int c = 0;
+      p += ImTextCharFromUtf8(&c, p, nullptr);
+      if (c >= 0x80 && !font->FindGlyphNoFallback(ImWchar(c)) && missing.find(char32_t(c)) == std::u32string::npos)
+        missing += char32_t(c);
+    }
+  }
+  ImGui::DestroyContext(context);
+  ImGui::SetCurrentContext(previous);
+  return missing;
 }
 
 }  // namespace glint::viewer

@@ -86,4 +86,8 @@ std::vector<std::string> previewFiles();
 /// installed, naming the command that installs it.
 void savePreview(const Asset& asset, const std::filesystem::path& dir);
 
+/// The same page for any glTF file's bytes (a .glb, or a .gltf whose buffers are inside it):
+/// `glint view FILE --export-web DIR`. `title` heads the page.
+void savePreviewPage(const std::vector<unsigned char>& gltf, const std::string& title, const std::filesystem::path& dir);
+
 }  // namespace glint::bake

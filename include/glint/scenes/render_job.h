@@ -34,6 +34,7 @@ struct RenderArgs {
   double time = 0;
   bool timeSet = false;              ///< --time was given (an image's scene time)
   std::vector<std::string> options;  ///< --set name=value
+  std::string camera;                ///< --camera YAW,PITCH[,ZOOM]: a model file's camera (scenes/model.h)
   std::string frames, codec = "h264", preset = "medium";
   int fps = 30, crf = 18;
 };
@@ -44,6 +45,9 @@ void addOptions(CLI::App& command, RenderArgs& args, std::vector<const void*>* v
 /// `glint render --help`'s footer.
 const char* helpFooter();
 
+/// --camera YAW,PITCH[,ZOOM] as the model scene's --set settings ("yaw=30", ...).
+/// Error(Usage) for another scene or a malformed value.
+std::vector<std::string> cameraSettings(const std::string& text, const VariantRef& ref);
 /// The clip the options describe for a video output: --frames FIRST:END required, no
 /// --time, the codec and preset checked. Error(Usage) naming the option.
 ClipRequest clipRequest(const RenderArgs& args);

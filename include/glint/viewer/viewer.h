@@ -42,4 +42,9 @@ struct ViewerOptions {
 /// hot-reloading) is shown as an error in the panel, and the viewer keeps running.
 int run(const ViewerOptions& options, const scenes::Registry& registry = scenes::Registry::builtin());
 
+/// The characters of the registry's scene names, summaries and variant descriptions that the
+/// panel's font (DejaVu Sans, fonts-dejavu-core) has no glyph for: empty when every one is
+/// drawn ("(no font)" when the font file is missing). Needs no window or GL.
+std::u32string glyphsMissingFromPanelFont(const scenes::Registry& registry = scenes::Registry::builtin());
+
 }  // namespace glint::viewer
