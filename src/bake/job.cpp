@@ -293,7 +293,7 @@ std::shared_ptr<const AssetMaps> assetMaps(const BakeJob& a, const BakeResult& r
   }
   (*maps)[std::size_t(Map::Normal)] = std::move(normal);
   for (const MapInfo& m : mapTable())
-    if (m.map != Map::Normal && !a.path(m.map).empty())
+    if (m.map != Map::Normal && !result.map(m.map).empty())  // the maps asked for, and the miss mask
       (*maps)[std::size_t(m.map)] = m.forOutput(result.map(m.map), PixelType::U8, result.stats);
   return maps;
 }
@@ -379,6 +379,8 @@ BakePlan prepare(const BakeJob& a, ToolRun& run) {
   options.padding = a.padding;
   options.fillAll = a.fillAll;
   options.maps = mapsOf(a);
+  // An asset always carries the miss mask: glint view shows where the rays missed.
+  if (!a.asset.empty() || !a.preview.empty()) options.maps.add(Map::MissMask);
   options.aoSamples = a.aoSamples;
   options.aoDistance = parseDistance(a.aoDistance, "--ao-distance");
   options.thicknessDistance = parseDistance(a.thicknessDistance, "--thickness-distance");

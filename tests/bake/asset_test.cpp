@@ -208,7 +208,7 @@ TEST(BakeAsset, OneMaterialPerUdimTileAndPerBakeGroupAndBatchFilesTakeIt) {
   ASSERT_EQ(grouped.json["materials"].size(), 2u);
   EXPECT_EQ(grouped.json["materials"][0]["name"], "a");
   EXPECT_EQ(grouped.json["materials"][1]["name"], "b");
-  EXPECT_EQ(grouped.json["images"].size(), 1u) << "the groups share one normal map";
+  EXPECT_EQ(grouped.json["images"].size(), 2u) << "the groups share one normal map and one miss mask";
 
   // A batch file's job takes the asset as a key; --list shows it as the option.
   std::ofstream(d / "jobs.json") << R"({"bakes": [{"low": "low.obj", "high": "high.obj", "output": "b.<UDIM>.png",
@@ -281,7 +281,8 @@ TEST(BakePreview, ThePageRendersTheBakeInChromiumAndTheNormalMapShowsTheDetail) 
   const auto status = nlohmann::json::parse(text);
   EXPECT_TRUE(status.value("ready", false)) << status.dump(1);
   EXPECT_TRUE(status["problems"].empty()) << status["problems"].dump(1);
-  EXPECT_EQ(status["maps"], nlohmann::json::array({"normal", "ao"})) << "the table's order";
+  EXPECT_EQ(status["maps"], nlohmann::json::array({"normal", "ao", "miss_mask"})) << "the table's order (and the miss "
+                                                                                    "mask every asset carries)";
   std::istringstream log(readBytes(d / "dom.log"));
   for (std::string line; std::getline(log, line);) EXPECT_EQ(line.find(":CONSOLE"), std::string::npos) << line;
 
