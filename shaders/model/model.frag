@@ -43,7 +43,7 @@ void main() {
     n = normalize(m.x * vTangent.xyz + m.y * b + m.z * vNormal);
   }
   vec3 v = normalize(uEye - vWorld);
-  if (dot(normal, v) < 0.0) n = -n;  // back faces lit as seen
+  if (!gl_FrontFacing) n = -n;  // back faces (an open mesh seen from inside) lit as seen
   vec3 albedo = uBaseColor.rgb;
   if (uUseBaseColorMap) albedo *= srgbDecode(texture(uBaseColorMap, vUv).rgb);
   if (uUseVertexColor) albedo *= vColor.rgb;

@@ -3,7 +3,7 @@
 #
 #   blender -b --factory-startup --python blender_asset.py -- make DIR
 #       DIR/low.obj: Suzanne, smart-UV-unwrapped, smooth; DIR/high.obj: the same head
-#       subdivided twice and displaced by a procedural texture (the detail to bake).
+#       subdivided three times and displaced by a procedural texture (the detail to bake).
 #   blender -b --factory-startup --python blender_asset.py -- check ASSET.glb OUT.json
 #       imports the asset with Blender's own glTF importer and writes what a test checks:
 #       the material graph (the normal map node, its space, its UV map and image; what
@@ -36,12 +36,12 @@ def make(folder):
     high.data = low.data.copy()
     bpy.context.collection.objects.link(high)
     subdivision = high.modifiers.new("subdivision", "SUBSURF")
-    subdivision.levels = 2
+    subdivision.levels = 3
     texture = bpy.data.textures.new("bumps", "CLOUDS")
-    texture.noise_scale = 0.15
+    texture.noise_scale = 0.08
     displace = high.modifiers.new("displace", "DISPLACE")
     displace.texture = texture
-    displace.strength = 0.03
+    displace.strength = 0.06
     displace.mid_level = 0.5
     bpy.ops.object.select_all(action="DESELECT")
     high.select_set(True)

@@ -15,6 +15,8 @@
 //                   faces disagree on normals (where a bake's rays fan apart)
 //   misses (X)      texels whose rays missed (a bake asset's miss mask) tinted red
 //   yaw, pitch, zoom  the camera (degrees; a distance factor), as `--camera` sets them
+//   frame           another model file whose bounding sphere the camera frames instead (a
+//                   high poly shown at its low poly's camera)
 //
 // glint cut's GLB shows each piece in its light mask's tint (its COLOR_0).
 //

@@ -108,6 +108,16 @@ private:
   GLsizei m_count = 0;
 };
 
+/// The sphere the camera frames: the bounding box's centre and the farthest vertex from it
+/// (as the preview page computes it).
+std::pair<vec3, float> boundingSphere(const ModelFile& model) {
+  const vec3 center = model.bounds().center();
+  float radius = 1e-6f;
+  for (const ModelPart& p : model.parts)
+    for (const vec3& v : p.mesh.positions) radius = std::max(radius, glm::length(v - center));
+  return {center, radius};
+}
+
 gl::Texture upload(const Image& image, std::string_view label) {
   if (image.empty()) {  // a 1×1 stand-in: the shader reads "no such map" from its size
     Image none(1, 1, 4);
@@ -122,11 +132,8 @@ public:
       : m_model(std::move(model)),
         m_program(gl::Program::fromFiles({"model/model.vert", "model/model.frag"})),
         m_lineProgram(gl::Program::fromFiles({"model/lines.vert", "model/lines.frag"})) {
-    const Bounds b = m_model->bounds();
-    m_center = b.center();
-    for (const ModelPart& p : m_model->parts)
-      for (const vec3& v : p.mesh.positions) m_radius = std::max(m_radius, glm::length(v - m_center));
-    m_radius = std::max(m_radius, 1e-6f);
+    std::tie(m_center, m_radius) = boundingSphere(*m_model);
+    m_frame = {m_center, m_radius};
     m_names = m_model->mapNames();
     for (const ModelPart& part : m_model->parts) {
       std::vector<vec4> colors = part.colors;
@@ -165,7 +172,9 @@ public:
         {"misses", "texels whose bake rays missed, in red (the asset's miss mask)", &m_misses, 0, 1, 'X'},
         {"yaw", "the camera around the model, degrees (from +Z towards +X)", &m_yaw, -180, 180},
         {"pitch", "the camera above the model, degrees", &m_pitch, -85, 85},
-        {"zoom", "the camera's distance, as a factor of the framing distance", &m_zoom, 0.2f, 4}};
+        {"zoom", "the camera's distance, as a factor of the framing distance", &m_zoom, 0.2f, 4},
+        {"frame", "another model file whose bounding sphere the camera frames (a high poly at its low poly's "
+                  "camera); empty: this one", &m_frameFile}};
     return o;
   }
 
@@ -186,9 +195,14 @@ public:
   void render(const FrameInput& frame) override {
     frame.target.bind();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, kBackground);
-    const float distance = m_radius / std::sin(glm::radians(kFovY / 2.0f)) * 1.05f;
+    if (m_frameFile != m_framedBy) {  // --set frame=OTHER: that model's sphere
+      m_framedBy = m_frameFile;
+      m_frame = m_frameFile.empty() ? std::pair{m_center, m_radius} : boundingSphere(loadModelFile(m_frameFile));
+    }
+    const auto [center, radius] = m_frame;
+    const float distance = radius / std::sin(glm::radians(kFovY / 2.0f)) * 1.05f;
     const render::Camera camera = frame.camera(render::Camera::orbit(
-        m_center, distance * m_zoom, glm::radians(m_yaw), glm::radians(m_pitch), kFovY, frame.target.aspect(),
+        center, distance * m_zoom, glm::radians(m_yaw), glm::radians(m_pitch), kFovY, frame.target.aspect(),
         distance * m_zoom / 100.0f, distance * m_zoom * 10.0f));
     const mat3 toWorld = glm::transpose(camera.rotation());
     m_program.set("uViewProj", camera.viewProjection());
@@ -259,6 +273,8 @@ private:
   LineSet m_wire, m_seams, m_hard;
   vec3 m_center{0.0f};
   float m_radius = 0.0f;
+  std::string m_frameFile, m_framedBy;
+  std::pair<vec3, float> m_frame;
   bool m_hasMisses = false;
   bool m_normalMap = true, m_occlusion = true, m_wireframe = false, m_uvSeams = false, m_hardEdges = false, m_misses = false;
   int m_show = 0;
