@@ -24,17 +24,13 @@
 
 namespace fs = std::filesystem;
 using namespace glint;
-using glint::testing::Glb;
-using glint::testing::readBytes;
-using glint::testing::runGlint;
-using glint::testing::runShell;
-using glint::testing::validateGltf;
+using namespace glint::testing;
 
 namespace {
-constexpr auto q = glint::testing::shellQuote;
+constexpr auto q = shellQuote;
 
 /// blender -b with the check script, `args` after "--"; its output on failure.
-glint::testing::CliRun blender(const std::string& args) {
+CliRun blender(const std::string& args) {
   return runShell("blender -b --factory-startup --python " +
                   q(fs::path(GLINT_SOURCE_DIR) / "tests/bake/blender_asset.py") + " -- " + args);
 }
@@ -50,7 +46,7 @@ CornerKey key(double x, double y, double z, double u, double v) {
 
 TEST(BakeAssetBlender, BlenderImportsTheAssetWithTheNormalMapInTangentSpaceAndGlintsTangents) {
   if (runShell("command -v blender").status != 0) GTEST_SKIP() << "blender is not installed (scripts/setup --test)";
-  const fs::path d = glint::testing::freshDir("bake-asset", "blender");
+  const fs::path d = freshDir("bake-asset", "blender");
   const auto made = blender("make " + q(d));
   ASSERT_EQ(made.status, 0) << made.output;
   const auto bake = runGlint("bake " + q(d / "low.obj") + " " + q(d / "high.obj") + " -o " + q(d / "n.png") + " --ao " +

@@ -12,6 +12,7 @@
 
 #include "support/cli.h"
 #include "support/gltf.h"
+#include "support/obj.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -30,45 +31,13 @@
 
 namespace fs = std::filesystem;
 using namespace glint;
-using glint::testing::readBytes;
-using glint::testing::runGlint;
-using glint::testing::runShell;
-using glint::testing::Glb;
-using glint::testing::validateGltf;
+using namespace glint::testing;
 
 namespace {
 
-constexpr auto q = glint::testing::shellQuote;
+constexpr auto q = shellQuote;
 
-fs::path dir(const char* name) { return glint::testing::freshDir("bake-asset", name); }
-
-void writeObj(const Mesh& m, const fs::path& path, std::size_t base = 0, std::ostream* to = nullptr) {
-  std::ofstream file;
-  if (!to) file.open(path);
-  std::ostream& out = to ? *to : file;
-  for (const vec3& p : m.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-  for (const vec2& t : m.uvs) out << "vt " << t.x << ' ' << t.y << '\n';
-  for (const vec3& n : m.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
-  for (std::size_t i = 0; i < m.indices.size(); i += 3) {
-    out << 'f';
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t v = base + m.indices[i + std::size_t(k)] + 1;
-      out << ' ' << v << '/' << v << '/' << v;
-    }
-    out << '\n';
-  }
-}
-
-/// A bumpy sphere: the high poly whose detail the maps hold.
-Mesh bumpySphere() {
-  Mesh m = makeUvSphere(1.0f, 96, 48);
-  for (vec3& p : m.positions) {
-    const vec3 d = glm::normalize(p);
-    p = d * (1.0f + 0.04f * std::sin(9.0f * d.x) * std::sin(9.0f * d.y) * std::sin(9.0f * d.z));
-  }
-  computeNormals(m);
-  return m;
-}
+fs::path dir(const char* name) { return freshDir("bake-asset", name); }
 
 }  // namespace
 
@@ -187,16 +156,16 @@ TEST(BakeAsset, OneMaterialPerUdimTileAndPerBakeGroupAndBatchFilesTakeIt) {
     for (vec2& uv : a1.uvs) uv *= 0.5f;
     for (vec2& uv : b1.uvs) uv = vec2(uv.x - 1.0f, uv.y) * 0.5f + vec2(0.5f, 0.0f);
     out << "o a_low\n";
-    writeObj(a1, {}, 0, &out);
+    writeObjLines(out, a1);
     out << "o b_low\n";
-    writeObj(b1, {}, a1.positions.size(), &out);
+    writeObjLines(out, b1, a1.positions.size());
   }
   {
     std::ofstream out(d / "parts_high.obj");
     out << "o a_high\n";
-    writeObj(bumpySphere(), {}, 0, &out);
+    writeObjLines(out, bumpySphere());
     out << "o b_high\n";
-    writeObj(highB, {}, bumpySphere().positions.size(), &out);
+    writeObjLines(out, highB, bumpySphere().positions.size());
   }
   const auto groups = runGlint("bake " + q(d / "parts.obj") + " " + q(d / "parts_high.obj") + " -o " + q(d / "g.png") +
                                " --size 32x32 -q --asset " + q(d / "groups.glb"));

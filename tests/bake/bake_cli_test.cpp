@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "support/cli.h"
+#include "support/obj.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -35,33 +36,11 @@ using glint::testing::fileCount;
 using glint::testing::oneLine;
 using glint::testing::runGlint;
 using glint::testing::runShell;
+using glint::testing::writeObj;
+using glint::testing::writeObjLines;
 
 
 fs::path dir(const char* name) { return glint::testing::freshDir("bake-cli", name); }
-
-/// Writes a mesh's OBJ lines (positions, and UVs / normals when present), its vertex numbers
-/// starting after `base` vertices already in the file.
-void writeObjLines(std::ostream& out, const Mesh& m, std::size_t base = 0) {
-  for (const vec3& p : m.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-  for (const vec2& t : m.uvs) out << "vt " << t.x << ' ' << t.y << '\n';
-  for (const vec3& n : m.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
-  for (std::size_t i = 0; i < m.indices.size(); i += 3) {
-    out << 'f';
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t v = base + m.indices[i + std::size_t(k)] + 1;
-      out << ' ' << v;
-      if (m.hasUvs() || m.hasNormals()) out << '/' << (m.hasUvs() ? std::to_string(v) : "");
-      if (m.hasNormals()) out << '/' << v;
-    }
-    out << '\n';
-  }
-}
-
-/// Writes a mesh as OBJ.
-void writeObj(const Mesh& m, const fs::path& path) {
-  std::ofstream out(path);
-  writeObjLines(out, m);
-}
 
 /// A low/high sphere pair in `d`: low.obj, high.obj.
 void writeSpheres(const fs::path& d) {
