@@ -16,6 +16,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 
 namespace glint::scenes {
 
@@ -36,15 +37,17 @@ std::vector<float> readFloats(const tinygltf::Model& m, int index, int component
   if (tinygltf::GetNumComponentsInType(std::uint32_t(a.type)) != components)
     fail(ErrorKind::Input, "'{}': an accessor has {} components, {} expected", file,
          tinygltf::GetNumComponentsInType(std::uint32_t(a.type)), components);
-  std::vector<float> out(a.count * std::size_t(components), 0.0f);
-  if (a.bufferView < 0) return out;  // all zeros (sparse accessors are not read)
+  if (a.bufferView < 0) fail(ErrorKind::Input, "'{}': an accessor without a buffer view (sparse) is not read", file);
   const tinygltf::BufferView& v = m.bufferViews.at(std::size_t(a.bufferView));
   const auto& data = m.buffers.at(std::size_t(v.buffer)).data;
   const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType));
+  if (size <= 0) fail(ErrorKind::Input, "'{}': an accessor of component type {} is not read", file, a.componentType);
   const std::size_t stride = v.byteStride ? v.byteStride : std::size_t(size * components);
   const std::size_t start = v.byteOffset + a.byteOffset;
-  if (a.count > 0 && start + (a.count - 1) * stride + std::size_t(size * components) > data.size())
+  // Checked before anything is allocated: a count a corrupt file claims is not trusted.
+  if (a.count > 0 && (a.count > data.size() || start + (a.count - 1) * stride + std::size_t(size * components) > data.size()))
     fail(ErrorKind::Input, "'{}': an accessor reaches past its buffer", file);
+  std::vector<float> out(a.count * std::size_t(components), 0.0f);
   for (std::size_t i = 0; i < a.count; ++i)
     for (int c = 0; c < components; ++c) {
       const unsigned char* p = data.data() + start + i * stride + std::size_t(c * size);
@@ -67,11 +70,13 @@ std::vector<float> readFloats(const tinygltf::Model& m, int index, int component
 
 std::vector<std::uint32_t> readIndices(const tinygltf::Model& m, int index, const std::string& file) {
   const tinygltf::Accessor& a = m.accessors.at(std::size_t(index));
+  if (a.bufferView < 0) fail(ErrorKind::Input, "'{}': indices without a buffer view", file);
   const tinygltf::BufferView& v = m.bufferViews.at(std::size_t(a.bufferView));
   const auto& data = m.buffers.at(std::size_t(v.buffer)).data;
   const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType));
+  if (size != 1 && size != 2 && size != 4) fail(ErrorKind::Input, "'{}': indices of component type {}", file, a.componentType);
   const std::size_t stride = v.byteStride ? v.byteStride : std::size_t(size), start = v.byteOffset + a.byteOffset;
-  if (a.count > 0 && start + (a.count - 1) * stride + std::size_t(size) > data.size())
+  if (a.count > 0 && (a.count > data.size() || start + (a.count - 1) * stride + std::size_t(size) > data.size()))
     fail(ErrorKind::Input, "'{}': the indices reach past their buffer", file);
   std::vector<std::uint32_t> out(a.count);
   for (std::size_t i = 0; i < a.count; ++i) {
@@ -235,7 +240,11 @@ ModelFile loadModelFile(const fs::path& path) {
   ModelFile model;
   const std::string ext = lowerExtension(path);
   if (ext == ".glb" || ext == ".gltf") {
-    model = loadGltf(path);
+    try {
+      model = loadGltf(path);
+    } catch (const std::out_of_range&) {  // an index into an array the file does not have
+      fail(ErrorKind::Input, "cannot read '{}': an index points past the end of its array", path.string());
+    }
   } else {
     MeshParts parts = loadMeshParts(path);
     ModelPart part;
