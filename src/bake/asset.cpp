@@ -166,8 +166,20 @@ void savePreviewPage(const std::vector<unsigned char>& glb, const std::string& t
     if (!out) fail(ErrorKind::Output, "cannot write '{}'", (dir / "model.js").string());
   });
   std::string page(previewPage());
-  for (std::size_t at = page.find("{{title}}"); at != std::string::npos; at = page.find("{{title}}", at))
-    page.replace(at, 9, title);
+  // The title is a file name: escaped, so `<`, `&` and quotes in it stay text.
+  std::string escaped;
+  for (const char c : title) {
+    switch (c) {
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '&': escaped += "&amp;"; break;
+      case '"': escaped += "&quot;"; break;
+      case '\'': escaped += "&#39;"; break;
+      default: escaped += c;
+    }
+  }
+  for (std::size_t at = page.find("{{title}}"); at != std::string::npos; at = page.find("{{title}}", at + escaped.size()))
+    page.replace(at, 9, escaped);
   writeTextAtomically(dir / "index.html", page);
   for (std::size_t i = 0; i < three.size(); ++i) writeTextAtomically(dir / "three" / kThreeFiles[i], readTextFile(three[i]));
 }

@@ -303,3 +303,20 @@ TEST(GltfFiles, GlintCutsGlbAndGltfPassTheValidatorToo) {
     EXPECT_EQ(verdict.value("infos", -1), 0) << verdict.dump(1);
   }
 }
+
+// A file name is text on the page: markup, quotes and $(...) in the low poly's name stay
+// characters of its title (escaped), and a line break in it bakes as any name does.
+TEST(BakePreview, AFileNameWithMarkupQuotesAndALineBreakStaysTextInThePage) {
+  const auto d = dir("preview-name");
+  const std::string name = "a<b onload=x>&\"q'$(touch PWNED)\nz";
+  writeObj(makeUvSphere(1.0f, 16, 8), d / (name + ".obj"));
+  writeObj(bumpySphere(), d / "high.obj");
+  const auto bake = runGlint("bake " + q(d / (name + ".obj")) + " " + q(d / "high.obj") + " -o " + q(d / "n.png") +
+                             " --size 16x16 -q --preview " + q(d / "web"));
+  ASSERT_EQ(bake.status, 0) << bake.output;
+  const std::string page = readBytes(d / "web/index.html");
+  EXPECT_EQ(page.find("<b onload"), std::string::npos);
+  EXPECT_NE(page.find("a&lt;b onload=x&gt;&amp;&quot;q&#39;$(touch PWNED)\nz"), std::string::npos);
+  EXPECT_FALSE(fs::exists(d / "PWNED"));
+  EXPECT_FALSE(fs::exists("PWNED"));
+}
