@@ -94,7 +94,6 @@ public:
     m_vao.attribute(render::attrib::kPosition, 0, 3, 0);
     m_vao.vertexBuffer(0, m_buffer, 0, GLsizei(sizeof(vec3)));
   }
-  std::size_t segments() const { return std::size_t(m_count) / 2; }
   void draw() const {
     if (m_count == 0) return;
     m_vao.bind();
@@ -149,10 +148,6 @@ public:
       m_materials.push_back(std::move(g));
     }
     m_none = upload(Image(), "none");
-    const Lines lines = modelLines(*m_model);
-    m_wire = LineSet(lines.wire, "wireframe");
-    m_seams = LineSet(lines.seams, "uv-seams");
-    m_hard = LineSet(lines.hardEdges, "hard-edges");
     const Image equirect = render::env::loadEquirect(render::env::findEnvironment("courtyard"));
     m_environment = render::env::cubeFromEquirect(equirect, {.faceSize = 128, .label = "studio-environment"});
     m_hasMisses = std::find(m_names.begin(), m_names.end(), "miss_mask") != m_names.end();
@@ -165,10 +160,9 @@ public:
         {"normal-map", "the material's normal map", &m_normalMap, 0, 1, 'N'},
         {"ao", "the occlusion (AO) map", &m_occlusion, 0, 1, 'O'},
         {"show", "a map as a colour: " + shows, &m_show, 0, float(m_names.size()), 'M'},
-        {"wireframe", fmt::format("every triangle edge ({})", m_wire.segments()), &m_wireframe, 0, 1, 'W'},
-        {"uv-seams", fmt::format("edges whose faces disagree on UVs, or open edges ({})", m_seams.segments()), &m_uvSeams, 0, 1, 'U'},
-        {"hard-edges", fmt::format("edges whose faces disagree on normals: a bake's rays fan apart there ({})",
-                                   m_hard.segments()), &m_hardEdges, 0, 1, 'H'},
+        {"wireframe", "every triangle edge", &m_wireframe, 0, 1, 'W'},
+        {"uv-seams", "edges whose faces disagree on UVs, or open edges", &m_uvSeams, 0, 1, 'U'},
+        {"hard-edges", "edges whose faces disagree on normals: a bake's rays fan apart there", &m_hardEdges, 0, 1, 'H'},
         {"misses", "texels whose bake rays missed, in red (the asset's miss mask)", &m_misses, 0, 1, 'X'},
         {"yaw", "the camera around the model, degrees (from +Z towards +X)", &m_yaw, -180, 180},
         {"pitch", "the camera above the model, degrees", &m_pitch, -85, 85},
@@ -237,7 +231,15 @@ public:
       (mat && miss != m_names.end() ? mat->maps[std::size_t(miss - m_names.begin())] : m_none).bind(4);
       part.mesh.draw();
     }
-    // Lines over the surface (the triangles were pushed back by the polygon offset).
+    // Lines over the surface (the triangles were pushed back by the polygon offset), made
+    // when an overlay is first asked for: a large model's edge map costs seconds.
+    if ((m_wireframe || m_uvSeams || m_hardEdges) && !m_linesMade) {
+      const Lines lines = modelLines(*m_model);
+      m_wire = LineSet(lines.wire, "wireframe");
+      m_seams = LineSet(lines.seams, "uv-seams");
+      m_hard = LineSet(lines.hardEdges, "hard-edges");
+      m_linesMade = true;
+    }
     render::PipelineState{.depthTest = true, .depthFunc = GL_LEQUAL}.apply();
     m_lineProgram.set("uViewProj", camera.viewProjection());
     m_lineProgram.use();
@@ -271,6 +273,7 @@ private:
   std::vector<std::string> m_names;
   gl::Texture m_none, m_environment;
   LineSet m_wire, m_seams, m_hard;
+  bool m_linesMade = false;
   vec3 m_center{0.0f};
   float m_radius = 0.0f;
   std::string m_frameFile, m_framedBy;
