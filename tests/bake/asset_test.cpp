@@ -225,6 +225,18 @@ TEST(BakePreview, ThePageRendersTheBakeInChromiumAndTheNormalMapShowsTheDetail) 
                              " --ao " + q(d / "ao.png") + " --size 256x128 --samples 4 -q --preview " + q(d / "web"));
   ASSERT_EQ(bake.status, 0) << bake.output;
   for (const std::string& f : bake::previewFiles()) EXPECT_TRUE(fs::exists(d / "web" / f)) << f;
+  // Offline: everything the page loads is a file beside it (no address with a scheme).
+  const std::string html = readBytes(d / "web/index.html");
+  int loads = 0;
+  for (const std::string attribute : {"src=\"", "href=\""})
+    for (auto at = html.find(attribute); at != std::string::npos; at = html.find(attribute, at + 1)) {
+      const auto from = at + attribute.size();
+      const std::string target = html.substr(from, html.find('"', from) - from);
+      EXPECT_EQ(target.find(':'), std::string::npos) << target;
+      EXPECT_TRUE(fs::exists(d / "web" / target)) << target;
+      ++loads;
+    }
+  EXPECT_EQ(loads, 4) << "three.js's three scripts and the model";
 
   // A fresh Chromium: its own profile; no sandbox (the tests may run as root).
   const auto chromium = [&](const std::string& what, const std::string& hash, const std::string& name) {
