@@ -15,6 +15,9 @@ GLINT := $(BUILD)/app/glint
 # Incremental rebuilds recompile a whole batch; UNITY=-DCMAKE_UNITY_BUILD=OFF builds file by file.
 # A target whose files share anonymous-namespace names opts out in its CMakeLists.txt.
 UNITY ?= -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16
+# The Python the module is built for and tested with (Debian's, with numpy and pytest from
+# scripts/setup; a python3 earlier on PATH, e.g. a pyenv shim, may lack them).
+PYTHON ?= /usr/bin/python3
 ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
 FUZZ_SECONDS ?= 30
@@ -64,7 +67,8 @@ setup-test:
 # make BUILD=build-debug BUILD_TYPE=RelWithDebInfo test
 BUILD_TYPE ?= Release
 $(BUILD)/build.ninja:
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" $(UNITY)
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" $(UNITY) \
+	  -DPython3_EXECUTABLE=$(PYTHON)
 
 configure: $(BUILD)/build.ninja
 

@@ -87,13 +87,7 @@ int makeNormalMap(const NormalMapArgs& args, const GlobalOptions& global) {
   } else {
     normals = heightToNormalMap(input, options);
   }
-  // RGB, the three components of the normal; RGBA carrying the input's alpha when it has one.
-  const bool alpha = input.channels() == 2 || input.channels() == 4;
-  Image written = normals.withChannels(alpha ? 4 : 3);
-  if (alpha) {
-    for (int y = 0; y < input.height(); ++y)
-      for (int x = 0; x < input.width(); ++x) written.set(x, y, 3, input.at(x, y, input.channels() - 1));
-  }
+  const Image written = withHeightAlpha(normals, input);
   saveImage(written, args.output, args.format);
   log::info("{} ({}x{}, {}) → {} ({} normals, scale {}{})", args.input, input.width(), input.height(),
             pixelTypeName(input.type()), args.output, args.gpu ? "GPU" : "CPU", args.scale,

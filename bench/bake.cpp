@@ -12,6 +12,13 @@
 //   (f) 2048², every map in one command (normal, AO, bent normal, curvature, thickness,
 //       position) vs Blender baking the passes it has (normal, AO, position) one after
 //       another on the same OBJ files (target ≥ 10×; issue 23).
+//   (g) the Blender add-on's whole bake inside Blender (meshes out, glint's bake through the
+//       Python module, images in, material wired) vs Blender's Cycles bake of the same maps
+//       in the same session, runs alternating (bench/peers/blender_addon_bench.py): the normal
+//       map at 2048² (target ≥ 10×), normal + AO with 16 rays, and the add-on's own share
+//       (target < 5 % of the bake; issue 36).
+//   (h) the Python module's own cost on a small bake: glint.bake()'s wall time against the
+//       job's (target < 5 %; bench/peers/python_overhead.py).
 #include "glint/bake/baker.h"
 #include "glint/bake/samples.h"
 #include "glint/bench/bench.h"
@@ -210,6 +217,105 @@ void everyMapVersusBlender(Recorder& r, const fs::path& dir) {
             .note = fmt::format("median of {}, alternating; normal, AO, position one after another", blenderRuns.size())});
   r.record({.group = group, .name = "speed-up (target ≥ 10)", .value = peer / glint, .unit = "×",
             .note = fmt::format("glint bakes {} maps, Blender 3", curvature ? 6 : 5)});
+}
+
+/// The lines of a command's standard output that start with "RESULT ", parsed; empty when
+/// the command failed.
+std::vector<nlohmann::json> resultLines(const std::string& command) {
+  std::vector<nlohmann::json> out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return out;
+  std::string line;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) {
+    line += buffer;
+    if (line.empty() || line.back() != '\n') continue;
+    if (line.starts_with("RESULT ")) out.push_back(nlohmann::json::parse(line.substr(7), nullptr, false));
+    line.clear();
+  }
+  if (pclose(pipe) != 0) out.clear();
+  return out;
+}
+
+/// Where the build keeps the Python module and the add-on's zip; empty when not built.
+fs::path buildPath(const char* path) {
+  std::error_code ec;
+  return fs::exists(path, ec) ? fs::path(path) : fs::path();
+}
+
+/// (g) the add-on in Blender against Cycles in Blender, the same OBJ files as (a) and (f).
+void addonVersusBlender(Recorder& r, const fs::path& dir) {
+  const std::string group = "g: Blender add-on, 2048²";
+  const fs::path zip = buildPath(GLINT_ADDON_ZIP_PATH), module = buildPath(GLINT_PYTHON_DIR);
+  const auto unavailable = [&](const std::string& why) {
+    r.record({.group = group, .name = "add-on vs cycles", .value = std::nan(""), .unit = "×", .note = why});
+  };
+  if (!blenderAvailable()) return unavailable("peer unavailable: `blender` is not installed (apt install blender)");
+  if (zip.empty() || module.empty()) return unavailable("the add-on or the Python module was not built (GLINT_BUILD_PYTHON)");
+  if (!fs::exists(dir / "low.obj")) bake::writeObj(lowPoly(), dir / "low.obj");
+  if (!fs::exists(dir / "high.obj")) bake::writeObj(highPoly(262144), dir / "high.obj");
+  const auto results = resultLines(fmt::format(
+      "BLENDER_USER_SCRIPTS={} blender -b --factory-startup --python {} -- {} {} {} {} 2048 {} 2>/dev/null",
+      shellQuote(dir / "blender-scripts"), shellQuote(fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "blender_addon_bench.py"),
+      shellQuote(zip), shellQuote(module), shellQuote(dir / "low.obj"), shellQuote(dir / "high.obj"), kPeerRepeats));
+  if (results.size() != std::size_t(4 * kPeerRepeats)) return unavailable("peer failed (blender_addon_bench.py)");
+  for (const char* name : {"normal", "normal+ao"}) {
+    std::vector<double> addon, cycles, outside, inside;
+    for (const nlohmann::json& j : results) {
+      if (j.value("case", "") != name) continue;
+      if (j.value("tool", "") == "cycles") {
+        cycles.push_back(j.value("seconds", std::nan("")));
+        continue;
+      }
+      addon.push_back(j.value("seconds", std::nan("")));
+      const nlohmann::json& p = j["phases"];
+      inside.push_back(p.value("bake", std::nan("")));
+      outside.push_back(p.value("export", 0.0) + p.value("import", 0.0) + p.value("wire", 0.0));
+    }
+    const bool normalOnly = std::string(name) == "normal";
+    const std::string label = normalOnly ? "normal map" : "normal + AO (16 rays)";
+    const double a = median(addon), c = median(cycles);
+    r.record({.group = group, .name = "add-on, " + label, .value = a, .unit = "s",
+              .note = fmt::format("median of {}; the operator whole: meshes out, glint.bake, images in, wiring",
+                                  addon.size())});
+    r.record({.group = group, .name = "blender cycles, " + label, .value = c, .unit = "s",
+              .note = fmt::format("median of {}, alternating, same session and objects", cycles.size())});
+    r.record({.group = group, .name = normalOnly ? "  speed-up (target ≥ 10)" : "  speed-up", .value = c / a, .unit = "×",
+              .note = normalOnly ? "" : "AO: 16 CPU rays per texel bound both"});
+    r.record({.group = group, .name = "  add-on's own share (target < 5 %)", .value = 100.0 * median(outside) / median(inside),
+              .unit = "%", .note = fmt::format("export {:.3f} s + import + wiring, of the bake's {:.2f} s", median(outside),
+                                               median(inside))});
+  }
+}
+
+/// (h) the Python module's cost: glint.bake()'s wall time less the job's own, on a small bake.
+void pythonOverhead(Recorder& r, const fs::path& dir) {
+  const std::string group = "h: Python module";
+  const fs::path module = buildPath(GLINT_PYTHON_DIR);
+  if (module.empty()) {
+    r.record({.group = group, .name = "module overhead", .value = std::nan(""), .unit = "%",
+              .note = "the Python module was not built (GLINT_BUILD_PYTHON)"});
+    return;
+  }
+  bake::writeObj(lowPoly(), dir / "small_low.obj");
+  bake::writeObj(highPoly(16384), dir / "small_high.obj");
+  const auto results = resultLines(fmt::format(
+      "PYTHONPATH={} {} {} {} {} 256 {} 2>/dev/null", shellQuote(module), GLINT_PYTHON_EXECUTABLE,
+      shellQuote(fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "python_overhead.py"), shellQuote(dir / "small_low.obj"),
+      shellQuote(dir / "small_high.obj"), kWholeRunRepeats));
+  if (results.size() != 1) {
+    r.record({.group = group, .name = "module overhead", .value = std::nan(""), .unit = "%", .note = "python_overhead.py failed"});
+    return;
+  }
+  const std::vector<double> walls = results[0]["wall"].get<std::vector<double>>();
+  const std::vector<double> jobs = results[0]["job"].get<std::vector<double>>();
+  std::vector<double> overheads;
+  for (std::size_t i = 0; i < walls.size() && i < jobs.size(); ++i) overheads.push_back(walls[i] - jobs[i]);
+  const double job = median(jobs), overhead = median(overheads);
+  r.record({.group = group, .name = "glint.bake, 256², 16k triangles", .value = median(walls), .unit = "s",
+            .note = fmt::format("median of {}; the job itself {:.3f} s", walls.size(), job)});
+  r.record({.group = group, .name = "  module overhead (target < 5 %)", .value = 100.0 * overhead / job, .unit = "%",
+            .note = fmt::format("{:.1f} ms: options in, the worker thread, arrays out", 1000.0 * overhead)});
 }
 
 /// A binary little-endian PLY with positions, normals and uvs.
@@ -432,18 +538,23 @@ void runBakeSuite(Recorder& r) {
   log::setLevel(log::Level::Error);  // the bakes' own warnings are not the bench's output
   const fs::path dir = fs::temp_directory_path() / fmt::format("glint-bench-bake-{}", getpid());
   fs::create_directories(dir);
+  // GLINT_BENCH_BAKE_PARTS=g,h runs only those parts (the letters above); unset: every part.
+  const char* only = std::getenv("GLINT_BENCH_BAKE_PARTS");
+  const auto part = [only](char letter) { return !only || std::strchr(only, letter) != nullptr; };
   try {
-    loading(r, dir);
-    scaling(r);
-    {
+    if (part('e')) loading(r, dir);
+    if (part('d')) scaling(r);
+    if (part('c')) {
       const Mesh low = lowPoly(), high = highPoly(1 << 20);
       // (the ray log costs 32 B per ray: ~4 M rays each)
       throughput(r, low, high, 2048, 1);
       throughput(r, low, high, 1024, 4);
     }
-    bigBake(r);
-    versusBlender(r, dir);
-    everyMapVersusBlender(r, dir);
+    if (part('b')) bigBake(r);
+    if (part('a')) versusBlender(r, dir);
+    if (part('f')) everyMapVersusBlender(r, dir);
+    if (part('g')) addonVersusBlender(r, dir);
+    if (part('h')) pythonOverhead(r, dir);
   } catch (...) {
     fs::remove_all(dir);
     log::setLevel(level);

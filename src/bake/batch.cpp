@@ -226,6 +226,20 @@ void checkBatch(const std::string& file, const std::vector<BatchJob>& jobs, cons
 
 }  // namespace
 
+BakeJob jobFromSettings(const Json& settings) {
+  CLI::App app{"glint bake", "bake"};
+  BakeJob defaults;
+  addOptions(app, defaults, Meshes::Required);
+  Json dashed = Json::object();
+  for (const auto& [key, value] : settings.items()) {
+    std::string name = key;
+    std::replace(name.begin(), name.end(), '_', '-');
+    dashed[name] = value;
+  }
+  const Json canonical = canonicalKeys(app, dashed);
+  return parseJob(argumentsFor(app, {&canonical}, {}));
+}
+
 Json givenOptions(const CLI::App& cmd, const std::vector<const CLI::Option*>& except) {
   Json given = Json::object();
   for (const CLI::Option* option : cmd.get_options()) {

@@ -243,13 +243,17 @@ double estimateMemoryMiB(const BakeJob& job) {
 }
 
 std::vector<FileUse> inputFiles(const BakeJob& a) {
-  return {{a.low, "the low poly"}, {a.high, "the high poly"}, {a.cage, "--cage"}, {a.detail, "--height-detail"}};
+  return {{a.lowMesh ? std::string() : a.low, "the low poly"}, {a.highMesh ? std::string() : a.high, "the high poly"},
+          {a.cage, "--cage"}, {a.detail, "--height-detail"}};
 }
 
 std::vector<FileUse> outputFiles(const BakeJob& a) {
-  std::vector<FileUse> files{{a.output, "-o"}};
-  for (const MapInfo& m : mapTable())
-    if (m.map != Map::Normal) files.push_back({a.path(m.map), std::string("--") + m.name});
+  std::vector<FileUse> files;
+  if (!a.sink) {  // a sink takes the maps: no map file
+    files.push_back({a.output, "-o"});
+    for (const MapInfo& m : mapTable())
+      if (m.map != Map::Normal) files.push_back({a.path(m.map), std::string("--") + m.name});
+  }
   files.push_back({a.asset, "--asset"});
   if (!a.preview.empty())
     for (const std::string& f : previewFiles()) files.push_back({fs::path(a.preview) / f, "--preview"});
@@ -404,6 +408,7 @@ BakePlan prepare(const BakeJob& a, ToolRun& run) {
          "8/16, EXR 32 float)", a.bits, a.bits);
   }
   checkAssetOptions(a);
+  if (a.sink) outputs.clear();  // the maps go to the sink, not to files
   if (!a.tool.json.empty() && a.tool.json != "-") outputs.push_back(a.tool.json);
   for (const auto& path : outputs) checkWritable(path);
   run.checkMemory(estimateMemoryMiB(a), fmt::format("a {}x{} bake", plan.size.x, plan.size.y));
@@ -439,7 +444,7 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
   // file that does not even contain the low suffix is read as before, in parallel with the high.
   const GroupNaming naming{a.lowSuffix, a.highSuffix};
   std::optional<MeshParts> lowParts;
-  if (!a.noGroups && mentionsText(a.low, naming.lowSuffix)) {
+  if (!a.noGroups && !a.lowMesh && mentionsText(a.low, naming.lowSuffix)) {
     lowParts = loadMeshParts(a.low);
     bool grouped = false;
     for (const std::string& name : lowParts->partNames) grouped = grouped || !groupName(name, naming.lowSuffix, false).empty();
@@ -447,7 +452,7 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
   }
   const bool highAsParts = lowParts || options.maps.needs(kHitTriangle);
   auto others = std::async(std::launch::async, [&] {
-    Mesh low = lowParts ? lowParts->mesh : loadMesh(a.low);
+    Mesh low = lowParts ? lowParts->mesh : a.lowMesh ? *a.lowMesh : loadMesh(a.low);
     if (!a.cage.empty()) options.cage = loadMesh(a.cage);
     if (!a.detail.empty()) options.detail = HeightDetail{loadImage(a.detail), a.detailScale};
     return low;
@@ -458,7 +463,10 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
   std::exception_ptr highError;
   bool highReused = false;
   try {
-    if (HighMeshCache::Entry* e = cache ? cache->find(a.high, highAsParts) : nullptr) {
+    if (a.highMesh) {
+      if (highAsParts) highParts = std::make_shared<const MeshParts>(MeshParts{.mesh = *a.highMesh});
+      else high = a.highMesh;
+    } else if (HighMeshCache::Entry* e = cache ? cache->find(a.high, highAsParts) : nullptr) {
       high = e->mesh;
       highParts = e->parts;
       highReused = true;
@@ -507,7 +515,7 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
   }
   std::vector<UdimTile> tiles;
   if (named || spansUdimTiles(low)) {
-    if (unnamed) {
+    if (unnamed && !a.sink) {  // (a sink takes tiles by number: no file names them)
       fail(ErrorKind::Usage, "bake: the low poly's UVs span UDIM tiles (or an output names <UDIM>): name every map with "
            "<UDIM> where the tile number goes, e.g. -o normal.<UDIM>.png");
     }
@@ -595,11 +603,17 @@ void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
     // Every map asked for, as (its option's path, the image converted for that file), the
     // files written in parallel: compressing them is most of the write phase (six 2048²
     // PNGs: 2.4 s one after another).
+    if (a.sink) {  // in memory: each map as its file would hold it
+      a.sink(Map::Normal, tile.number, std::move(result.normal));
+      for (const MapInfo& m : mapTable())
+        if (m.map != Map::Normal && !a.path(m.map).empty())
+          a.sink(m.map, tile.number, m.forOutput(result.map(m.map), outputType(a.path(m.map), a.bits), s));
+    }
     std::vector<std::function<void()>> writes;
-    writes.emplace_back([&] { saveImage(result.normal, file(a.output)); });  // quantized as it was baked
+    if (!a.sink) writes.emplace_back([&] { saveImage(result.normal, file(a.output)); });  // quantized as it was baked
     for (const MapInfo& m : mapTable()) {
       const std::string& path = a.path(m.map);
-      if (m.map == Map::Normal || path.empty()) continue;
+      if (m.map == Map::Normal || path.empty() || a.sink) continue;
       writes.emplace_back([&m, &path, &result, &s, &file, &a] {
         saveImage(m.forOutput(result.map(m.map), outputType(path, a.bits), s), file(path));
       });

@@ -10,10 +10,26 @@
 
 namespace glint {
 
+namespace {
+std::mutex g_listenerMutex;
+std::shared_ptr<const ProgressListener> g_listener;
+
+std::shared_ptr<const ProgressListener> currentListener() {
+  std::lock_guard lock(g_listenerMutex);
+  return g_listener;
+}
+}  // namespace
+
+void setProgressListener(ProgressListener listener) {
+  std::lock_guard lock(g_listenerMutex);
+  g_listener = listener ? std::make_shared<const ProgressListener>(std::move(listener)) : nullptr;
+}
+
 Progress::Progress(std::string label, std::uint64_t total)
     : m_label(std::move(label)),
       m_total(total),
       m_start(std::chrono::steady_clock::now()),
+      m_listener(currentListener()),
       m_enabled(isatty(STDERR_FILENO) && log::level() <= log::Level::Info) {
   draw(true);
 }
@@ -50,7 +66,7 @@ std::string etaText(std::uint64_t done, std::uint64_t total, double elapsedSecon
 }
 
 void Progress::draw(bool force) {
-  if (!m_enabled || m_finished) return;
+  if ((!m_enabled && !m_listener) || m_finished) return;
   using namespace std::chrono;
   const auto elapsed = duration<double>(steady_clock::now() - m_start).count();
   const auto ms = static_cast<std::int64_t>(elapsed * 1000.0);
@@ -61,6 +77,8 @@ void Progress::draw(bool force) {
   if (!m_lastDrawMs.compare_exchange_strong(last, ms) && !force) return;
   std::unique_lock lock(m_drawMutex, std::try_to_lock);
   if (!lock.owns_lock()) return;
+  if (m_listener) (*m_listener)(m_label, std::min(m_done.load(), m_total ? m_total : m_done.load()), m_total);
+  if (!m_enabled) return;
 
   constexpr int kWidth = 30;
   const auto done = std::min(m_done.load(), m_total);

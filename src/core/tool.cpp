@@ -52,18 +52,21 @@ ToolRun::ToolRun(std::string tool, const ToolSettings& settings)
   }
   m_impl->previousLevel = log::level();
   if (settings.quiet && log::level() < log::Level::Warn) log::setLevel(log::Level::Warn);
+  if (settings.cancel) return;  // the caller's flag, the caller's signals
   g_cancel.store(false);
   m_impl->previousInt = std::signal(SIGINT, onInterrupt);
   m_impl->previousTerm = std::signal(SIGTERM, onInterrupt);
 }
 
 ToolRun::~ToolRun() {
-  std::signal(SIGINT, m_impl->previousInt);
-  std::signal(SIGTERM, m_impl->previousTerm);
+  if (!m_settings.cancel) {
+    std::signal(SIGINT, m_impl->previousInt);
+    std::signal(SIGTERM, m_impl->previousTerm);
+  }
   log::setLevel(m_impl->previousLevel);
 }
 
-const std::atomic<bool>& ToolRun::cancelFlag() const { return g_cancel; }
+const std::atomic<bool>& ToolRun::cancelFlag() const { return m_settings.cancel ? *m_settings.cancel : g_cancel; }
 
 void ToolRun::throwIfInterrupted() const {
   if (interrupted()) fail(ErrorKind::Interrupted, "{} interrupted; no output was written", m_tool);

@@ -119,4 +119,15 @@ Image prepareNormalMap(const Image& image, std::string_view name, NormalSpace sp
   return out;
 }
 
+Image withHeightAlpha(const Image& normals, const Image& height) {
+  // RGB, the three components of the normal; RGBA carrying the input's alpha when it has one.
+  const bool alpha = height.channels() == 2 || height.channels() == 4;
+  Image written = normals.withChannels(alpha ? 4 : 3);
+  if (alpha) {
+    for (int y = 0; y < height.height(); ++y)
+      for (int x = 0; x < height.width(); ++x) written.set(x, y, 3, height.at(x, y, height.channels() - 1));
+  }
+  return written;
+}
+
 }  // namespace glint

@@ -197,44 +197,20 @@ PostStats runParts(const PostJob& job, ToolRun& run) {
   return stats;
 }
 
-PostStats runImage(const PostJob& job, ToolRun& run, Gpu& gpu) {
+PostStats runImage(const PostJob& job, ToolRun& run, GpuBackend* gpu) {
   requireImageIo();
   Image input;
   {
     auto timed = run.phase("load");
     input = loadImage(job.input);
   }
-  const int inputChannels = input.channels();
-  const bool linear = input.type() == PixelType::F32;  // EXR, HDR: linear light
-  const ivec2 size(input.width(), input.height());
-  run.checkMemory(estimatePeakMemoryMiB(size, true) * (linear ? 4.0 : 1.0),
-                  fmt::format("processing a {}x{} image", size.x, size.y));
-  const Backend backend = chooseBackend(job, gpu, linear);
-  if (backend == Backend::Gpu) gpu.startFor(size);
-  const Image frame = toFrame(input, job.input, backend == Backend::Gpu, run);
-  input = Image();
-  PostStats stats{.kind = InputKind::Image, .input = job.input, .output = job.output, .size = size, .framesRead = 1,
-                  .framesWritten = 1};
-  stats.backend = backendName(backend);
-  Image result;
-  {
-    auto timed = run.phase("process");
-    if (backend == Backend::Cpu) {
-      CpuChain chain(size, job.effects);
-      result = chain.run(frame);
-      stats.effects = chain.describe();
-    } else {
-      result = gpu.backend().runImage(job.effects, frame, stats.effects);
-    }
-  }
-  run.throwIfInterrupted();
+  PostStats stats;
+  const Image result = processImage(job, std::move(input), run, gpu, stats);
   {
     auto timed = run.phase("write");
-    // A float file holds linear light, as the input was read: the encoded result decoded.
-    if (floatImageOutput(job.output, job.format)) result = srgbDecoded(result);
-    saveImage(withOutputChannels(result, inputChannels, job.channels, stats.effects), job.output, job.format);
+    saveImage(result, job.output, job.format);
   }
-  log::info("post: {} ({}x{}) → {}: {} ({})", job.input, size.x, size.y, job.output, stats.effects, stats.backend);
+  log::info("post: {} ({}x{}) → {}: {} ({})", job.input, stats.size.x, stats.size.y, job.output, stats.effects, stats.backend);
   return stats;
 }
 
@@ -511,14 +487,46 @@ nlohmann::ordered_json PostStats::toJson() const {
   return j;
 }
 
+Image processImage(const PostJob& job, Image input, ToolRun& run, GpuBackend* gpuBackend, PostStats& stats) {
+  Gpu gpu(gpuBackend, job.glDebug);
+  const int inputChannels = input.channels();
+  const bool linear = input.type() == PixelType::F32;  // EXR, HDR: linear light
+  const ivec2 size(input.width(), input.height());
+  run.checkMemory(estimatePeakMemoryMiB(size, true) * (linear ? 4.0 : 1.0),
+                  fmt::format("processing a {}x{} image", size.x, size.y));
+  const Backend backend = chooseBackend(job, gpu, linear);
+  if (backend == Backend::Gpu) gpu.startFor(size);
+  const Image frame = toFrame(input, job.input, backend == Backend::Gpu, run);
+  input = Image();
+  stats = PostStats{.kind = InputKind::Image, .input = job.input, .output = job.output, .size = size, .framesRead = 1,
+                    .framesWritten = 1};
+  stats.backend = backendName(backend);
+  Image result;
+  {
+    auto timed = run.phase("process");
+    if (backend == Backend::Cpu) {
+      CpuChain chain(size, job.effects);
+      result = chain.run(frame);
+      stats.effects = chain.describe();
+    } else {
+      result = gpu.backend().runImage(job.effects, frame, stats.effects);
+    }
+  }
+  run.throwIfInterrupted();
+  // A float file holds linear light, as the input was read: the encoded result decoded.
+  if (!job.output.empty() && floatImageOutput(job.output, job.format)) result = srgbDecoded(result);
+  return withOutputChannels(result, inputChannels, job.channels, stats.effects);
+}
+
 PostStats runJob(const PostJob& job, ToolRun& run, GpuBackend* gpuBackend) {
   // Usage errors first: fail in a millisecond, before opening anything.
   checkJob(job, run.settings());
   const InputKind kind = inputKind(job);
   if (kind == InputKind::Parts) return runParts(job, run);
   if (kind == InputKind::Image || imageOutput(job)) preloadImageIo();  // while the GPU starts
+  if (kind == InputKind::Image) return runImage(job, run, gpuBackend);
   Gpu gpu(gpuBackend, job.glDebug);
-  return kind == InputKind::Image ? runImage(job, run, gpu) : runVideo(job, run, gpu);
+  return runVideo(job, run, gpu);
 }
 
 namespace {

@@ -27,10 +27,14 @@
 #include "glint/bake/maps.h"
 #include "glint/core/tool.h"
 #include "glint/farm/farm.h"
+#include "glint/image/image.h"
+#include "glint/mesh/mesh.h"
 
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -59,7 +63,24 @@ struct BakeJob {
   float detailScale = 8.0f;
   bool directX = false, frontFirst = false, fillAll = false, noGroups = false;
   ToolSettings tool;  ///< --threads, -q, --max-memory, --json
+
+  // In memory rather than files (the Python module, glint.bake on arrays):
+  /// Meshes that replace the files `low` and `high` (which then only name them in messages;
+  /// bake groups need named parts, so a mesh given here bakes as one part).
+  std::shared_ptr<const Mesh> lowMesh, highMesh;
+  /// Takes every map instead of its file, as the file would hold it (the path's format and
+  /// --bits decide the pixel type: "ao.png" U8, "ao.exr" F32), with its UDIM tile (0
+  /// without UDIM); `output` and `maps` then only name formats, and no map file is written
+  /// or checked (the report, --asset and --preview still are). Called on the job's thread.
+  std::function<void(Map map, int tile, Image image)> sink;
 };
+
+/// A bake from option settings keyed by long option names, as a batch file's job is read
+/// (the same parsing, defaults and checks as the command line): {"low": "a_low.obj",
+/// "high": "a_high.ply", "output": "n.png", "samples": 4, "directx": true}. A key may be
+/// spelled with underscores for dashes ("max_front"). Relative file paths stay as given.
+/// Error(Usage) naming an unknown key or a bad value.
+BakeJob jobFromSettings(const nlohmann::ordered_json& settings);
 
 /// Which of LOW, HIGH and -o addOptions declares.
 enum class Meshes {

@@ -8,6 +8,10 @@
 //
 // A total of 0 means unknown (a live source): the count is drawn without a bar.
 //
+// A program that shows progress its own way (the Python module's callback, a GUI) sets a
+// listener: every bar of the process then reports to it, at the same rate as it redraws
+// (~10 times a second, and once when it finishes), terminal or not.
+//
 /// ```cpp
 /// #include <vector>
 /// const std::vector<int> variants(40);
@@ -22,10 +26,21 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <string>
 
+#include <functional>
+#include <string_view>
+
 namespace glint {
+
+/// Hears every Progress of the process: its label, steps done and total (0: unknown).
+/// Called on the thread that advanced the bar, so it must be quick and thread-safe.
+using ProgressListener = std::function<void(std::string_view label, std::uint64_t done, std::uint64_t total)>;
+/// Sets the process's listener (an empty function removes it). Bars made before keep the
+/// listener they were made with.
+void setProgressListener(ProgressListener listener);
 
 /// The estimated time left, as the bar shows it after the elapsed time: "ETA 42 s",
 /// "ETA 3:05" (minutes), "ETA 1:02:05" (hours); empty while nothing is done yet, when the
@@ -59,6 +74,7 @@ private:
   std::atomic<std::int64_t> m_lastDrawMs{-1000};
   std::chrono::steady_clock::time_point m_start;
   std::mutex m_drawMutex;
+  std::shared_ptr<const ProgressListener> m_listener;  ///< the process's listener when the bar was made
   bool m_enabled;
   bool m_finished = false;
 };

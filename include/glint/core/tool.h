@@ -61,6 +61,9 @@ struct ToolSettings {
   bool quiet = false;  ///< warnings and errors only: no progress bar, no info lines
   std::string json;  ///< where to write the report: a path, "-" for stdout, empty for none
   std::string maxMemory;  ///< --max-memory ("4096" MiB, "512M", "4G"): refuse jobs estimated to need more; empty: no limit
+  /// A cancel flag the caller owns (the Python module, a GUI): the run polls it instead of
+  /// its own, and installs no SIGINT/SIGTERM handlers (the caller turns Ctrl-C into it).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 class ToolRun {

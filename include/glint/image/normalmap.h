@@ -85,6 +85,11 @@ Image heightFromImage(const Image& image, bool* usedLuminance = nullptr);
 /// heightFromImage first. Rows as in the input (row 0 at the top).
 Image heightToNormalMap(const Image& height, const NormalMapOptions& options = {});
 
+/// What `glint normalmap` writes for `height`: `normals` (heightToNormalMap's, or the GPU
+/// pass's) as 8-bit RGB, or RGBA carrying the height's alpha when it has one (grey + alpha,
+/// RGBA).
+Image withHeightAlpha(const Image& normals, const Image& height);
+
 /// The frame a normal map's vectors are expressed in.
 enum class NormalSpace {
   Tangent,  ///< relative to the surface's MikkTSpace frame: z (blue) points out, mostly > 0.5;

@@ -199,6 +199,14 @@ public:
 /// (--backend gpu is then a usage error).
 PostStats runJob(const PostJob& job, ToolRun& run, GpuBackend* gpu = nullptr);
 
+/// One image through the job's effects in memory, as `glint post IMAGE -o OUT` processes the
+/// image it loaded (the Python module's glint.post on arrays): `input` as loadImage gives one
+/// (U8, U16 or F32; 1 to 4 channels; F32 is linear light), the result as the command saves
+/// it (8-bit, the input's channels or job.channels; F32 when job.output names a float
+/// format). Only job.effects, backend, channels, glDebug and output's format are used; no
+/// file is read or written. `stats` gets the image job's fields.
+Image processImage(const PostJob& job, Image input, ToolRun& run, GpuBackend* gpu, PostStats& stats);
+
 /// Adds stats.toJson() to the report and finishes it (ToolRun::finish writes --json); then
 /// Error(Input) when the source broke off, and the exit status: 0, or 130 when interrupted.
 int finishJob(const PostStats& stats, ToolRun& run);

@@ -1,0 +1,232 @@
+# The Blender add-on, headless (issue 36; tests/blender/CMakeLists.txt runs it):
+#
+#   blender -b --factory-startup --python-exit-code 1 --python tests/blender/addon_test.py -- \
+#       ADDON.zip MODULE_DIR GLINT_COMMAND OUT_DIR DOCS_MD
+#
+# Installs the add-on from its zip, makes a low/high pair in Blender, bakes it with the
+# add-on (through the module, then through the command), and checks: the images (size,
+# pixels), the material's wiring (Normal Map node in tangent space on the low poly's UV
+# map, AO multiplied into the base colour), the normal map against Blender's own Cycles bake
+# of the same pair (mean angle ≤ 0.25°, the bound of tests/bake/bake_blender_test.cpp), the
+# command's maps against the module's, saved files, UDIM tiles, and that errors come as
+# Blender reports. Then runs the Python examples of docs/blender.md. Any failure raises:
+# Blender exits 1 (--python-exit-code).
+import math
+import os
+import re
+import sys
+
+import bpy
+import numpy as np
+
+argv = sys.argv[sys.argv.index("--") + 1:]
+ADDON_ZIP, MODULE_DIR, GLINT, OUT, DOCS = argv[:5]
+SIZE = 128
+DISTANCE = 0.06
+
+
+def check(condition, message):
+    if not condition:
+        raise AssertionError(message)
+    print("ok:", message)
+
+
+def make_pair():
+    """A Blender-made pair: a smooth UV sphere (Blender's own UVs) and a bumpy, finer one."""
+    # (not read_factory_settings: it would reset the preferences, the add-on with them)
+    for collection in (bpy.data.objects, bpy.data.meshes, bpy.data.materials, bpy.data.images):
+        for item in list(collection):
+            collection.remove(item)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=1.0)
+    low = bpy.context.active_object
+    low.name = "Ball_low"
+    bpy.ops.object.shade_smooth()
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=6, radius=1.0)
+    high = bpy.context.active_object
+    high.name = "Ball_high"
+    co = np.empty(len(high.data.vertices) * 3, np.float32)
+    high.data.vertices.foreach_get("co", co)
+    p = co.reshape(-1, 3)
+    p /= np.linalg.norm(p, axis=1, keepdims=True)
+    theta, phi = np.arctan2(p[:, 1], p[:, 0]), np.arccos(np.clip(p[:, 2], -1, 1))
+    p *= (1.0 + 0.03 * np.sin(8 * theta) * np.sin(6 * phi))[:, None]
+    high.data.vertices.foreach_set("co", p.ravel())
+    high.data.update()
+    bpy.ops.object.shade_smooth()
+    select(low, [high])
+    return low, high
+
+
+def select(low, highs):
+    bpy.ops.object.select_all(action="DESELECT")
+    for h in highs:
+        h.select_set(True)
+    low.select_set(True)
+    bpy.context.view_layer.objects.active = low
+
+
+def pixels(image):
+    """RGBA floats, rows bottom first (Blender's order)."""
+    w, h = image.size
+    out = np.empty(w * h * 4, np.float32)
+    image.pixels.foreach_get(out)
+    return out.reshape(h, w, 4)
+
+
+def angles(a, b):
+    na, nb = a[..., :3] * 2 - 1, b[..., :3] * 2 - 1
+    na /= np.linalg.norm(na, axis=-1, keepdims=True)
+    nb /= np.linalg.norm(nb, axis=-1, keepdims=True)
+    return np.degrees(np.arccos(np.clip((na * nb).sum(-1), -1, 1)))
+
+
+def cycles_normal(low, high):
+    """Blender's own tangent-space normal bake of the pair (Cycles, selected to active)."""
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = 1
+    scene.cycles.use_denoising = False
+    image = bpy.data.images.new("cycles-normal", SIZE, SIZE, alpha=True, float_buffer=True)
+    image.colorspace_settings.name = "Non-Color"
+    image.pixels.foreach_set(np.zeros(SIZE * SIZE * 4, np.float32))
+    tree = low.active_material.node_tree
+    node = tree.nodes.new("ShaderNodeTexImage")
+    node.image = image
+    tree.nodes.active = node
+    select(low, [high])
+    bpy.ops.object.bake(type="NORMAL", normal_space="TANGENT", use_selected_to_active=True, cage_extrusion=DISTANCE,
+                        max_ray_distance=2 * DISTANCE, margin=0, use_clear=False)
+    tree.nodes.remove(node)
+    return pixels(image)
+
+
+# ------------------------------------------------------------------ install
+bpy.ops.preferences.addon_install(filepath=ADDON_ZIP, overwrite=True)
+bpy.ops.preferences.addon_enable(module="glint_bake")
+preferences = bpy.context.preferences.addons["glint_bake"].preferences
+preferences.module_path = MODULE_DIR
+preferences.command = GLINT
+check(hasattr(bpy.types.Scene, "glint_bake") and hasattr(bpy.ops.object, "glint_bake"), "the add-on installs from its zip")
+
+# ------------------------------------------------------------------ the module's bake
+low, high = make_pair()
+settings = bpy.context.scene.glint_bake
+settings.size = SIZE
+settings.bake_normal = True
+settings.bake_ao = True
+settings.ao_samples = 8
+settings.float_maps = True
+settings.max_front = settings.max_rear = str(DISTANCE)
+check(bpy.ops.object.glint_bake() == {"FINISHED"}, "Bake with glint finishes")
+report = __import__("json").loads(bpy.context.scene["glint_last_bake"])
+check(report["backend"] == "module", "it baked through the module")
+normal = bpy.data.images["Ball_low_normal"]
+ao = bpy.data.images["Ball_low_ao"]
+check(tuple(normal.size) == (SIZE, SIZE) and normal.is_float, "the normal map is a float image of the size asked")
+check(normal.colorspace_settings.name == "Non-Color", "the normal map is non-colour data")
+glint_normal = pixels(normal)
+check(glint_normal[..., 2].mean() > 0.7, "the normal map points out (blue)")
+ao_pixels = pixels(ao)[..., 0]
+check(0.3 < ao_pixels.mean() <= 1.0 and ao_pixels.min() < ao_pixels.max(), "the AO map has shading")
+
+# The wiring.
+tree = low.active_material.node_tree
+shader = next(n for n in tree.nodes if n.type == "BSDF_PRINCIPLED")
+normal_link = shader.inputs["Normal"].links[0]
+normal_map = normal_link.from_node
+check(normal_map.type == "NORMAL_MAP" and normal_map.space == "TANGENT", "a tangent-space Normal Map node feeds the shader")
+check(normal_map.uv_map == low.data.uv_layers.active.name, "on the low poly's UV map")
+check(normal_map.inputs["Color"].links[0].from_node.image == normal, "fed by the baked normal map")
+mix = shader.inputs["Base Color"].links[0].from_node
+check(mix.type == "MIX_RGB" and mix.blend_type == "MULTIPLY", "AO multiplies the base colour")
+check(mix.inputs["Color2"].links[0].from_node.image == ao, "with the baked AO map")
+
+# Against Blender's own bake of the same pair: the texels Blender baked whose neighbours it
+# baked too (the two rasterizers' coverage rules differ at island edges).
+blender = cycles_normal(low, high)
+covered = blender[..., 3] > 0.5
+inner = covered.copy()
+inner[1:-1, 1:-1] &= covered[:-2, 1:-1] & covered[2:, 1:-1] & covered[1:-1, :-2] & covered[1:-1, 2:]
+inner[[0, -1], :] = False
+inner[:, [0, -1]] = False
+difference = angles(glint_normal, blender)[inner]
+print(f"add-on vs Cycles: {inner.sum()} texels, mean {difference.mean():.4f}°, 99th percentile "
+      f"{np.percentile(difference, 99):.4f}°, max {difference.max():.4f}°")
+check(inner.sum() > SIZE * SIZE // 2, "Blender's bake covers the UV layout")
+check(difference.mean() <= 0.25, f"the normal map agrees with Cycles' (mean {difference.mean():.4f}° ≤ 0.25°)")
+
+# ------------------------------------------------------------------ the command's bake
+preferences.use_command = True
+settings.bake_ao = False
+check(bpy.ops.object.glint_bake() == {"FINISHED"}, "the command's bake finishes")
+report = __import__("json").loads(bpy.context.scene["glint_last_bake"])
+check(report["backend"] == "command", "it baked through the command")
+command_normal = pixels(bpy.data.images["Ball_low_normal"])
+command_difference = angles(command_normal, glint_normal)
+print(f"command vs module: max {command_difference.max():.6f}°, {int((command_difference > 0).sum())} texels differ; "
+      f"max channel difference {np.abs(command_normal[..., :3] - glint_normal[..., :3]).max():.3g}")
+# Not bit for bit: the command reads the low poly from OBJ and welds its corners, the module
+# bakes them as given; MikkTSpace's sums then round differently, by a float ulp (1.2e-7 at 1).
+check(np.abs(command_normal[..., :3] - glint_normal[..., :3]).max() <= 2.4e-7,
+      "the command's map equals the module's to two float ulps")
+preferences.use_command = False
+
+# ------------------------------------------------------------------ saved files, 8-bit
+settings.float_maps = False
+settings.save_folder = os.path.join(OUT, "maps")
+check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a bake saved as files finishes")
+saved = os.path.join(OUT, "maps", "Ball_low_normal.png")
+check(os.path.exists(saved) and bpy.data.images["Ball_low_normal"].filepath_raw == saved, "the map is saved as PNG")
+sys.path.insert(0, MODULE_DIR)
+import glint  # noqa: E402
+
+check(glint.read_image(saved).shape == (SIZE, SIZE, 3), "a 128×128 RGB PNG")
+settings.save_folder = ""
+
+# ------------------------------------------------------------------ UDIM
+uvs = low.data.uv_layers.active.data
+uv = np.empty(len(uvs) * 2, np.float32)
+uvs.foreach_get("uv", uv)
+uv = uv.reshape(-1, 2)
+for polygon in low.data.polygons:  # the right half's faces one tile over
+    if polygon.center.x > 0:
+        for i in polygon.loop_indices:
+            uv[i, 0] += 1.0
+uvs.foreach_set("uv", uv.ravel())
+low.data.update()
+check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a UDIM bake finishes")
+tiled = bpy.data.images["Ball_low_normal"]
+print("UDIM image:", tiled.source, [t.number for t in tiled.tiles], tiled.filepath)
+check(tiled.source == "TILED" and sorted(t.number for t in tiled.tiles) == [1001, 1002], "one tiled image, tiles 1001 and 1002")
+
+# ------------------------------------------------------------------ errors as reports
+bpy.ops.mesh.primitive_cube_add()
+cube = bpy.context.active_object
+cube.name = "NoUvs"
+while cube.data.uv_layers:
+    cube.data.uv_layers.remove(cube.data.uv_layers[0])
+select(cube, [high])
+try:
+    bpy.ops.object.glint_bake()
+    raise AssertionError("a low poly without UVs baked")
+except RuntimeError as error:
+    text = str(error)
+    check("no UV map" in text and "Traceback" not in text and text.count("\n") <= 1, f"an error is a report: {text.strip()}")
+select(low, [])
+try:
+    bpy.ops.object.glint_bake()
+    raise AssertionError("a bake without a high poly ran")
+except RuntimeError as error:
+    check("select one or more high polys" in str(error), "no high poly selected: said")
+
+# ------------------------------------------------------------------ docs/blender.md
+text = open(DOCS).read()
+blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+check(len(blocks) >= 2, "docs/blender.md has Python examples")
+os.chdir(OUT)
+for i, block in enumerate(blocks):
+    print(f"docs/blender.md example {i + 1}")
+    exec(compile(block, f"docs/blender.md example {i + 1}", "exec"), {"__name__": "__docs__", "GLINT": GLINT,
+                                                                     "MODULE_DIR": MODULE_DIR})
+print("addon_test: all checks passed")
