@@ -45,12 +45,48 @@ namespace {
 // ------------------------------------------------------------------ errors
 PyObject* g_errors[7] = {};  // by ErrorKind
 
+/// A JSON value (a report) as Python objects: dict, list, str, int, float, bool, None.
 py::object pythonJson(const nlohmann::ordered_json& value) {
-  return py::module_::import("json").attr("loads")(value.dump());
+  switch (value.type()) {
+    case nlohmann::json::value_t::object: {
+      py::dict d;
+      for (const auto& [key, item] : value.items()) d[py::str(key)] = pythonJson(item);
+      return std::move(d);
+    }
+    case nlohmann::json::value_t::array: {
+      py::list l;
+      for (const auto& item : value) l.append(pythonJson(item));
+      return std::move(l);
+    }
+    case nlohmann::json::value_t::string: return py::str(value.get_ref<const std::string&>());
+    case nlohmann::json::value_t::boolean: return py::bool_(value.get<bool>());
+    case nlohmann::json::value_t::number_integer: return py::int_(value.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned: return py::int_(value.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float: return py::float_(value.get<double>());
+    default: return py::none();
+  }
 }
 
+/// Python settings (str, bool, int, float, None, lists and dicts of them) as JSON.
 nlohmann::ordered_json jsonFrom(const py::handle& value) {
-  return nlohmann::ordered_json::parse(py::module_::import("json").attr("dumps")(value).cast<std::string>());
+  if (value.is_none()) return nullptr;
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
+  if (py::isinstance<py::int_>(value)) return value.cast<std::int64_t>();
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::dict>(value)) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    for (const auto& [key, item] : value.cast<py::dict>()) out[py::str(key).cast<std::string>()] = jsonFrom(item);
+    return out;
+  }
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const py::handle item : value) out.push_back(jsonFrom(item));
+    return out;
+  }
+  if (py::hasattr(value, "__fspath__")) return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+  fail(ErrorKind::Usage, "a setting must be a string, a number, a bool or a list of them, got {}",
+       std::string(py::str(value.get_type().attr("__name__"))));
 }
 
 // ------------------------------------------------------------------ long work
@@ -517,7 +553,8 @@ PYBIND11_MODULE(_glint, m) {
       .def("__iter__", [](py::object self) { return self; })
       .def("__next__", &Frames::next)
       .def_property_readonly("info", &Frames::info);
-  m.def("normalmap", [](const py::array& height, float scale, bool wrap, const std::string& formula) {
+  m.def("normalmap", [](const py::array& height, std::optional<float> given, bool wrap, const std::string& formula) {
+    const float scale = given.value_or(NormalMapOptions{}.scale);  // the command's default
     if (!std::isfinite(scale)) fail(ErrorKind::Usage, "scale must be a finite number");
     if (formula != "gradient" && formula != "slide") fail(ErrorKind::Usage, "formula must be gradient or slide, got '{}'", formula);
     const Image input = imageFrom(height, "the height map");

@@ -203,16 +203,16 @@ def bake_batch(path: Union[str, "_os.PathLike[str]"], *, progress: Progress = No
 
 
 # ---------------------------------------------------------------------------------- normalmap
-def normalmap(height: _np.ndarray, scale: float = 8.0, wrap: bool = False, formula: str = "gradient") -> _np.ndarray:
+def normalmap(height: _np.ndarray, scale: Optional[float] = None, wrap: bool = False, formula: str = "gradient") -> _np.ndarray:
     """A tangent-space normal map from a height map, as `glint normalmap` makes one (seed 002).
 
     height: H×W (or a colour image: its luminance is the height); uint8, uint16 or float32.
-    scale: the height of the full 0..1 range in texel widths (bumpiness).
+    scale: the height of the full 0..1 range in texel widths (bumpiness); None: the command's default (8).
     wrap: neighbours wrap around the edges (tileable textures); else they clamp.
     formula: "gradient" (the surface's true normal) or "slide" (the seed's formula as written).
     Returns H×W×3 uint8, (n + 1) / 2; H×W×4 with the input's alpha when it has one.
     """
-    return _glint.normalmap(_np.asarray(height), float(scale), bool(wrap), formula)
+    return _glint.normalmap(_np.asarray(height), None if scale is None else float(scale), bool(wrap), formula)
 
 
 # --------------------------------------------------------------------------------------- post

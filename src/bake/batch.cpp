@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <mutex>
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -145,19 +146,33 @@ std::vector<std::string> argumentsFor(const CLI::App& app, const std::vector<con
   return positionals;
 }
 
-/// Parses a job's argument list exactly as the command line is parsed: a fresh CLI::App with
-/// the bake command's options. Error(Usage) with CLI11's message.
-BakeJob parseJob(const std::vector<std::string>& arguments) {
+/// The bake command's options, made once (a CLI::App with every option is ~0.3 ms to build):
+/// parseJob and jobFromSettings share it under its lock.
+struct BakeParser {
+  std::mutex mutex;
   CLI::App app{"glint bake", "bake"};
-  BakeJob args;
-  addOptions(app, args, Meshes::Required);
+  BakeJob bound;
+  BakeParser() { addOptions(app, bound, Meshes::Required); }
+  static BakeParser& instance() {
+    static BakeParser parser;
+    return parser;
+  }
+};
+
+/// Parses a job's argument list exactly as the command line is parsed: the bake command's
+/// options, from their defaults. Error(Usage) with CLI11's message.
+BakeJob parseJob(const std::vector<std::string>& arguments) {
+  BakeParser& parser = BakeParser::instance();
+  std::lock_guard lock(parser.mutex);
+  parser.bound = BakeJob{};  // CLI11 writes only the options given: the rest keep these defaults
+  parser.app.clear();
   std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 takes them last first
   try {
-    app.parse(reversed);
+    parser.app.parse(reversed);
   } catch (const CLI::ParseError& e) {
     fail(ErrorKind::Usage, "{}", e.what());
   }
-  return args;
+  return parser.bound;
 }
 
 /// Every job of a batch through the command line's option parsing: its argument list
@@ -227,17 +242,20 @@ void checkBatch(const std::string& file, const std::vector<BatchJob>& jobs, cons
 }  // namespace
 
 BakeJob jobFromSettings(const Json& settings) {
-  CLI::App app{"glint bake", "bake"};
-  BakeJob defaults;
-  addOptions(app, defaults, Meshes::Required);
-  Json dashed = Json::object();
-  for (const auto& [key, value] : settings.items()) {
-    std::string name = key;
-    std::replace(name.begin(), name.end(), '_', '-');
-    dashed[name] = value;
+  std::vector<std::string> arguments;
+  {
+    BakeParser& parser = BakeParser::instance();
+    std::lock_guard lock(parser.mutex);
+    Json dashed = Json::object();
+    for (const auto& [key, value] : settings.items()) {
+      std::string name = key;
+      std::replace(name.begin(), name.end(), '_', '-');
+      dashed[name] = value;
+    }
+    const Json canonical = canonicalKeys(parser.app, dashed);
+    arguments = argumentsFor(parser.app, {&canonical}, {});
   }
-  const Json canonical = canonicalKeys(app, dashed);
-  return parseJob(argumentsFor(app, {&canonical}, {}));
+  return parseJob(arguments);
 }
 
 Json givenOptions(const CLI::App& cmd, const std::vector<const CLI::Option*>& except) {

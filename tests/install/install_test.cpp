@@ -227,6 +227,31 @@ TEST(Install, AConsumerProjectBuildsAgainstTheInstalledTreeAndRendersTheTriangle
   for (std::size_t j = 0; j < 2; ++j)
     for (const char* key : {"status", "samples", "width", "height", "covered_texels", "rays", "hit_ratio"})
       EXPECT_EQ(libBatch["jobs"][j].at(key), cmdBatch["jobs"][j].at(key)) << "job " << j << " " << key;
+
+#ifdef GLINT_PYTHON_INSTALL_DIR
+  // 9. `import glint` from the prefix (issue 36): the installed Python package, its modules
+  //    found relative to it in the moved prefix (glint/_locations.py), the same maps as the
+  //    installed command's, and the Blender add-on's zip installed beside the data.
+  const fs::path site = prefix / GLINT_PYTHON_INSTALL_DIR;
+  EXPECT_TRUE(fs::is_regular_file(site / "glint" / "__init__.pyi"));
+  EXPECT_TRUE(fs::is_regular_file(prefix / GLINT_INSTALL_DATA_DIR / "blender" / "glint_bake.zip"));
+  writeTextAtomically(work / "use_glint.py", fmt::format(R"(import glint, sys
+print(glint.__file__)
+result = glint.bake("{0}/low.obj", "{0}/high.obj", size=32, maps=("normal", "ao"), padding=2, samples=4)
+glint.write_image("{0}/py_n.png", result["normal"])
+glint.write_image("{0}/py_ao.png", result["ao"])
+glint.write_image("{0}/py_n.tga", result["normal"])  # TGA: through the image I/O module
+)", work.string()));
+  const auto python = run(fmt::format("cd / && PYTHONPATH={} {} {} {}", quote(site), logLoading(work / "python-loader"),
+                                      GLINT_PYTHON_EXECUTABLE, quote(work / "use_glint.py")));
+  ASSERT_EQ(python.status, 0) << python.output;
+  EXPECT_NE(python.output.find((site / "glint" / "__init__.py").string()), std::string::npos)
+      << "glint was not imported from the prefix: " << python.output;
+  EXPECT_TRUE(readTextFile(work / "py_n.png") == readTextFile(work / "cmd_n.png")) << "the module's normal map";
+  EXPECT_TRUE(readTextFile(work / "py_ao.png") == readTextFile(work / "cmd_ao.png")) << "the module's AO map";
+  EXPECT_TRUE(opened(loaderLog(work / "python-loader"), prefix / GLINT_INSTALL_MODULE_DIR / moduleName()))
+      << "the installed Python module did not load the image I/O module from its prefix";
+#endif
 }
 
 // GLINT_OIIO_MODULE names the module explicitly: used when set, and the only candidate,
