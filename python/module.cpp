@@ -290,11 +290,8 @@ py::array_t<float> rgbaRowsUp(const py::array& input) {
 }
 
 // ------------------------------------------------------------------ bake
-py::tuple bakeArrays(const py::dict& settings, std::shared_ptr<Mesh> low, std::shared_ptr<Mesh> high, const py::object& progress,
-               int threads) {
-  bake::BakeJob job = bake::jobFromSettings(jsonFrom(settings));
-  job.lowMesh = std::move(low);
-  job.highMesh = std::move(high);
+/// Runs one bake with its maps going to arrays: ({(map, tile): array}, report).
+py::tuple bakeIntoArrays(bake::BakeJob& job, const py::object& progress, int threads) {
   std::map<std::pair<std::string, int>, Image> maps;
   job.sink = [&maps](bake::Map map, int tile, Image image) {
     maps[{bake::mapInfo(map).reportKey, tile}] = std::move(image);
@@ -310,27 +307,19 @@ py::tuple bakeArrays(const py::dict& settings, std::shared_ptr<Mesh> low, std::s
   return py::make_tuple(out, pythonJson(report));
 }
 
+py::tuple bakeArrays(const py::dict& settings, std::shared_ptr<Mesh> low, std::shared_ptr<Mesh> high,
+                     const py::object& progress, int threads) {
+  bake::BakeJob job = bake::jobFromSettings(jsonFrom(settings));
+  job.lowMesh = std::move(low);
+  job.highMesh = std::move(high);
+  return bakeIntoArrays(job, progress, threads);
+}
+
 /// Every job of a batch file (bake::loadBatch: the command's parsing and checks), each into
 /// arrays: [(maps, report), ...] in the file's order. A job's map paths name its formats.
 py::list bakeBatch(const std::string& file, const py::dict& overrides, const py::object& progress, int threads) {
-  std::vector<bake::BatchJob> jobs = bake::loadBatch(file, jsonFrom(overrides));
   py::list out;
-  for (bake::BatchJob& batchJob : jobs) {
-    bake::BakeJob& job = batchJob.job;
-    std::map<std::pair<std::string, int>, Image> maps;
-    job.sink = [&maps](bake::Map map, int tile, Image image) {
-      maps[{bake::mapInfo(map).reportKey, tile}] = std::move(image);
-    };
-    const nlohmann::ordered_json report = runReleased(progress, [&](const std::atomic<bool>* cancel) {
-      job.tool = settingsFor(cancel, threads);
-      ToolRun run("bake", job.tool);
-      bake::runJob(job, run);
-      return run.finish();
-    });
-    py::dict arrays;
-    for (auto& [key, image] : maps) arrays[py::make_tuple(key.first, key.second)] = arrayOf(std::move(image));
-    out.append(py::make_tuple(arrays, pythonJson(report)));
-  }
+  for (bake::BatchJob& batchJob : bake::loadBatch(file, jsonFrom(overrides))) out.append(bakeIntoArrays(batchJob.job, progress, threads));
   return out;
 }
 
