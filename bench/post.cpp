@@ -125,10 +125,27 @@ void runEffects(Recorder& recorder) {
     row("sepia gpu", [&] { sepia.run(in, out); }, "sepia opencv", peers::opencvSepia(input),
         "cv::transform, the 4×4 colour-matrix sepia, 8-bit, " + threads, pixels * 8);
     cpuRow("sepia", "sepia opencv", peers::opencvSepia(input));
+    // The fragment version of each compute pass (issue 37), same frame, same run: the ratio
+    // column is fragment ÷ compute, above 1 where the compute shader is faster.
+    const auto fragmentRow = [&](const std::string& pass, const std::function<void()>& work) {
+      const auto [ms, unused] = alternating(work, {}, rounds);
+      (void)unused;
+      recorder.record({.group = group, .name = pass + " gpu (fragment)", .value = ms, .unit = "ms",
+                       .ratioTo = pass + " gpu",
+                       .note = fmt::format("the same texels as a fragment pass; GL_TIME_ELAPSED {:.3f} ms",
+                                           gl::GpuTimer::measureMs(work, rounds, 1))});
+    };
+    post::SepiaPass sepiaFragment(post::PassStage::Fragment);
+    fragmentRow("sepia", [&] { sepiaFragment.run(in, out); });
     post::SobelPass sobel;
     row("sobel gpu", [&] { sobel.run(in, out); }, "sobel opencv", peers::opencvSobel(input),
         "cvtColor + 2× cv::Sobel + magnitude, float, " + threads, pixels * 8);
     cpuRow("sobel", "sobel opencv", peers::opencvSobel(input));
+    post::SobelPass sobelFragment(post::PassStage::Fragment);
+    fragmentRow("sobel", [&] { sobelFragment.run(in, out); });
+    post::EdgesPass edges, edgesFragment(post::PassStage::Fragment);
+    row("edges gpu", [&] { edges.run(in, out); }, "", {}, "", pixels * 8);
+    fragmentRow("edges", [&] { edgesFragment.run(in, out); });
     post::KuwaharaPass kuwahara;
     row("kuwahara gpu", [&] { kuwahara.run(in, out); }, "kuwahara opencv", peers::opencvKuwahara(input),
         "cv::boxFilter of I and I² + quadrant selection (parallel_for_), " + threads,

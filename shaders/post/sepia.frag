@@ -1,18 +1,8 @@
 #version 450 core
-// Seed 001's sepia without a lookup table: RGB → YIQ keeping only Y, I and Q hard-coded,
-// back to RGB. With I and Q constant the round trip is rgb' = Y·(1,1,1) + c, so the pass is
-// the seed's "dot product and an add" (image/post.h derives c = M⁻¹·(0, I, Q)). The offset
-// is shortened to t·c where Y + c would leave [0, 1], so the luma is kept exactly.
-#include "post/common.glsl"
+// Sepia as a fragment pass (post/sepia.glsl has the arithmetic): kept beside sepia.comp for
+// `glint bench post`'s comparison of the two.
+#include "post/sepia.glsl"
 
-uniform sampler2D uInput;
-uniform vec3 uOffset;     // c
-uniform vec2 uLimits;     // (1 / max(−c_k), 1 / max(c_k)): how far the offset may go at Y = 1 and Y = 0
 out vec4 fragColor;
 
-void main() {
-  vec4 color = texelFetch(uInput, ivec2(gl_FragCoord.xy), 0);
-  float y = dot(color.rgb, kLuma);                                  // the dot product
-  float t = min(1.0, min(y * uLimits.x, (1.0 - y) * uLimits.y));    // stay in gamut
-  fragColor = vec4(y + t * uOffset, color.a);                       // and the add
-}
+void main() { fragColor = sepiaTexel(ivec2(gl_FragCoord.xy)); }

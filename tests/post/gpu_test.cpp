@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <bit>
 #include <cstdio>
 
@@ -74,6 +75,43 @@ TEST_F(PostGpu, SobelAndEdgesMatchTheirReferences) {
     const Image gpu = runPass(image, [&](auto& in, auto& out) { edges.run(in, out, {}); });
     EXPECT_LE(compareSteps(gpu, edgesReference(image)).maxSteps, 1) << name;
   }
+}
+
+// The compute passes (the default, issue 37) and the fragment passes they replaced share one
+// function per texel (shaders/post/<pass>.glsl): the same bytes from RGBA8 targets, the
+// same floats from RGBA32F ones, on every input (odd sizes too: the last compute groups
+// overhang the image).
+TEST_F(PostGpu, ComputeAndFragmentPassesGiveTheSameTexels) {
+  const auto both = [](const Image& image, GLenum format, const auto& run) {
+    const gl::Texture in = uploadFrame(image, "test-input");
+    std::array<Image, 2> out;
+    for (int k = 0; k < 2; ++k) {
+      gl::Texture target(GL_TEXTURE_2D, "test-output");
+      target.storage(format, image.width(), image.height());
+      run(k == 0 ? PassStage::Compute : PassStage::Fragment, in, target);
+      out[std::size_t(k)] = readFrame(target);
+    }
+    return out;
+  };
+  int compared = 0;
+  for (const auto& [name, image] : inputs()) {
+    for (const GLenum format : {GLenum(GL_RGBA8), GLenum(GL_RGBA32F)}) {
+      const auto sepia = both(image, format, [](PassStage stage, auto& in, auto& out) {
+        SepiaPass(stage).run(in, out, {.i = 0.1f, .q = 0.08f});
+      });
+      EXPECT_TRUE(sepia[0] == sepia[1]) << "sepia " << name << (format == GL_RGBA8 ? " rgba8" : " rgba32f");
+      const auto sobel = both(image, format, [](PassStage stage, auto& in, auto& out) {
+        SobelPass(stage).run(in, out, {.output = SobelOutput::SignedX, .scale = 1.5f});
+      });
+      EXPECT_TRUE(sobel[0] == sobel[1]) << "sobel " << name << (format == GL_RGBA8 ? " rgba8" : " rgba32f");
+      const auto edges = both(image, format, [](PassStage stage, auto& in, auto& out) { EdgesPass(stage).run(in, out, {}); });
+      EXPECT_TRUE(edges[0] == edges[1]) << "edges " << name << (format == GL_RGBA8 ? " rgba8" : " rgba32f");
+      EXPECT_EQ(sepia[0].type(), format == GL_RGBA8 ? PixelType::U8 : PixelType::F32);
+      compared += 3;
+    }
+  }
+  EXPECT_GE(compared, 12);
+  EXPECT_EQ(SepiaPass().stage(), PassStage::Compute);
 }
 
 TEST_F(PostGpu, KuwaharaChoosesTheReferenceQuadrantExactly) {

@@ -37,7 +37,30 @@ void finish() { glBindFramebuffer(GL_FRAMEBUFFER, 0); }
 }  // namespace
 
 // ---------------------------------------------------------------------------
-SepiaPass::SepiaPass() : m_pass("post/sepia.frag"), m_framebuffer(gl::Framebuffer::create("post-sepia")) {}
+const gl::Program& ComputePass::program(const gl::Texture& output) {
+  const GLenum format = output.internalFormat();
+  if (format != GL_RGBA8 && format != GL_RGBA32F)
+    fail(ErrorKind::Usage, "{}: the output must be RGBA8 or RGBA32F", m_file);
+  gl::Program& p = format == GL_RGBA32F ? m_rgba32f : m_rgba8;
+  if (!p) p = gl::Program::fromFiles({m_file}, format == GL_RGBA32F ? std::vector<std::string>{"FLOAT_OUTPUT 1"}
+                                                                    : std::vector<std::string>{});
+  return p;
+}
+
+void ComputePass::dispatch(const gl::Texture& output) {
+  const gl::Program& p = program(output);
+  p.use();
+  output.bindImage(0, GL_WRITE_ONLY, output.internalFormat());
+  glDispatchCompute(GLuint((output.width() + 15) / 16), GLuint((output.height() + 15) / 16), 1);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                  GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+}
+
+// ---------------------------------------------------------------------------
+SepiaPass::SepiaPass(PassStage stage)
+    : m_stage(stage), m_compute("post/sepia.comp"), m_framebuffer(gl::Framebuffer::create("post-sepia")) {
+  if (stage == PassStage::Fragment) m_fragment.emplace("post/sepia.frag");
+}
 
 void SepiaPass::run(const gl::Texture& input, const gl::Texture& output, const SepiaOptions& options) {
   checkSizes("sepia", input, output);
@@ -50,43 +73,52 @@ void SepiaPass::run(const gl::Texture& input, const gl::Texture& output, const S
   }
   const float big = std::numeric_limits<float>::max();
   const vec2 limits(least > 0 ? float(1.0 / least) : big, most > 0 ? float(1.0 / most) : big);
-  bindOutput(m_framebuffer, output);
   bindInput(input, 0);
-  const auto& program = m_pass.program();
+  const auto& program = m_fragment ? m_fragment->program() : m_compute.program(output);
   program.set("uInput", 0);
   program.set("uOffset", vec3(c));
   program.set("uLimits", limits);
-  m_pass.drawWithCurrentState();
+  if (!m_fragment) return m_compute.dispatch(output);
+  bindOutput(m_framebuffer, output);
+  m_fragment->drawWithCurrentState();
   finish();
 }
 
 // ---------------------------------------------------------------------------
-SobelPass::SobelPass() : m_pass("post/sobel.frag"), m_framebuffer(gl::Framebuffer::create("post-sobel")) {}
+SobelPass::SobelPass(PassStage stage)
+    : m_stage(stage), m_compute("post/sobel.comp"), m_framebuffer(gl::Framebuffer::create("post-sobel")) {
+  if (stage == PassStage::Fragment) m_fragment.emplace("post/sobel.frag");
+}
 
 void SobelPass::run(const gl::Texture& input, const gl::Texture& output, const SobelOptions& options) {
   checkSizes("sobel", input, output);
-  bindOutput(m_framebuffer, output);
   bindInput(input, 0);
-  const auto& program = m_pass.program();
+  const auto& program = m_fragment ? m_fragment->program() : m_compute.program(output);
   program.set("uInput", 0);
   program.set("uOutput", int(options.output));
   program.set("uScale", options.scale);
-  m_pass.drawWithCurrentState();
+  if (!m_fragment) return m_compute.dispatch(output);
+  bindOutput(m_framebuffer, output);
+  m_fragment->drawWithCurrentState();
   finish();
 }
 
 // ---------------------------------------------------------------------------
-EdgesPass::EdgesPass() : m_pass("post/edges.frag"), m_framebuffer(gl::Framebuffer::create("post-edges")) {}
+EdgesPass::EdgesPass(PassStage stage)
+    : m_stage(stage), m_compute("post/edges.comp"), m_framebuffer(gl::Framebuffer::create("post-edges")) {
+  if (stage == PassStage::Fragment) m_fragment.emplace("post/edges.frag");
+}
 
 void EdgesPass::run(const gl::Texture& input, const gl::Texture& output, const EdgesOptions& options) {
   checkSizes("edges", input, output);
-  bindOutput(m_framebuffer, output);
   bindInput(input, 0);
-  const auto& program = m_pass.program();
+  const auto& program = m_fragment ? m_fragment->program() : m_compute.program(output);
   program.set("uInput", 0);
   program.set("uScale", options.scale);
   program.set("uThreshold", options.threshold);
-  m_pass.drawWithCurrentState();
+  if (!m_fragment) return m_compute.dispatch(output);
+  bindOutput(m_framebuffer, output);
+  m_fragment->drawWithCurrentState();
   finish();
 }
 

@@ -1,11 +1,17 @@
 #pragma once
-// glint/render/post/passes.h — seed 001's image-space effects as GPU passes: each a
-// fragment shader on a full-screen triangle (shaders/post/*.frag), texture in, texture out.
+// glint/render/post/passes.h — seed 001's image-space effects as GPU passes, texture in,
+// texture out: compute shaders (shaders/post/*.comp, one invocation a texel), or the
+// fragment shaders on a full-screen triangle they replace (*.frag, PassStage::Fragment).
+//
+// Why compute (issue 37): a datacenter GPU (H100, H200) runs graphics on a small part of the
+// chip — 8 ROPs, 2 of 66 TPCs — while compute shaders use every SM; a minimal RGBA8 pass
+// measured 11–25× faster as a compute shader there. Both stages share one function per
+// texel (post/<pass>.glsl), so they give the same bytes (tests/post: PostCompute).
 //
 // Contents
-//   SepiaPass      "a dot product and an add" (shaders/post/sepia.frag)
-//   SobelPass      the two 3×3 kernels, eight texel fetches (sobel.frag)
-//   EdgesPass      Sobel lines composited over the image (edges.frag)
+//   SepiaPass      "a dot product and an add" (shaders/post/sepia.glsl)
+//   SobelPass      the two 3×3 kernels, eight texel fetches (sobel.glsl)
+//   EdgesPass      Sobel lines composited over the image (edges.glsl)
 //   KuwaharaPass   the seed's two passes: statistics of every s×s block into a float
 //                  texture (kuwahara_stats.frag), then four fetches and the calmest mean
 //                  (kuwahara_select.frag)
@@ -35,37 +41,66 @@
 #include "glint/render/gpu_mesh.h"
 #include "glint/render/post/effects.h"
 
+#include <optional>
 #include <string>
 
 namespace glint::render::post {
 
-class SepiaPass {
+/// Where a pass runs: a compute shader (the default) or its fragment version.
+enum class PassStage { Compute, Fragment };
+
+/// A compute pass's program in both output formats (RGBA8, RGBA32F: the chain's targets),
+/// made on first use, and its dispatch over an output texture.
+class ComputePass {
 public:
-  SepiaPass();
-  void run(const gl::Texture& input, const gl::Texture& output, const SepiaOptions& options = {});
+  explicit ComputePass(std::string file) : m_file(std::move(file)) {}
+  /// The program for `output`'s format (RGBA8 or RGBA32F; Error(Usage) for another).
+  const gl::Program& program(const gl::Texture& output);
+  /// Binds `output` as image unit 0 and runs one invocation a texel, then the barrier that
+  /// lets the next pass sample, read back or attach it.
+  void dispatch(const gl::Texture& output);
 
 private:
-  FullscreenPass m_pass;
+  std::string m_file;
+  gl::Program m_rgba8, m_rgba32f;
+};
+
+class SepiaPass {
+public:
+  explicit SepiaPass(PassStage stage = PassStage::Compute);
+  void run(const gl::Texture& input, const gl::Texture& output, const SepiaOptions& options = {});
+  PassStage stage() const { return m_stage; }
+
+private:
+  PassStage m_stage;
+  ComputePass m_compute;
+  std::optional<FullscreenPass> m_fragment;  ///< PassStage::Fragment only
   gl::Framebuffer m_framebuffer;
 };
 
 class SobelPass {
 public:
-  SobelPass();
+  explicit SobelPass(PassStage stage = PassStage::Compute);
   void run(const gl::Texture& input, const gl::Texture& output, const SobelOptions& options = {});
+  PassStage stage() const { return m_stage; }
 
 private:
-  FullscreenPass m_pass;
+  PassStage m_stage;
+  ComputePass m_compute;
+  std::optional<FullscreenPass> m_fragment;  ///< PassStage::Fragment only
   gl::Framebuffer m_framebuffer;
 };
 
 class EdgesPass {
 public:
-  EdgesPass();
+  explicit EdgesPass(PassStage stage = PassStage::Compute);
   void run(const gl::Texture& input, const gl::Texture& output, const EdgesOptions& options = {});
+  PassStage stage() const { return m_stage; }
 
 private:
-  FullscreenPass m_pass;
+  PassStage m_stage;
+  ComputePass m_compute;
+  std::optional<FullscreenPass> m_fragment;  ///< PassStage::Fragment only
   gl::Framebuffer m_framebuffer;
 };
 
