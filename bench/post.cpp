@@ -146,11 +146,12 @@ void runEffects(Recorder& recorder) {
     post::EdgesPass edges, edgesFragment(post::PassStage::Fragment);
     row("edges gpu", [&] { edges.run(in, out); }, "", {}, "", pixels * 8);
     fragmentRow("edges", [&] { edgesFragment.run(in, out); });
-    post::KuwaharaPass kuwahara;
+    post::KuwaharaPass kuwahara, kuwaharaFragment(post::PassStage::Fragment);
     row("kuwahara gpu", [&] { kuwahara.run(in, out); }, "kuwahara opencv", peers::opencvKuwahara(input),
         "cv::boxFilter of I and I² + quadrant selection (parallel_for_), " + threads,
         pixels * (4 + 16) + pixels * (16 + 4 + 4));
     cpuRow("kuwahara", "kuwahara opencv", peers::opencvKuwahara(input));
+    fragmentRow("kuwahara", [&] { kuwaharaFragment.run(in, out); });
     post::Chain posterize(size, post::parseEffects(std::vector<std::string>{"posterize"}));
     const auto kuwaharaPeer = peers::opencvKuwahara(input), sobelPeer = peers::opencvSobel(input);
     row("posterize gpu", [&] { posterize.run(in); }, "posterize opencv", [&] { kuwaharaPeer(); sobelPeer(); },

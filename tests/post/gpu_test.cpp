@@ -77,7 +77,8 @@ TEST_F(PostGpu, SobelAndEdgesMatchTheirReferences) {
   }
 }
 
-// The compute passes (the default, issue 37) and the fragment passes they replaced share one
+// The compute passes (the default, issue 37) and the fragment passes they replaced (sepia,
+// Sobel, edges, Kuwahara's two) share one
 // function per texel (shaders/post/<pass>.glsl): the same bytes from RGBA8 targets, the
 // same floats from RGBA32F ones, on every input (odd sizes too: the last compute groups
 // overhang the image).
@@ -106,11 +107,19 @@ TEST_F(PostGpu, ComputeAndFragmentPassesGiveTheSameTexels) {
       EXPECT_TRUE(sobel[0] == sobel[1]) << "sobel " << name << (format == GL_RGBA8 ? " rgba8" : " rgba32f");
       const auto edges = both(image, format, [](PassStage stage, auto& in, auto& out) { EdgesPass(stage).run(in, out, {}); });
       EXPECT_TRUE(edges[0] == edges[1]) << "edges " << name << (format == GL_RGBA8 ? " rgba8" : " rgba32f");
+      const auto kuwahara = both(image, format, [](PassStage stage, auto& in, auto& out) {
+        KuwaharaPass(stage).run(in, out, {.size = 4});
+      });
+      EXPECT_TRUE(kuwahara[0] == kuwahara[1]) << "kuwahara " << name << (format == GL_RGBA8 ? " rgba8" : " rgba32f");
+      const auto quadrants = both(image, format, [](PassStage stage, auto& in, auto& out) {
+        KuwaharaPass(stage).run(in, out, {.size = 3}, /*showQuadrant=*/true);
+      });
+      EXPECT_TRUE(quadrants[0] == quadrants[1]) << "kuwahara quadrants " << name;
       EXPECT_EQ(sepia[0].type(), format == GL_RGBA8 ? PixelType::U8 : PixelType::F32);
-      compared += 3;
+      compared += 5;
     }
   }
-  EXPECT_GE(compared, 12);
+  EXPECT_GE(compared, 20);
   EXPECT_EQ(SepiaPass().stage(), PassStage::Compute);
 }
 

@@ -123,10 +123,15 @@ void EdgesPass::run(const gl::Texture& input, const gl::Texture& output, const E
 }
 
 // ---------------------------------------------------------------------------
-KuwaharaPass::KuwaharaPass()
-    : m_stats("post/kuwahara_stats.frag"), m_select("post/kuwahara_select.frag"),
+KuwaharaPass::KuwaharaPass(PassStage stage)
+    : m_stage(stage), m_statsCompute("post/kuwahara_stats.comp"), m_selectCompute("post/kuwahara_select.comp"),
       m_statsFramebuffer(gl::Framebuffer::create("post-kuwahara-stats")),
-      m_framebuffer(gl::Framebuffer::create("post-kuwahara")) {}
+      m_framebuffer(gl::Framebuffer::create("post-kuwahara")) {
+  if (stage == PassStage::Fragment) {
+    m_stats.emplace("post/kuwahara_stats.frag");
+    m_select.emplace("post/kuwahara_select.frag");
+  }
+}
 
 void KuwaharaPass::run(const gl::Texture& input, const gl::Texture& output, const KuwaharaOptions& options,
                        bool showQuadrant) {
@@ -139,21 +144,27 @@ void KuwaharaPass::run(const gl::Texture& input, const gl::Texture& output, cons
     m_statistics.storage(GL_RGBA32F, statsSize.x, statsSize.y);
   }
   // Pass 1: statistics of every block.
-  bindOutput(m_statsFramebuffer, m_statistics);
   bindInput(input, 0);
-  m_stats.program().set("uInput", 0);
-  m_stats.program().set("uSize", s);
-  m_stats.drawWithCurrentState();
+  const auto& stats = m_stats ? m_stats->program() : m_statsCompute.program(m_statistics);
+  stats.set("uInput", 0);
+  stats.set("uSize", s);
+  if (m_stats) {
+    bindOutput(m_statsFramebuffer, m_statistics);
+    m_stats->drawWithCurrentState();
+  } else {
+    m_statsCompute.dispatch(m_statistics);
+  }
   // Pass 2: four fetches, the calmest quadrant's mean.
-  bindOutput(m_framebuffer, output);
   bindInput(input, 0);
   bindInput(m_statistics, 1);
-  const auto& program = m_select.program();
+  const auto& program = m_select ? m_select->program() : m_selectCompute.program(output);
   program.set("uInput", 0);
   program.set("uStatistics", 1);
   program.set("uSize", s);
   program.set("uShowQuadrant", showQuadrant);
-  m_select.drawWithCurrentState();
+  if (!m_select) return m_selectCompute.dispatch(output);
+  bindOutput(m_framebuffer, output);
+  m_select->drawWithCurrentState();
   finish();
 }
 

@@ -13,8 +13,8 @@
 //   SobelPass      the two 3×3 kernels, eight texel fetches (sobel.glsl)
 //   EdgesPass      Sobel lines composited over the image (edges.glsl)
 //   KuwaharaPass   the seed's two passes: statistics of every s×s block into a float
-//                  texture (kuwahara_stats.frag), then four fetches and the calmest mean
-//                  (kuwahara_select.frag)
+//                  texture (kuwahara_stats.glsl), then four fetches and the calmest mean
+//                  (kuwahara_select.glsl)
 //
 // Conventions: image/post.h's, exactly — same luma weights, same border rule (texelFetch
 // at clamped coordinates), same arithmetic. Textures hold frames in image orientation:
@@ -106,7 +106,8 @@ private:
 
 class KuwaharaPass {
 public:
-  KuwaharaPass();
+  explicit KuwaharaPass(PassStage stage = PassStage::Compute);
+  PassStage stage() const { return m_stage; }
   /// Pass 1 into an RGBA32F statistics texture of (w + s − 1) × (h + s − 1) texels (one per
   /// block position, including blocks hanging over the border; reallocated when the size or
   /// s changes), pass 2 into `output`. With `showQuadrant`, pass 2 writes the chosen
@@ -117,8 +118,9 @@ public:
   const gl::Texture& statistics() const { return m_statistics; }
 
 private:
-  FullscreenPass m_stats;
-  FullscreenPass m_select;
+  PassStage m_stage;
+  ComputePass m_statsCompute, m_selectCompute;
+  std::optional<FullscreenPass> m_stats, m_select;  ///< PassStage::Fragment only
   gl::Texture m_statistics;
   gl::Framebuffer m_statsFramebuffer;
   gl::Framebuffer m_framebuffer;
