@@ -59,7 +59,7 @@ world.light_settings.distance = 0.1 * diagonal
 
 settings = scene.glint_bake
 settings.size = size
-settings.samples = 1
+settings.samples = "1"
 settings.ao_samples = 16
 settings.max_front = settings.max_rear = str(DISTANCE)
 settings.save_folder = ""

@@ -33,8 +33,10 @@ class GlintBakeSettings(bpy.types.PropertyGroup):
                     "otherwise the active object is the low poly and the other selected meshes the high polys")
     size: bpy.props.IntProperty(name="Size", default=2048, min=8, max=16384,
                                 description="Width and height of the maps in texels")
-    samples: bpy.props.IntProperty(name="Samples", default=1, min=1, max=64,
-                                   description="Rays per texel for the normal map (--samples)")
+    samples: bpy.props.EnumProperty(
+        name="Samples", default="1",
+        items=[(str(n * n), f"{n * n}", f"{n}×{n} rays per texel") for n in (1, 2, 3, 4, 5, 6, 8)],
+        description="Rays per texel for the normal map, a square grid (--samples)")
     ao_samples: bpy.props.IntProperty(name="AO rays", default=16, min=1, max=1024,
                                       description="Ambient-occlusion rays per texel (--ao-samples)")
     max_front: bpy.props.StringProperty(name="Max front", default="5%",

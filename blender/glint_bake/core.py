@@ -182,7 +182,7 @@ def bake_scene(context, settings, preferences, progress):
         low_arrays = mesh_arrays(low, depsgraph, True)
         high_arrays = joined([mesh_arrays(h, depsgraph, False) for h in highs])
         seconds["export"] += time.perf_counter() - start
-        options = {"samples": settings.samples, "max_front": settings.max_front, "max_rear": settings.max_rear}
+        options = {"samples": int(settings.samples), "max_front": settings.max_front, "max_rear": settings.max_rear}
         extension = ".exr" if settings.float_maps else ".png"
         if "ao" in maps:
             options["ao_samples"] = settings.ao_samples
