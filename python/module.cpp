@@ -337,13 +337,22 @@ public:
     if (floatOutput) m_job.output = "result.exr";  // names the format: a float result, linear light
   }
 
+  /// On the calling thread, with the GIL released: a GPU backend's GL context is current on
+  /// the thread that made it, so every frame of a chain must come through the same thread
+  /// (runReleased's worker threads would each be a new one). One image is quick; Ctrl-C
+  /// is raised when it returns.
   py::tuple run(const py::array& array, const py::object& progress) {
+    (void)progress;
     Image input = imageFrom(array, "the image");
     post::PostStats stats;
-    Image result = runReleased(progress, [&](const std::atomic<bool>* cancel) {
-      ToolRun run("post", settingsFor(cancel, 0));
-      return post::processImage(m_job, std::move(input), run, m_gpu.get(), stats);
-    });
+    Image result;
+    {
+      py::gil_scoped_release released;
+      const std::atomic<bool> never{false};
+      ToolRun run("post", settingsFor(&never, 0));
+      result = post::processImage(m_job, std::move(input), run, m_gpu.get(), stats);
+    }
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     py::dict info;
     info["effects"] = stats.effects;
     info["backend"] = stats.backend;

@@ -230,6 +230,7 @@ def post(image_or_frames: Union[_np.ndarray, Iterable[_np.ndarray]], effects: Un
     backend: "auto" (the CPU on a software renderer, else the GPU), "cpu" or "gpu".
     channels: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA; 0 keeps the input's.
     linear_output: a float32 result in linear light, as the command writes an EXR.
+    progress: accepted for symmetry; an image is one step (Ctrl-C is raised when it returns).
 
     An image gives an array (uint8 unless linear_output); an iterable gives an iterator of arrays.
     """

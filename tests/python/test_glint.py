@@ -256,6 +256,12 @@ def test_post_runs_over_a_videos_frames(tmp_path, run):
     run("post", clip, "-e", "sepia", "--frames", "3:4", "-o", tmp_path / "still.png")
     assert same_file_bytes(tmp_path, processed[3], tmp_path / "still.png")
     assert len(list(glint.frames(clip, 2, 5))) == 3
+    # The GPU backend (forced: llvmpipe would pick the CPU) over every frame of one chain: its
+    # GL context stays current on the calling thread from frame to frame; it agrees with the
+    # CPU backend within one 8-bit step.
+    on_gpu = list(glint.post(glint.frames(clip), "sepia", backend="gpu"))
+    assert len(on_gpu) == 10
+    assert max(int(np.abs(a.astype(int) - b.astype(int)).max()) for a, b in zip(on_gpu, processed)) <= 1
 
 
 # ------------------------------------------------------------------------------ cut, render
