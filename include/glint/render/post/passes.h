@@ -6,7 +6,8 @@
 // Why compute (issue 37): a datacenter GPU (H100, H200) runs graphics on a small part of the
 // chip — 8 ROPs, 2 of 66 TPCs — while compute shaders use every SM; a minimal RGBA8 pass
 // measured 11–25× faster as a compute shader there. Both stages share one function per
-// texel (post/<pass>.glsl), so they give the same bytes (tests/post: PostCompute).
+// texel (post/<pass>.glsl), so they give the same bytes
+// (tests/post/gpu_test.cpp: PostGpu.ComputeAndFragmentPassesGiveTheSameTexels).
 //
 // Contents
 //   SepiaPass      "a dot product and an add" (shaders/post/sepia.glsl)
@@ -21,8 +22,9 @@
 // texel row 0 is the picture's TOP row (as decoded video and image files are uploaded
 // without flipping, render/post/chain.h's uploadFrame), so "down" is +y in texel
 // coordinates and the Sobel signs match OpenCV's on the same rows. Inputs and outputs are
-// 2D textures of equal size; outputs must be colour-renderable (RGBA8 in glint post: the
-// result is rounded to 8 bits, one step of the reference at most).
+// 2D textures of equal size; outputs RGBA8 (glint post: the result is rounded to 8 bits,
+// one step of the reference at most) or RGBA32F (a float chain), the formats the compute
+// shaders store.
 //
 /// ```cpp
 /// glint::gl::Texture frame(GL_TEXTURE_2D, "frame"), result(GL_TEXTURE_2D, "result");
@@ -32,9 +34,11 @@
 /// sepia.run(frame, result, {.i = 0.2f, .q = 0.0f});
 /// ```
 //
-// Each run() sets the state it draws with (depth, blend and culling off; the viewport to the
-// output) and leaves framebuffer 0 bound. Cost: one full-screen pass (Kuwahara two), per
-// pixel, independent of what the frame shows — the seed's point about post effects.
+// A compute run() binds the output as image unit 0 and ends with the memory barrier that
+// lets the next pass sample it; a fragment run() sets the state it draws with (depth, blend
+// and culling off; the viewport to the output) and leaves framebuffer 0 bound. Cost: one
+// pass (Kuwahara two) per pixel, independent of what the frame shows — the seed's point
+// about post effects.
 
 #include "glint/gl/objects.h"
 #include "glint/image/post.h"
