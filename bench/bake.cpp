@@ -302,7 +302,7 @@ void pythonOverhead(Recorder& r, const fs::path& dir) {
   bake::writeObj(lowPoly(), dir / "small_low.obj");
   bake::writeObj(highPoly(16384), dir / "small_high.obj");
   const auto results = resultLines(fmt::format(
-      "PYTHONPATH={} {} {} {} {} 256 {} 2>/dev/null", shellQuote(module), GLINT_PYTHON_EXECUTABLE,
+      "PYTHONPATH={} {} {} {} {} 256 {} 2>/dev/null", shellQuote(module), shellQuote(GLINT_PYTHON_EXECUTABLE),
       shellQuote(fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "python_overhead.py"), shellQuote(dir / "small_low.obj"),
       shellQuote(dir / "small_high.obj"), kWholeRunRepeats));
   if (results.size() != 1) {

@@ -196,8 +196,11 @@ def bake_scene(context, settings, preferences, progress):
         bake_seconds = time.perf_counter() - start
         seconds["bake"] += bake_seconds
         start = time.perf_counter()
-        images = {name: make_image(glint, f"{low.name}_{name}", value, name, settings.save_folder, extension)
-                  for name, value in baked.items()}
+        try:
+            images = {name: make_image(glint, f"{low.name}_{name}", value, name, settings.save_folder, extension)
+                      for name, value in baked.items()}
+        except (OSError, RuntimeError) as error:  # an unwritable folder (glint.OutputError is both)
+            raise BakeError(f"glint: {error}") from None
         seconds["import"] += time.perf_counter() - start
         start = time.perf_counter()
         if settings.wire:
@@ -278,15 +281,17 @@ def make_image(glint, name, value, map_name, save_folder, extension=".png"):
     folder = bpy.path.abspath(save_folder) if save_folder else ""
     if folder:
         os.makedirs(folder, exist_ok=True)
+    # The image keeps the object's name; a file gets it cleaned (no "/", no line break).
+    file_stem = bpy.path.clean_name(name)
     if isinstance(value, dict):  # UDIM: tiles as NAME.<tile>.png, loaded as one tiled image
         tile_folder = folder or tempfile.mkdtemp(prefix="glint-udim-")
         for tile, tile_value in value.items():
-            path = os.path.join(tile_folder, f"{name}.{tile}{extension}")
+            path = os.path.join(tile_folder, f"{file_stem}.{tile}{extension}")
             if isinstance(tile_value, str):
                 shutil.copyfile(tile_value, path)
             else:
                 glint.write_image(path, tile_value)
-        first = os.path.join(tile_folder, f"{name}.{min(value)}{extension}")
+        first = os.path.join(tile_folder, f"{file_stem}.{min(value)}{extension}")
         old = bpy.data.images.get(name)
         if old is not None:
             bpy.data.images.remove(old)
@@ -300,7 +305,7 @@ def make_image(glint, name, value, map_name, save_folder, extension=".png"):
     if isinstance(value, str) or folder:  # a file: the command's, or the module's array saved
         path = value
         if folder:
-            path = os.path.join(folder, f"{name}{extension}")
+            path = os.path.join(folder, f"{file_stem}{extension}")
             if isinstance(value, str):
                 shutil.copyfile(value, path)
             else:

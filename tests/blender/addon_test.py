@@ -182,6 +182,21 @@ sys.path.insert(0, MODULE_DIR)
 import glint  # noqa: E402
 
 check(glint.read_image(saved).shape == (SIZE, SIZE, 3), "a 128×128 RGB PNG")
+# An object's name with a slash, quotes, $(...) and a line break: the image keeps it, the
+# file gets a clean name inside the folder, nothing runs.
+low.name = 'Ball/"$(touch PWNED)"\nlow'
+check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a low poly with an odd name bakes")
+odd = bpy.data.images[low.name + "_normal"]
+check(os.path.dirname(odd.filepath_raw) == os.path.join(OUT, "maps") and "\n" not in odd.filepath_raw,
+      f"its file is in the folder with a clean name: {os.path.basename(odd.filepath_raw)}")
+check(not os.path.exists(os.path.join(OUT, "PWNED")) and not os.path.exists("PWNED"), "no command ran")
+low.name = "Ball_low"
+settings.save_folder = "/proc/no-such-folder"
+try:
+    bpy.ops.object.glint_bake()
+    raise AssertionError("a bake into an unwritable folder finished")
+except RuntimeError as error:
+    check("Traceback" not in str(error), f"an unwritable folder is a report: {str(error).strip()}")
 settings.save_folder = ""
 
 # ------------------------------------------------------------------ UDIM
@@ -219,6 +234,19 @@ try:
     raise AssertionError("a bake without a high poly ran")
 except RuntimeError as error:
     check("select one or more high polys" in str(error), "no high poly selected: said")
+
+# ------------------------------------------------------------------ without the module
+# The module cannot load (not on the path, not imported): the add-on bakes with the command.
+for name in [m for m in sys.modules if m == "glint" or m.startswith("glint.")]:
+    del sys.modules[name]
+sys.path[:] = [p for p in sys.path if os.path.abspath(p) != os.path.abspath(MODULE_DIR)]
+preferences.module_path = ""
+preferences.use_command = False
+select(low, [high])
+check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a bake without the module finishes")
+report = __import__("json").loads(bpy.context.scene["glint_last_bake"])
+check(report["backend"] == "command", "the module could not load: the command baked")
+preferences.module_path = MODULE_DIR
 
 # ------------------------------------------------------------------ docs/blender.md
 text = open(DOCS).read()
