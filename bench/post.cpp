@@ -29,6 +29,7 @@
 #include <chrono>
 #include <filesystem>
 #include <cstdlib>
+#include <cstring>
 #include <random>
 #include <thread>
 
@@ -81,7 +82,10 @@ double fftBytes(const post::Fft2d& fft) {
 }
 
 void runEffects(Recorder& recorder) {
+  // GLINT_BENCH_POST_SIZES=640x480,1920x1080 measures only those sizes (unset: all three).
+  const char* only = std::getenv("GLINT_BENCH_POST_SIZES");
   for (const ivec2 size : {ivec2(640, 480), ivec2(1920, 1080), ivec2(3840, 2160)}) {
+    if (only && !std::strstr(only, fmt::format("{}x{}", size.x, size.y).c_str())) continue;
     const std::string group = fmt::format("{}x{}", size.x, size.y);
     const double pixels = double(size.x) * size.y;
     const int rounds = size.x >= 3840 ? 3 : size.x >= 1920 ? 5 : 9;
