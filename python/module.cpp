@@ -231,16 +231,25 @@ std::shared_ptr<Mesh> meshFrom(const py::object& positions, const py::object& in
                                const py::object& uvs) {
   auto mesh = std::make_shared<Mesh>();
   mesh->positions = rowsFrom<vec3>(positions, 3, "positions");
-  const auto tri = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(indices);
+  // uint32 and int32 indices (Blender's and numpy's usual types) are read as they are;
+  // anything else is converted to int64 first.
+  py::array tri = py::array::ensure(indices, py::array::c_style);
+  if (tri && !tri.dtype().is(py::dtype::of<std::uint32_t>()) && !tri.dtype().is(py::dtype::of<std::int32_t>()))
+    tri = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(indices);
   if (!tri || (!(tri.ndim() == 2 && tri.shape(1) == 3) && tri.ndim() != 1))
     fail(ErrorKind::Usage, "Mesh indices must be an M×3 array of vertex indices (or a flat array of 3·M)");
-  mesh->indices.reserve(std::size_t(tri.size()));
-  for (py::ssize_t i = 0; i < tri.size(); ++i) {
-    const std::int64_t v = tri.data()[i];
-    if (v < 0 || std::size_t(v) >= mesh->positions.size())
-      fail(ErrorKind::Input, "Mesh index {} at {} is out of range (0..{})", v, i, mesh->positions.size() - 1);
-    mesh->indices.push_back(std::uint32_t(v));
-  }
+  mesh->indices.resize(std::size_t(tri.size()));
+  const auto copyChecked = [&](const auto* in) {
+    for (std::size_t i = 0; i < mesh->indices.size(); ++i) {
+      const std::int64_t v = std::int64_t(in[i]);
+      if (v < 0 || std::size_t(v) >= mesh->positions.size())
+        fail(ErrorKind::Input, "Mesh index {} at {} is out of range (0..{})", v, i, mesh->positions.size() - 1);
+      mesh->indices[i] = std::uint32_t(v);
+    }
+  };
+  if (tri.dtype().is(py::dtype::of<std::uint32_t>())) copyChecked(static_cast<const std::uint32_t*>(tri.data()));
+  else if (tri.dtype().is(py::dtype::of<std::int32_t>())) copyChecked(static_cast<const std::int32_t*>(tri.data()));
+  else copyChecked(static_cast<const std::int64_t*>(tri.data()));
   mesh->normals = rowsFrom<vec3>(normals, 3, "normals");
   mesh->uvs = rowsFrom<vec2>(uvs, 2, "uvs");
   mesh->validate("glint.Mesh");

@@ -74,7 +74,14 @@ def mesh_arrays(obj, depsgraph, with_uvs):
     corner), one vertex per face corner with that corner's normal and UV (the UV map the
     render uses). Returns (positions, triangles, normals, uvs or None, the UV map's name)."""
     evaluated = obj.evaluated_get(depsgraph)
-    mesh = evaluated.to_mesh()
+    # A smooth high poly is read from the evaluated mesh itself (no copy: 8 ms saved on a
+    # 262k-triangle mesh); a mesh whose split normals must be computed, from a copy.
+    mesh = evaluated.data
+    smooth = np.empty(len(mesh.polygons), bool)
+    mesh.polygons.foreach_get("use_smooth", smooth)
+    shared = not with_uvs and smooth.all() and not getattr(mesh, "has_custom_normals", False)
+    if not shared:
+        mesh = evaluated.to_mesh()
     try:
         mesh.calc_loop_triangles()
         loops, vertices, triangles = len(mesh.loops), len(mesh.vertices), len(mesh.loop_triangles)
@@ -83,13 +90,16 @@ def mesh_arrays(obj, depsgraph, with_uvs):
         points = np.empty(vertices * 3, np.float32)
         mesh.vertices.foreach_get("co", points)
         points = points.reshape(-1, 3)
-        smooth = np.empty(len(mesh.polygons), bool)
-        mesh.polygons.foreach_get("use_smooth", smooth)
         uvs, uv_name = None, ""
-        if not with_uvs and smooth.all() and not getattr(mesh, "has_custom_normals", False):
+        if shared:
             # Shared vertices: Blender's vertex normals are the corners' normals.
-            corners = np.empty(triangles * 3, np.int32)
-            mesh.loop_triangles.foreach_get("vertices", corners)
+            # uint32, Blender's own type: foreach_get then copies the arrays whole (a
+            # 262k-triangle mesh in 5 ms); any other dtype goes item by item (35 ms).
+            corners = np.empty(triangles * 3, np.uint32)
+            mesh.loop_triangles.foreach_get("loops", corners)
+            vertex_of = np.empty(loops, np.uint32)
+            mesh.loops.foreach_get("vertex_index", vertex_of)
+            corners = vertex_of[corners]
             normals = np.empty(vertices * 3, np.float32)
             source = mesh.vertex_normals if hasattr(mesh, "vertex_normals") else mesh.vertices
             source.foreach_get("vector" if hasattr(mesh, "vertex_normals") else "normal", normals)
@@ -97,9 +107,9 @@ def mesh_arrays(obj, depsgraph, with_uvs):
         else:
             if hasattr(mesh, "calc_normals_split"):
                 mesh.calc_normals_split()
-            corners = np.empty(triangles * 3, np.int32)
+            corners = np.empty(triangles * 3, np.uint32)
             mesh.loop_triangles.foreach_get("loops", corners)
-            vertex_of = np.empty(loops, np.int32)
+            vertex_of = np.empty(loops, np.uint32)
             mesh.loops.foreach_get("vertex_index", vertex_of)
             normals = np.empty(loops * 3, np.float32)
             mesh.loops.foreach_get("normal", normals)
@@ -113,7 +123,8 @@ def mesh_arrays(obj, depsgraph, with_uvs):
                 uvs = uvs.reshape(-1, 2)
                 uv_name = layer.name
     finally:
-        evaluated.to_mesh_clear()
+        if not shared:
+            evaluated.to_mesh_clear()
     matrix = np.array(obj.matrix_world, dtype=np.float32)
     if not np.array_equal(matrix, np.identity(4, np.float32)):
         positions = positions @ matrix[:3, :3].T + matrix[:3, 3]
@@ -124,6 +135,8 @@ def mesh_arrays(obj, depsgraph, with_uvs):
 
 def joined(parts):
     """Several (positions, triangles, normals) as one."""
+    if len(parts) == 1:
+        return parts[0][:3]
     positions, triangles, normals, base = [], [], [], 0
     for p, t, n, *_ in parts:
         positions.append(p)

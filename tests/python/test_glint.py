@@ -46,6 +46,14 @@ def test_mesh_from_arrays_shares_its_memory_and_checks_its_input():
     assert not view.flags.writeable and view.base is not None  # a view on the mesh, not a copy
     with pytest.raises(glint.InputError, match="out of range"):
         glint.Mesh(positions, indices + len(positions))
+    # Every integer type gives the same triangles (uint32 and int32 are read as they are).
+    for dtype in (np.uint32, np.int32, np.int64, np.uint16):
+        same = glint.Mesh(positions, indices.astype(dtype))
+        assert np.array_equal(same.indices, mesh.indices), dtype
+    with pytest.raises(glint.InputError, match="out of range"):
+        glint.Mesh(positions, (indices + len(positions)).astype(np.uint32))
+    with pytest.raises(glint.InputError, match="-1 at 0 is out of range"):
+        glint.Mesh(positions, np.where(np.arange(indices.size).reshape(indices.shape) == 0, -1, indices).astype(np.int32))
     with pytest.raises(glint.UsageError, match="N×3"):
         glint.Mesh(positions[:, :2], indices)
     bad = positions.copy()
