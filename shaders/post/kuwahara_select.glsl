@@ -3,7 +3,7 @@
 // the pixel as a corner (image/post.h's numbering: 0 upper-left, 1 upper-right,
 // 2 lower-left, 3 lower-right; "upper" is towards texel row 0, the picture's top). Exact
 // ties go to the lowest number, as in the reference.
-// One texel; kuwahara_select.comp (the pass) and kuwahara_select.frag call it.
+// One texel; kuwahara_select.frag calls it (the fragment version of kuwahara.comp).
 uniform sampler2D uInput;
 uniform sampler2D uStatistics;
 uniform int uSize;

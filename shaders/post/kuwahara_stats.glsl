@@ -7,7 +7,8 @@
 // 32-bit integers (D < 2³¹ for s ≤ 8), so they are exact; the float texture holds D exactly
 // while it is below 2²⁴ (s ≤ 4) and rounded once above — rounding keeps the order, so pass 2
 // can only see a tie where two variances agree to 7 digits.
-// One texel; kuwahara_stats.comp (the pass) and kuwahara_stats.frag call it.
+// One texel; kuwahara_stats.frag calls it (the fragment version: the compute pass,
+// kuwahara.comp, sums its blocks in shared memory).
 #include "post/common.glsl"
 
 uniform sampler2D uInput;

@@ -140,10 +140,10 @@ TEST_F(PostGpu, KuwaharaChoosesTheReferenceQuadrantExactly) {
           if (chosen != reference.chosen[i]) ++differ;
         }
       }
-      // The GPU sums in integers and stores D in a float texture: exact for s ≤ 4, rounded
-      // once (order-preserving) above, so a different choice needs two variances equal to 7
-      // digits without being equal. None occurs on these inputs, at any size: exact match,
-      // exact ties (ties counts them) broken the same way.
+      // The compute pass (kuwahara.comp) sums and compares in integers, as the reference
+      // does: the same choice everywhere, exact ties (ties counts them) broken the same way.
+      // (The fragment version stores D in a float texture: exact for s ≤ 4, rounded once,
+      // order-preserving, above.)
       EXPECT_EQ(differ, 0u) << name << " s=" << size << " (" << ties << " exact ties)";
       std::printf("[figure] kuwahara %s %dx%d s=%d: %zu of %zu quadrant choices differ from the brute force "
                   "(%zu exact ties)\n", name.c_str(), image.width(), image.height(), size, differ, image.pixelCount(), ties);

@@ -124,7 +124,7 @@ void EdgesPass::run(const gl::Texture& input, const gl::Texture& output, const E
 
 // ---------------------------------------------------------------------------
 KuwaharaPass::KuwaharaPass(PassStage stage)
-    : m_stage(stage), m_statsCompute("post/kuwahara_stats.comp"), m_selectCompute("post/kuwahara_select.comp"),
+    : m_stage(stage), m_compute("post/kuwahara.comp"),
       m_statsFramebuffer(gl::Framebuffer::create("post-kuwahara-stats")),
       m_framebuffer(gl::Framebuffer::create("post-kuwahara")) {
   if (stage == PassStage::Fragment) {
@@ -138,31 +138,33 @@ void KuwaharaPass::run(const gl::Texture& input, const gl::Texture& output, cons
   checkSizes("kuwahara", input, output);
   const int s = options.size;
   if (s < 2 || s > 8) fail(ErrorKind::Usage, "kuwahara: quadrant size must be 2..8, got {}", s);
+  bindInput(input, 0);
+  if (!m_stats) {  // one compute pass
+    const gl::Program& program = m_compute.program(output);
+    program.set("uInput", 0);
+    program.set("uSize", s);
+    program.set("uShowQuadrant", showQuadrant);
+    return m_compute.dispatch(output);
+  }
   const ivec2 statsSize(input.width() + s - 1, input.height() + s - 1);
   if (!m_statistics || m_statistics.width() != statsSize.x || m_statistics.height() != statsSize.y) {
     m_statistics = gl::Texture(GL_TEXTURE_2D, "post-kuwahara-statistics");
     m_statistics.storage(GL_RGBA32F, statsSize.x, statsSize.y);
   }
   // Pass 1: statistics of every block.
-  bindInput(input, 0);
-  const auto& stats = m_stats ? m_stats->program() : m_statsCompute.program(m_statistics);
+  const gl::Program& stats = m_stats->program();
   stats.set("uInput", 0);
   stats.set("uSize", s);
-  if (m_stats) {
-    bindOutput(m_statsFramebuffer, m_statistics);
-    m_stats->drawWithCurrentState();
-  } else {
-    m_statsCompute.dispatch(m_statistics);
-  }
+  bindOutput(m_statsFramebuffer, m_statistics);
+  m_stats->drawWithCurrentState();
   // Pass 2: four fetches, the calmest quadrant's mean.
   bindInput(input, 0);
   bindInput(m_statistics, 1);
-  const auto& program = m_select ? m_select->program() : m_selectCompute.program(output);
-  program.set("uInput", 0);
-  program.set("uStatistics", 1);
-  program.set("uSize", s);
-  program.set("uShowQuadrant", showQuadrant);
-  if (!m_select) return m_selectCompute.dispatch(output);
+  const gl::Program& select = m_select->program();
+  select.set("uInput", 0);
+  select.set("uStatistics", 1);
+  select.set("uSize", s);
+  select.set("uShowQuadrant", showQuadrant);
   bindOutput(m_framebuffer, output);
   m_select->drawWithCurrentState();
   finish();

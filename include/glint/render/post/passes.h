@@ -13,9 +13,11 @@
 //   SepiaPass      "a dot product and an add" (shaders/post/sepia.glsl)
 //   SobelPass      the two 3×3 kernels, eight texel fetches (sobel.glsl)
 //   EdgesPass      Sobel lines composited over the image (edges.glsl)
-//   KuwaharaPass   the seed's two passes: statistics of every s×s block into a float
-//                  texture (kuwahara_stats.glsl), then four fetches and the calmest mean
-//                  (kuwahara_select.glsl)
+//   KuwaharaPass   the calmest of four quadrants' means. Compute: one pass of 16×16
+//                  shared-memory tiles, each block's sums taken once per tile
+//                  (kuwahara.comp). Fragment: the seed's two passes, statistics of every
+//                  s×s block into a float texture (kuwahara_stats.glsl), then four fetches
+//                  and the calmest mean (kuwahara_select.glsl)
 //
 // Conventions: image/post.h's, exactly — same luma weights, same border rule (texelFetch
 // at clamped coordinates), same arithmetic. Textures hold frames in image orientation:
@@ -112,20 +114,20 @@ class KuwaharaPass {
 public:
   explicit KuwaharaPass(PassStage stage = PassStage::Compute);
   PassStage stage() const { return m_stage; }
-  /// Pass 1 into an RGBA32F statistics texture of (w + s − 1) × (h + s − 1) texels (one per
-  /// block position, including blocks hanging over the border; reallocated when the size or
-  /// s changes), pass 2 into `output`. With `showQuadrant`, pass 2 writes the chosen
-  /// quadrant's number q instead of the mean, as q/255 in every channel (tests read it back).
+  /// The filtered image into `output`. Compute: one pass (post/kuwahara.comp), each 16×16
+  /// tile summing its blocks once in shared memory. Fragment: pass 1 into an RGBA32F
+  /// statistics texture of (w + s − 1) × (h + s − 1) texels (one per block position,
+  /// including blocks hanging over the border; reallocated when the size or s changes),
+  /// pass 2 into `output`. With `showQuadrant`, `output` gets the chosen quadrant's number q
+  /// instead of the mean, as q/255 in every channel (tests read it back).
   void run(const gl::Texture& input, const gl::Texture& output, const KuwaharaOptions& options = {},
            bool showQuadrant = false);
-  /// The statistics texture of the last run: RGB = Σk per channel, A = D (image/post.h).
-  const gl::Texture& statistics() const { return m_statistics; }
 
 private:
   PassStage m_stage;
-  ComputePass m_statsCompute, m_selectCompute;
+  ComputePass m_compute;
   std::optional<FullscreenPass> m_stats, m_select;  ///< PassStage::Fragment only
-  gl::Texture m_statistics;
+  gl::Texture m_statistics;                         ///< PassStage::Fragment only
   gl::Framebuffer m_statsFramebuffer;
   gl::Framebuffer m_framebuffer;
 };
