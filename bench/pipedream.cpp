@@ -10,6 +10,10 @@
 // Also per frame: triangles drawn (scene passes and volumes), stencil fragments (what the
 // volumes rasterize, GL_SAMPLES_PASSED, depth test off) and the average volume overdraw
 // per pixel; and the static-only frame (no dynamic shadows) as the floor.
+// The static frame's framebuffer traffic (issue 37: a datacenter GPU's few ROPs make it
+// fill-bound): the bytes each pass writes per pixel (GL_SAMPLES_PASSED × the attachments'
+// bytes), and the same frame timed and counted with RGBA16F colour and weights
+// (RendererOptions::floatBuffers, the layout before) by a second renderer, alternating.
 //
 // GLINT_BENCH_PIPEDREAM_SIZE=WxH replaces the size (1920x1080 on a GPU);
 // GLINT_BENCH_PIPEDREAM_RUNS=N the alternating rounds (default 7);
@@ -37,28 +41,34 @@ int envInt(const char* name, int fallback) {
   return v && *v ? std::max(1, std::atoi(v)) : fallback;
 }
 
-void runView(Recorder& recorder, rp::Renderer& renderer, const gl::RenderTarget& target, const rp::MachinePose& pose,
-             const render::Camera& camera, const std::string& group, int runs) {
+void runView(Recorder& recorder, rp::Renderer& renderer, rp::Renderer& floatRenderer, const gl::RenderTarget& target,
+             const rp::MachinePose& pose, const render::Camera& camera, const std::string& group, int runs) {
   const ivec2 size = target.size();
   const auto frame = [&](rp::Mode mode) { renderer.render(pose, camera, target.target(), mode); };
 
   // Alternating rounds: each times a few frames of every method in turn (a warm-up frame
   // first, then the median), the order reversed every other round, so that the shared
   // machine's swings in speed, which last seconds, fall on all three alike.
-  std::vector<double> full, naive, staticOnly;
+  std::vector<double> full, naive, staticOnly, staticFloat;
   const double loadBefore = loadAverage();
   const struct {
+    rp::Renderer* renderer;
     rp::Mode mode;
     std::vector<double>* times;
     int frames;
-  } methods[] = {{rp::Mode::Full, &full, 3}, {rp::Mode::Naive, &naive, 2}, {rp::Mode::StaticOnly, &staticOnly, 3}};
+  } methods[] = {{&renderer, rp::Mode::Full, &full, 3},
+                 {&renderer, rp::Mode::Naive, &naive, 2},
+                 {&renderer, rp::Mode::StaticOnly, &staticOnly, 3},
+                 {&floatRenderer, rp::Mode::StaticOnly, &staticFloat, 3}};
+  constexpr int kMethods = int(std::size(methods));
   for (int run = 0; run < runs; ++run) {
-    for (int k = 0; k < 3; ++k) {
-      const auto& m = methods[run % 2 == 0 ? k : 2 - k];
-      m.times->push_back(wallMs([&] { frame(m.mode); }, m.frames));
+    for (int k = 0; k < kMethods; ++k) {
+      const auto& m = methods[run % 2 == 0 ? k : kMethods - 1 - k];
+      m.times->push_back(wallMs([&] { m.renderer->render(pose, camera, target.target(), m.mode); }, m.frames));
     }
-    log::info("bench pipedream {}: round {}: full {:.1f} ms, naive {:.1f} ms, static only {:.1f} ms", group, run + 1,
-              full.back(), naive.back(), staticOnly.back());
+    log::info("bench pipedream {}: round {}: full {:.1f} ms, naive {:.1f} ms, static only {:.1f} ms ({:.1f} ms with "
+              "RGBA16F buffers)",
+              group, run + 1, full.back(), naive.back(), staticOnly.back(), staticFloat.back());
   }
   // Ratios within each round (methods timed seconds apart), then their median.
   std::vector<double> speedups, shadowRatios;
@@ -106,6 +116,41 @@ void runView(Recorder& recorder, rp::Renderer& renderer, const gl::RenderTarget&
                    .note = fmt::format("(naive - static only) / (full - static only), median of each round's: what the "
                                        "shadows cost each way, {:.1f} against {:.1f} ms in the medians (target >= 15x)",
                                        naiveMs - staticMs, fullMs - staticMs)});
+  // The static frame's framebuffer bytes, pass by pass, in both layouts.
+  const auto fillOf = [&](rp::Renderer& r) {
+    r.render(pose, camera, target.target(), rp::Mode::StaticOnly);
+    return r.measureStaticFill(target.target());
+  };
+  const std::vector<rp::PassFill> fill = fillOf(renderer), fillFloat = fillOf(floatRenderer);
+  // The renderer's own framebuffer (colour, weights, depth/stencil): every pass but
+  // present(), whose 4 bytes a pixel into the caller's target are the same either way.
+  const auto perPixel = [&](const std::vector<rp::PassFill>& passes, bool withPresent) {
+    std::uint64_t bytes = 0;
+    for (const rp::PassFill& p : passes)
+      if (withPresent || p.pass != "present") bytes += p.bytes();
+    return double(bytes) / pixels;
+  };
+  const auto breakdown = [&](const std::vector<rp::PassFill>& passes) {
+    std::string s;
+    for (const rp::PassFill& p : passes)
+      s += fmt::format("{}{} {:.2f} frag/px × {} B", s.empty() ? "" : ", ", p.pass, double(p.fragments) / pixels,
+                       p.bytesPerFragment);
+    return s;
+  };
+  recorder.record({.group = group, .name = "static frame: framebuffer bytes/pixel", .value = perPixel(fill, false),
+                   .unit = "B",
+                   .note = fmt::format("8-bit sRGB colour + a byte a light + depth/stencil, written by clear, scene and "
+                                       "balls; {:.1f} with present into the target; {}",
+                                       perPixel(fill, true), breakdown(fill))});
+  recorder.record({.group = group, .name = "  with RGBA16F colour and weights", .value = perPixel(fillFloat, false),
+                   .unit = "B", .ratioTo = "static frame: framebuffer bytes/pixel",
+                   .note = fmt::format("the layout before issue 37 (target: ratio >= 2); {:.1f} with present; {}",
+                                       perPixel(fillFloat, true), breakdown(fillFloat))});
+  recorder.record({.group = group, .name = "static only, RGBA16F buffers", .value = median(staticFloat), .unit = "ms",
+                   .ratioTo = "static only (no volumes)",
+                   .note = fmt::format("the same frame in the old layout, alternating (ratio >= 1: the new layout is not "
+                                       "slower); {}",
+                                       runsNote(staticFloat))});
   for (const auto& [name, cost] : {std::pair{"full", fullCost}, std::pair{"naive", naiveCost}}) {
     recorder.record({.group = group, .name = fmt::format("{}: triangles/frame", name),
                      .value = double(cost.triangles + cost.volumeTriangles), .unit = "tris",
@@ -129,6 +174,7 @@ void runPipeDream(Recorder& recorder) {
 
   const auto stage = pd::loadStage({.detail = detail});
   rp::Renderer renderer(stage->machine, stage->geometry);
+  rp::Renderer floatRenderer(stage->machine, stage->geometry, {.floatBuffers = true});
   gl::RenderTarget target(size, GL_RGBA8, "bench-pipedream");
   const double time = desc.defaultTime;
   const rp::MachinePose pose = rp::poseAt(stage->machine, stage->score, time);
@@ -137,7 +183,7 @@ void runPipeDream(Recorder& recorder) {
   for (const int cameraIndex : {0, 3}) {
     const render::Camera camera = pd::namedCamera(cameraIndex, float(size.x) / float(size.y));
     const std::string group = fmt::format("{}x{} {}", size.x, size.y, pd::namedCameras()[std::size_t(cameraIndex)].name);
-    runView(recorder, renderer, target, pose, camera, group, runs);
+    runView(recorder, renderer, floatRenderer, target, pose, camera, group, runs);
   }
   recorder.record({.group = "stage", .name = "cut triangles", .value = double(stage->geometry.mesh.triangleCount()),
                    .unit = "tris",

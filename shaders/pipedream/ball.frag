@@ -6,6 +6,7 @@ layout(binding = 0) uniform samplerCube uEnvironment;
 uniform vec3 uEye;
 uniform float uLodBias;
 uniform float uOpacity;
+uniform float uColorScale;  // as in scene.frag (the cube map holds plain linear light)
 in vec3 vWorld;
 in vec3 vNormal;
 layout(location = 0) out vec4 fragColor;
@@ -17,6 +18,6 @@ void main() {
   vec3 r = reflect(v, n);
   vec3 environment = texture(uEnvironment, r, uLodBias).rgb;
   float fresnel = 0.55 + 0.45 * pow(1.0 - max(dot(-v, n), 0.0), 4.0);
-  fragColor = vec4(vec3(0.015) + vec3(0.95, 0.97, 1.0) * environment * fresnel, uOpacity);
+  fragColor = vec4((vec3(0.015) + vec3(0.95, 0.97, 1.0) * environment * fresnel) * uColorScale, uOpacity);
   fragWeights = vec4(0.0);  // reflections are not lit by the lights: a dynamic shadow leaves them
 }

@@ -8,6 +8,7 @@ layout(binding = 0) uniform sampler2D uColor;
 layout(binding = 1) uniform sampler2D uWeights;
 uniform ivec2 uOrigin;
 uniform int uView;
+uniform float uColorScale;  // the colour buffer holds linear light × this (scene.frag)
 in vec2 vUv;
 layout(location = 0) out vec4 fragColor;
 
@@ -18,6 +19,6 @@ void main() {
     vec4 w = texelFetch(uWeights, p, 0);
     fragColor = vec4(srgbEncode(vec3(1.0 - (w.x + w.y + w.z + w.w))), 1.0);
   } else {
-    fragColor = vec4(srgbEncode(texelFetch(uColor, p, 0).rgb), 1.0);
+    fragColor = vec4(srgbEncode(texelFetch(uColor, p, 0).rgb / uColorScale), 1.0);
   }
 }

@@ -14,6 +14,9 @@ uniform int uPass;
 uniform int uMask;
 uniform int uLight;
 uniform vec3 uEmissive;
+// The colour buffer holds linear light × uColorScale (1 / the brightest a pixel can be:
+// render/pipedream/renderer.h's colorScale()), so its 8 bits clip nothing a shadow dims.
+uniform float uColorScale;
 
 in vec3 vWorld;
 in vec3 vNormal;
@@ -24,16 +27,16 @@ layout(location = 1) out vec4 fragWeights;
 void main() {
   fragWeights = vec4(0.0);
   if (uPass == 3) {
-    fragColor = vec4(uEmissive, 1.0);
+    fragColor = vec4(uEmissive * uColorScale, 1.0);
     return;
   }
   if (uPass == 1) {
-    fragColor = vec4(vAlbedo * uAmbient, 1.0);
+    fragColor = vec4(vAlbedo * uAmbient * uColorScale, 1.0);
     return;
   }
   vec3 n = normalize(vNormal);
   if (uPass == 2) {
-    fragColor = vec4(vAlbedo * lightTerm(uLight, vWorld, n), 1.0);
+    fragColor = vec4(vAlbedo * lightTerm(uLight, vWorld, n) * uColorScale, 1.0);
     return;
   }
   vec4 terms = vec4(0.0);
@@ -41,5 +44,5 @@ void main() {
     if (((uMask >> i) & 1) != 0) terms[i] = lightTerm(i, vWorld, n);
   float total = uAmbient + terms.x + terms.y + terms.z + terms.w;
   fragWeights = terms / total;
-  fragColor = vec4(vAlbedo * total, 1.0 - fragWeights.x);
+  fragColor = vec4(vAlbedo * total * uColorScale, 1.0 - fragWeights.x);
 }

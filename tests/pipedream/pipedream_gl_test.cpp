@@ -21,6 +21,7 @@
 #include "support/gl_test.h"
 
 #include "glint/gl/render_target.h"
+#include "glint/image/srgb.h"
 #include "glint/raytrace/raytracer.h"
 #include "glint/render/state.h"
 #include "glint/scenes/pipedream.h"
@@ -58,10 +59,24 @@ rp::MachinePose poseAt(double time) { return rp::poseAt(stage().machine, stage()
 
 Image readFloat(const gl::Texture& texture) { return gl::readTexture(texture, 0, 0, 4, PixelType::F32); }
 
+/// The colour buffer in linear light: its texels as stored (sRGB-encoded RGB, read back
+/// without decoding), decoded; alpha (the dim factor) is linear already.
+Image readLinear(const gl::Texture& color) {
+  Image image = readFloat(color);
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      for (int c = 0; c < 3; ++c) image.set(x, y, c, srgbDecode(image.at(x, y, c)));
+  return image;
+}
+
+/// How far apart two linear values are in 8-bit sRGB steps (the colour buffer's and the
+/// output's own unit).
+float srgbSteps(float a, float b) { return 255.0f * std::abs(srgbEncode(a) - srgbEncode(b)); }
+
 /// One Full frame step by step: the scene pass's colour and weights, which lights' volumes
 /// cover each pixel (bit k: light k's stencil count was not zero), the final colour, depth.
 struct Steps {
-  Image scene, weights, final, depth;
+  Image opaque, scene, weights, final, depth;
   std::vector<std::uint8_t> covered;
 };
 
@@ -69,9 +84,10 @@ Steps renderSteps(const rp::MachinePose& pose, const render::Camera& cam) {
   rp::Renderer& r = renderer();
   r.prepare(pose, cam, kSize, rp::Mode::Full);
   r.drawScene();
-  r.drawTranslucent();
   Steps s;
-  s.scene = readFloat(r.colorTexture());
+  s.opaque = readLinear(r.colorTexture());
+  r.drawTranslucent();
+  s.scene = readLinear(r.colorTexture());
   s.weights = readFloat(r.weightsTexture());
   s.depth = gl::readDepth(r.sceneFramebuffer(), kSize);
   s.covered.assign(std::size_t(kSize.x * kSize.y), 0);
@@ -86,7 +102,7 @@ Steps renderSteps(const rp::MachinePose& pose, const render::Camera& cam) {
     r.compositeLight(light, done);
     done |= 1u << light;
   }
-  s.final = readFloat(r.colorTexture());
+  s.final = readLinear(r.colorTexture());
   return s;
 }
 
@@ -258,33 +274,45 @@ TEST_F(GlTest, PipeDreamShadowsAgreeWithTheRayTracer) {
 }
 
 TEST_F(GlTest, PipeDreamDimFactorNeverDarkensTwice) {
-  std::size_t untouched = 0, singles = 0, multiples = 0;
+  std::size_t untouched = 0, singles = 0, multiples = 0, clipped = 0;
+  float brightest = 0.0f;
   for (const View& v : kViews) {
     const Steps s = renderSteps(poseAt(v.time), camera(v.camera));
     for (int y = 0; y < kSize.y; ++y)
       for (int x = 0; x < kSize.x; ++x) {
         const std::uint8_t covered = s.covered[std::size_t(y * kSize.x + x)];
         float removed = 0.0f, any = 0.0f;
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < renderer().lights(); ++k) {  // one channel per light (RG8 for two)
           any += s.weights.at(x, y, k);
           if (covered & (1u << k)) removed += s.weights.at(x, y, k);
         }
         for (int c = 0; c < 3; ++c) {
           const float before = s.scene.at(x, y, c), after = s.final.at(x, y, c);
+          // The 8-bit colour buffer holds 0..1: a lit pixel at 1 may have been clipped, and a
+          // shadow would dim the clipped value. None is.
+          if (any > 0.0f) {
+            brightest = std::max(brightest, before);
+            clipped += before >= 1.0f;
+          }
           if (any == 0.0f) {
             // No light reaches (every light's baked shadow, or facing away): exactly as drawn.
             ASSERT_EQ(after, before) << x << "," << y << " t = " << v.time;
           } else {
-            // Colour × the factors of the lights that left: 1 − Σ of their weights (half floats).
-            ASSERT_NEAR(after, before * (1.0f - removed), 4e-3f * before + 1e-4f) << x << "," << y << " t = " << v.time;
+            // Colour × the factors of the lights that left: 1 − Σ of their weights. Within
+            // 1.5 steps of 8-bit sRGB: the product is rounded once into the buffer (half a
+            // step), and the factor and weights are 8-bit (half of 1/255 each).
+            ASSERT_LE(srgbSteps(after, before * (1.0f - removed)), 1.5f)
+                << x << "," << y << " t = " << v.time << ": " << after << " against " << before * (1.0f - removed);
           }
         }
         if (covered && any == 0.0f) ++untouched;
         // One light's shadow: the seed's quad, dest colour × dest alpha.
         if (covered == 1u && s.weights.at(x, y, 0) > 0.05f) {
           ++singles;
+          // One rounding into the buffer (half a step) by the GL's own sRGB encoding, which
+          // need not be exact (llvmpipe's: up to 0.6 of a step): within one step.
           for (int c = 0; c < 3; ++c)
-            ASSERT_NEAR(s.final.at(x, y, c), s.scene.at(x, y, c) * s.scene.at(x, y, 3), 4e-3f * s.scene.at(x, y, c) + 1e-4f);
+            ASSERT_LE(srgbSteps(s.final.at(x, y, c), s.scene.at(x, y, c) * s.scene.at(x, y, 3)), 1.0f);
         }
         if (std::popcount(unsigned(covered)) > 1 && removed > 0.05f) ++multiples;
       }
@@ -292,6 +320,10 @@ TEST_F(GlTest, PipeDreamDimFactorNeverDarkensTwice) {
   std::printf("[ dim      ] %zu pixels in a dynamic shadow that no light reached (left alone), %zu in one light's "
               "shadow, %zu in both\n",
               untouched, singles, multiples);
+  std::printf("[ dim      ] brightest lit pixel before the quads: %.3f of the colour buffer's top (linear light %.3f; "
+              "colour scale 1/%.3f)\n",
+              brightest, brightest / renderer().colorScale(), 1.0f / renderer().colorScale());
+  EXPECT_EQ(clipped, 0u) << "lit pixels at the colour buffer's top: a shadow would dim a clipped value";
   EXPECT_GT(untouched, 200u) << "no dynamic shadow fell on baked shadow: the test shows nothing";
   EXPECT_GT(singles, 200u);
 }
@@ -442,7 +474,7 @@ TEST_F(GlTest, PipeDreamMatchesFullSceneVolumes) {
   for (const View& v : kViews) {
     const rp::MachinePose pose = poseAt(v.time);
     r.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
-    const Image full = readFloat(r.colorTexture());
+    const Image full = readLinear(r.colorTexture());
     std::size_t dyn = 0;
     std::vector<bool> surface;
     const auto truth = Oracle(pose).classify(gl::readDepth(r.sceneFramebuffer(), kSize), r.camera(), dyn, &surface);
@@ -452,22 +484,72 @@ TEST_F(GlTest, PipeDreamMatchesFullSceneVolumes) {
       for (std::size_t i = 0; i < t.size(); ++i) compared[i] = compared[i] && (use[i] || t[i] == Truth::Dark);
     }
     r.render(pose, camera(v.camera), target.target(), rp::Mode::Naive);
-    const Image naive = readFloat(r.colorTexture());
+    const Image naive = readLinear(r.colorTexture());
     std::size_t count = 0, same = 0;
     for (int y = 0; y < kSize.y; ++y)
       for (int x = 0; x < kSize.x; ++x) {
         if (!compared[std::size_t(y * kSize.x + x)]) continue;
         bool close = true;
-        for (int c = 0; c < 3; ++c) close &= std::abs(full.at(x, y, c) - naive.at(x, y, c)) <= 0.01f * naive.at(x, y, c) + 2e-3f;
+        // Within 2 steps of 8-bit sRGB: each method rounds into the 8-bit buffer (the naive
+        // one once a pass), the seed's dim factor and weights are 8-bit.
+        for (int c = 0; c < 3; ++c) close &= srgbSteps(full.at(x, y, c), naive.at(x, y, c)) <= 2.0f;
         ++count;
         same += close;
       }
     const double fraction = double(same) / double(count);
-    std::printf("[ naive    ] t = %.2f: %zu of %zu pixels within 1%% of the naive method's (%.3f%%)\n", v.time, same,
+    std::printf("[ naive    ] t = %.2f: %zu of %zu pixels within 2 steps of the naive method's (%.3f%%)\n", v.time, same,
                 count, 100.0 * fraction);
     EXPECT_GE(fraction, 0.995) << "t = " << v.time;
     EXPECT_GT(count, std::size_t(kSize.x * kSize.y / 3));
   }
+}
+
+TEST_F(GlTest, PipeDreamEightBitBuffersHalveTheFillAndKeepThePicture) {
+  // Issue 37: 8-bit sRGB colour and a byte a light against RGBA16F colour and weights (the
+  // layout before). The same fragments, half the renderer's framebuffer bytes; the same
+  // picture to the 8-bit output's precision: each pixel within 3 steps (the colour
+  // buffer's rounding, scaled by 1/colorScale(), and the 8-bit dim factor and weights:
+  // 1.9 steps at most where a bright pixel is dimmed), 0.7 steps on average.
+  rp::Renderer& narrow = renderer();
+  rp::Renderer wide(stage().machine, stage().geometry, {.floatBuffers = true});
+  gl::RenderTarget target(kSize);
+  double sum = 0.0;
+  int worst = 0;
+  std::size_t values = 0;
+  for (const View& v : kViews) {
+    const rp::MachinePose pose = poseAt(v.time);
+    narrow.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
+    const Image a = gl::readColor(target.framebuffer(), kSize);
+    wide.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
+    const Image b = gl::readColor(target.framebuffer(), kSize);
+    for (int y = 0; y < kSize.y; ++y)
+      for (int x = 0; x < kSize.x; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const int d = int(std::lround(255.0f * std::abs(a.at(x, y, c) - b.at(x, y, c))));
+          worst = std::max(worst, d);
+          sum += d;
+          ++values;
+        }
+    narrow.render(pose, camera(v.camera), target.target(), rp::Mode::StaticOnly);
+    const std::vector<rp::PassFill> fill = narrow.measureStaticFill(target.target());
+    wide.render(pose, camera(v.camera), target.target(), rp::Mode::StaticOnly);
+    const std::vector<rp::PassFill> fillWide = wide.measureStaticFill(target.target());
+    ASSERT_EQ(fill.size(), fillWide.size());
+    std::uint64_t bytes = 0, bytesWide = 0;
+    for (std::size_t i = 0; i < fill.size(); ++i) {
+      EXPECT_EQ(fill[i].pass, fillWide[i].pass);
+      EXPECT_EQ(fill[i].fragments, fillWide[i].fragments) << fill[i].pass;
+      if (fill[i].pass == "present") continue;
+      bytes += fill[i].bytes();
+      bytesWide += fillWide[i].bytes();
+    }
+    EXPECT_GT(fill[1].fragments, std::uint64_t(kSize.x * kSize.y / 2)) << "the scene pass drew little";
+    EXPECT_LE(2 * bytes, bytesWide) << "t = " << v.time;
+  }
+  const double mean = sum / double(values);
+  std::printf("[ buffers  ] 8-bit against RGBA16F buffers: max %d step(s), mean %.3f steps\n", worst, mean);
+  EXPECT_LE(worst, 3);
+  EXPECT_LE(mean, 0.7);
 }
 
 TEST_F(GlTest, PipeDreamBallShaderStretchesAsTheReference) {

@@ -21,7 +21,22 @@ namespace glint::render::pipedream {
 
 namespace {
 
-// Linear colours (the colour buffer is linear; present() encodes sRGB).
+// While a step draws into the colour buffer (sRGB): blending in linear light, writes
+// encoded. Off again after, for whatever the application draws next.
+struct FramebufferSrgb {
+  FramebufferSrgb() { glEnable(GL_FRAMEBUFFER_SRGB); }
+  ~FramebufferSrgb() { glDisable(GL_FRAMEBUFFER_SRGB); }
+  FramebufferSrgb(const FramebufferSrgb&) = delete;
+  FramebufferSrgb& operator=(const FramebufferSrgb&) = delete;
+};
+
+float maxOf(const vec3& v) { return std::max({v.x, v.y, v.z}); }
+
+/// The weights buffer's format: one 8-bit channel per light.
+GLenum weightsFormat(int lights) { return lights == 1 ? GL_R8 : lights == 2 ? GL_RG8 : GL_RGBA8; }
+
+// Linear colours (shaders write linear light; the colour buffer encodes it, present()
+// encodes the output by hand).
 const vec4 kBackground{0.030f, 0.034f, 0.045f, 1.0f};  // alpha 1: nothing to dim
 const vec3 kSkinAlbedo{0.86f, 0.82f, 0.70f};
 const vec3 kCymbalAlbedo{0.85f, 0.66f, 0.26f};
@@ -97,6 +112,8 @@ Renderer::Renderer(const InstrumentMachine& machine, const StaticGeometry& geome
   if (geometry.lights != m_lights || geometry.maskStart.size() != (std::size_t(1) << m_lights) + 1)
     fail(ErrorKind::Internal, "static geometry cut for {} lights, the machine has {}", geometry.lights, m_lights);
 
+  m_maxAlbedo = std::max({maxOf(kSkinAlbedo), maxOf(kCymbalAlbedo), maxOf(kMalletAlbedo)});
+  for (const vec4& c : geometry.colors) m_maxAlbedo = std::max(m_maxAlbedo, maxOf(vec3(c)));
   {
     Mesh mesh = geometry.mesh;
     std::vector<vec4> meshColors = geometry.colors;
@@ -112,6 +129,7 @@ Renderer::Renderer(const InstrumentMachine& machine, const StaticGeometry& geome
   }
   std::vector<vec4> colors;
   Mesh uncut = uncutMesh(machine, colors);
+  for (const vec4& c : colors) m_maxAlbedo = std::max(m_maxAlbedo, maxOf(vec3(c)));
   const std::uint32_t all[] = {0, std::uint32_t(uncut.triangleCount())};
   m_uncutClusters = clusterTriangles(uncut, colors, all, m_options.clusterSize);
   m_uncut = GpuMesh(uncut, colors, "pipedream-static-uncut");
@@ -293,6 +311,7 @@ void Renderer::renderCube() {
                   m_lit.set("uVertexAlbedo", true);
                   m_lit.set("uPass", 0);
                   m_lit.set("uMask", (1 << m_lights) - 1);
+                  m_lit.set("uColorScale", 1.0f);  // the cube holds plain linear light
                   m_lit.use();
                   m_uncut.draw();
                 },
@@ -300,14 +319,26 @@ void Renderer::renderCube() {
 }
 
 void Renderer::resize(ivec2 size) {
-  if (size == m_size) return;
+  if (size == m_size && m_options.floatBuffers == m_floatBuffers && m_color) return;
   if (size.x <= 0 || size.y <= 0) fail(ErrorKind::Usage, "pipedream: frame size {}x{} is empty", size.x, size.y);
   m_size = size;
-  // Linear float colour: the dim factor multiplies linear light, and alpha keeps it exactly.
+  m_floatBuffers = m_options.floatBuffers;
+  // Colour in 8-bit sRGB (issue 37: half the bytes of RGBA16F): blending, the quads' dim
+  // factor and the balls decode, work in linear light and encode again (GL_FRAMEBUFFER_SRGB,
+  // on while render() draws), so one rounding to the output's own 8-bit sRGB is all that
+  // is added; alpha (the dim factor) is linear, in steps of 1/255. No pixel of the scene is
+  // brighter than 1 before the quads (tests/pipedream: PipeDreamDimFactorNeverDarkensTwice
+  // checks), so
+  // nothing is clipped that a shadow would dim. The weights: one 8-bit unorm channel per
+  // light that exists (R8, RG8, RGBA8); the channels beyond read as 0.
   m_color = gl::Texture(GL_TEXTURE_2D, "pipedream-color");
-  m_color.storage(GL_RGBA16F, size.x, size.y);
+  m_color.storage(m_floatBuffers ? GL_RGBA16F : GL_SRGB8_ALPHA8, size.x, size.y);
   m_weights = gl::Texture(GL_TEXTURE_2D, "pipedream-weights");
-  m_weights.storage(GL_RGBA16F, size.x, size.y);
+  m_weights.storage(m_floatBuffers ? GL_RGBA16F : weightsFormat(m_lights), size.x, size.y);
+  for (const GLenum channel : {GL_TEXTURE_SWIZZLE_G, GL_TEXTURE_SWIZZLE_B, GL_TEXTURE_SWIZZLE_A}) {
+    const int index = channel == GL_TEXTURE_SWIZZLE_G ? 1 : channel == GL_TEXTURE_SWIZZLE_B ? 2 : 3;
+    if (index >= m_lights && !m_floatBuffers) glTextureParameteri(m_weights.id(), channel, GL_ZERO);
+  }
   for (const gl::Texture* t : {&m_color, &m_weights}) t->filtering(GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE);
   m_depthStencil = gl::Texture(GL_TEXTURE_2D, "pipedream-depth-stencil");
   m_depthStencil.storage(GL_DEPTH24_STENCIL8, size.x, size.y);
@@ -330,6 +361,10 @@ void Renderer::prepare(const MachinePose& pose, const Camera& camera, ivec2 size
   m_camera = camera;
   m_camera.projection = shadows::infiniteFarProjection(camera.projection);
   m_stats = {};
+  float light = m_options.ambient;
+  for (const MachineLight& l : m_machine.lights) light += l.intensity;
+  m_colorScale = m_floatBuffers ? 1.0f : 1.0f / std::max({1.0f, maxOf(kMarkerColor), m_maxAlbedo * light});
+  for (const gl::Program* p : {&m_lit, &m_shadowed, &m_ball}) p->set("uColorScale", m_colorScale);
   m_dynamic.clear();
   for (const mat4& m : pose.skins) m_dynamic.push_back({0, m, kSkinAlbedo});
   for (const mat4& m : pose.cymbals) m_dynamic.push_back({1, m, kCymbalAlbedo});
@@ -407,6 +442,7 @@ void Renderer::drawMarkers() const {
 }
 
 void Renderer::drawScene() {
+  const FramebufferSrgb srgb;
   m_sceneFbo.bind();
   glViewport(0, 0, m_size.x, m_size.y);
   PipelineState state{.depthTest = true};
@@ -415,7 +451,7 @@ void Renderer::drawScene() {
   state.offsetFactor = 1.0f;
   state.offsetUnits = 1.0f;
   state.apply();
-  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, kBackground);
+  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, scaled(kBackground));
   const vec4 noWeights(0.0f);
   m_sceneFbo.clearColor(1, &noWeights.x);
 
@@ -458,6 +494,7 @@ void Renderer::drawBalls(bool translucent) {
 
 void Renderer::drawTranslucent() {
   if (m_mode == Mode::NoBlur || m_balls.empty()) return;
+  const FramebufferSrgb srgb;
   m_compositeFbo.bind();
   glViewport(0, 0, m_size.x, m_size.y);
   // Over the scene, depth-tested but not written; alpha masked: destination alpha keeps
@@ -582,6 +619,7 @@ bool Renderer::countVolumes(int light) {
 }
 
 void Renderer::compositeLight(int light, std::uint32_t earlier) {
+  const FramebufferSrgb srgb;
   m_compositeFbo.bind();
   glViewport(0, 0, m_size.x, m_size.y);
   // The passes below change only pixels where this light's volumes left a count: the
@@ -636,23 +674,26 @@ void Renderer::present(const gl::Target& target) const {
   const gl::Program& p = m_present.program();
   p.set("uOrigin", target.origin);
   p.set("uView", m_mode == Mode::DestAlpha ? 1 : 0);
+  p.set("uColorScale", m_colorScale);
   m_color.bind(0);
   m_weights.bind(1);
   m_present.draw();
 }
 
 void Renderer::drawVolumeWireframe() {
+  const FramebufferSrgb srgb;
   const FrameStats saved = m_stats;
   m_compositeFbo.bind();
   glViewport(0, 0, m_size.x, m_size.y);
   PipelineState{.depthTest = true, .depthWrite = false, .polygonMode = GL_LINE}.apply();
-  m_extrude.set("uColor", kVolumeWire);
+  m_extrude.set("uColor", scaled(kVolumeWire));
   for (int light = 0; light < m_lights; ++light) drawVolumesOf(light, false);
   PipelineState{}.apply();  // back to GL_FILL
   m_stats = saved;
 }
 
 void Renderer::drawEdges() {
+  const FramebufferSrgb srgb;
   if (m_edgeCount == 0) return;
   m_compositeFbo.bind();
   glViewport(0, 0, m_size.x, m_size.y);
@@ -674,11 +715,12 @@ void Renderer::ensureNaiveCasters() {
 }
 
 void Renderer::renderNaive() {
+  const FramebufferSrgb srgb;
   ensureNaiveCasters();
   m_compositeFbo.bind();
   glViewport(0, 0, m_size.x, m_size.y);
   PipelineState{.depthTest = true}.apply();
-  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, kBackground);
+  render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, scaled(kBackground));
   const auto drawAll = [&](int pass) {
     m_lit.set("uPass", pass);
     m_lit.set("uViewProj", m_camera.viewProjection());
@@ -752,6 +794,47 @@ std::uint64_t Renderer::measureVolumeFill() {
   PipelineState{}.apply();
   m_stats = saved;
   return query.result();
+}
+
+namespace {
+int bytesPerTexel(GLenum format) {
+  switch (format) {
+    case GL_R8: return 1;
+    case GL_RG8: return 2;
+    case GL_RGBA8:
+    case GL_SRGB8_ALPHA8:
+    case GL_DEPTH24_STENCIL8: return 4;
+    case GL_RGBA16F: return 8;
+    default: fail(ErrorKind::Internal, "pipedream: no texel size for format {:#x}", format);
+  }
+}
+}  // namespace
+
+std::vector<PassFill> Renderer::measureStaticFill(const gl::Target& target) {
+  const FrameStats saved = m_stats;
+  const Mode mode = m_mode;
+  m_mode = Mode::StaticOnly;
+  const std::uint64_t pixels = std::uint64_t(m_size.x) * std::uint64_t(m_size.y);
+  const int color = bytesPerTexel(m_color.internalFormat()), weights = bytesPerTexel(m_weights.internalFormat());
+  const int depth = bytesPerTexel(m_depthStencil.internalFormat());
+  std::vector<PassFill> out;
+  out.push_back({"clear", pixels, color + weights + depth});
+  gl::Query query(GL_SAMPLES_PASSED, "pipedream-static-fill");
+  const auto counted = [&](const auto& draw) {
+    query.begin();
+    draw();
+    query.end();
+    return query.result();
+  };
+  // The scene pass writes colour, weights and depth (the packed depth/stencil word).
+  out.push_back({"scene", counted([&] { drawScene(); }), color + weights + depth});
+  // The balls blend colour only (depth tested, not written).
+  out.push_back({"balls", counted([&] { drawTranslucent(); }), color});
+  out.push_back({"present", counted([&] { present(target); }), 4});
+  m_mode = mode;
+  m_stats = saved;
+  PipelineState{}.apply();
+  return out;
 }
 
 std::string Renderer::describe() const {

@@ -12,8 +12,10 @@
 //   Renderer          the passes, as one frame or step by step (tests, benchmarks)
 //
 // The frame (Mode::Full), in the order of the seed's talk:
-//   1. Scene pass, into a linear float colour buffer plus a second buffer of per-light
-//      weights. Static pieces come from the cut: each group of one light mask is drawn with
+//   1. Scene pass, into an 8-bit sRGB colour buffer (blended and dimmed in linear light)
+//      plus a second buffer of per-light weights, one 8-bit channel per light: 6 bytes a
+//      pixel for the two lights where RGBA16F and four half-float weights took 16
+//      (issue 37: a datacenter GPU's few ROPs make the frame fill-bound). Static pieces come from the cut: each group of one light mask is drawn with
 //      that mask as a uniform, lit by exactly the lights that reach it; pieces no light
 //      reaches go through a cheaper shader (ambient only) — "we know none of our dominant
 //      lights hit those polygons". Static triangles are drawn front faces only, in clusters
@@ -122,6 +124,17 @@ struct RendererOptions {
   float clusterSize = 2.0f;      ///< static triangles are drawn in clusters of this cell size (m): culled
                                  ///< outside the view, nearest first (0: one cluster per mask)
   int cubeSize = 128;            ///< the room's environment map (the balls' reflections)
+  bool floatBuffers = false;     ///< RGBA16F colour and four half-float weights (16 bytes a pixel, the
+                                 ///< layout before issue 37) instead of 8-bit sRGB colour and a byte
+                                 ///< a light (6 bytes for two lights): `glint bench pipedream`'s peer
+};
+
+/// One pass of a frame and what it writes into the framebuffer (Renderer::measureStaticFill).
+struct PassFill {
+  std::string pass;                ///< "clear", "scene", "balls", "present"
+  std::uint64_t fragments = 0;     ///< fragments written (GL_SAMPLES_PASSED; clear, present: every pixel)
+  int bytesPerFragment = 0;        ///< bytes of the attachments each writes: colour, weights, depth/stencil
+  std::uint64_t bytes() const { return fragments * std::uint64_t(bytesPerFragment); }
 };
 
 /// What the last frame drew.
@@ -185,17 +198,29 @@ public:
   /// GL_SAMPLES_PASSED while drawing them with the depth test off: what counting costs in
   /// fill. Needs prepare().
   std::uint64_t measureVolumeFill();
+  /// The static frame's passes (Mode::StaticOnly: clear, scene, translucent balls, present
+  /// into `target`) drawn again with a GL_SAMPLES_PASSED query each: the framebuffer bytes
+  /// each writes. Needs prepare().
+  std::vector<PassFill> measureStaticFill(const gl::Target& target);
 
-  /// The scene pass's framebuffer: colour (RGBA16F, linear) + weights + depth/stencil.
+  /// The scene pass's framebuffer: colour (SRGB8_ALPHA8) + weights (R8, RG8 or RGBA8: a
+  /// channel per light) + depth/stencil (DEPTH24_STENCIL8).
   const gl::Framebuffer& sceneFramebuffer() const { return m_sceneFbo; }
   /// Colour + depth/stencil only (translucent balls, alpha passes, quads).
   const gl::Framebuffer& compositeFramebuffer() const { return m_compositeFbo; }
-  /// The colour attachment (linear RGB, alpha the dim factor) and the weights.
+  /// The colour attachment (sRGB-encoded RGB: texel fetches decode it to linear; alpha the
+  /// dim factor, linear) and the weights (channels past the lights read 0).
   const gl::Texture& colorTexture() const { return m_color; }
   const gl::Texture& weightsTexture() const { return m_weights; }
   const Camera& camera() const { return m_camera; }
   ivec2 size() const { return m_size; }
   int lights() const { return m_lights; }
+  /// The colour buffer holds linear light × colorScale(): 1 / the brightest a pixel can be
+  /// this frame (the brightest albedo × (ambient + every light's intensity), or the light
+  /// markers' emission), so its 8 bits clip nothing; present() divides it out.
+  float colorScale() const { return m_colorScale; }
+  /// A linear colour as the colour buffer holds it (rgb × colorScale(), alpha kept).
+  vec4 scaled(const vec4& linear) const { return {vec3(linear) * m_colorScale, linear.a}; }
   StencilLayout stencilLayout() const { return {m_lights}; }
   const FrameStats& stats() const { return m_stats; }
   const RendererOptions& options() const { return m_options; }
@@ -264,6 +289,8 @@ private:
   const InstrumentMachine& m_machine;
   RendererOptions m_options;
   int m_lights = 0;
+  float m_maxAlbedo = 1.0f;   // the brightest albedo channel of any surface
+  float m_colorScale = 1.0f;  // this frame's (colorScale())
   // Static geometry: the cut (groups by mask) and the uncut scene (naive, reflections).
   GpuMesh m_static, m_uncut, m_edges;
   std::vector<std::uint32_t> m_maskStart;
@@ -291,6 +318,7 @@ private:
   FullscreenPass m_alphaPass, m_quad, m_present;
   // Framebuffers at the frame's size.
   ivec2 m_size{0};
+  bool m_floatBuffers = false;  // the layout the buffers were made with
   gl::Texture m_color, m_weights, m_depthStencil;
   gl::Framebuffer m_sceneFbo, m_compositeFbo;
   env::DynamicCubeMap m_cube;
