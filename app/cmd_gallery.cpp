@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 
 namespace glint::app {
 namespace fs = std::filesystem;
@@ -23,6 +24,7 @@ struct GalleryArgs {
   std::string output = "out/gallery";
   std::string filter;
   std::string size;
+  std::string references;
   int repeats = 5;
 };
 
@@ -31,6 +33,8 @@ struct Entry {
   std::string image;  // relative to the gallery directory; empty when skipped
   std::string skipped;
   scenes::RenderResult result;
+  std::optional<scenes::ReferenceCheck> check;  // --references: against DIR/<scene>/<variant>.png
+  std::string noReference;                      // --references: why there is no comparison
 };
 
 std::string timing(double ms) { return ms < 0 ? "–" : fmt::format("{:.2f} ms", ms); }
@@ -121,6 +125,49 @@ document.getElementById('filter').addEventListener('input', (event) => {{
                      sections(entries));
 }
 
+// --references: the variant against DIR/<scene>/<variant>.png; a difference image beside
+// the picture when it is beyond the tolerance.
+void compareWithReference(Entry& e, const fs::path& references, const fs::path& dir) {
+  const fs::path reference = references / (e.ref.fullName() + ".png");
+  std::error_code ec;
+  if (!fs::exists(reference, ec)) {
+    e.noReference = fmt::format("no reference image {}", reference.string());
+    return;
+  }
+  const Image expected = loadImage(reference);
+  if (expected.width() != e.result.image.width() || expected.height() != e.result.image.height()) {
+    e.noReference = fmt::format("the reference is {}x{}, the picture {}x{} (render at the default size)", expected.width(),
+                                expected.height(), e.result.image.width(), e.result.image.height());
+    return;
+  }
+  e.check = scenes::checkAgainstReference(expected, e.result.image);
+  if (!e.check->pass) saveImage(e.check->visual, dir / (e.ref.fullName() + ".diff.png"));
+}
+
+// The comparison's summary: one line, plus a line per variant beyond the tolerance. 1 when any.
+int referenceSummary(const std::vector<Entry>& entries, const std::string& references) {
+  std::size_t compared = 0, passed = 0, missing = 0;
+  double worstMean = 0.0;
+  for (const Entry& e : entries) {
+    if (!e.noReference.empty()) {
+      ++missing;
+      log::warn("{}: {}", e.ref.fullName(), e.noReference);
+    }
+    if (!e.check) continue;
+    ++compared;
+    worstMean = std::max(worstMean, e.check->meanAbs);
+    if (e.check->pass) {
+      ++passed;
+    } else {
+      log::warn("{}: beyond the reference's tolerance: mean {:.2f}/255, {:.3f} % of pixels differ, max {:.0f}/255",
+                e.ref.fullName(), e.check->meanAbs * 255.0, e.check->differingFraction * 100.0, e.check->maxAbs * 255.0);
+    }
+  }
+  log::info("gallery: {} of {} variants within the tolerance of {} (worst mean {:.2f}/255){}", passed, compared, references,
+            worstMean * 255.0, missing ? fmt::format("; {} without a reference", missing) : "");
+  return passed == compared && missing == 0 ? 0 : 1;
+}
+
 std::string json(const std::vector<Entry>& entries, const gl::ContextInfo& info) {
   nlohmann::ordered_json variants = nlohmann::ordered_json::array();
   for (const auto& e : entries) {
@@ -132,6 +179,14 @@ std::string json(const std::vector<Entry>& entries, const gl::ContextInfo& info)
                         {"gpu_ms", e.result.gpuMs},
                         {"cpu_ms", e.result.cpuMs},
                         {"notes", e.result.notes}});
+    if (e.check) {
+      variants.back()["reference"] = {{"pass", e.check->pass},
+                                      {"mean_steps", e.check->meanAbs * 255.0},
+                                      {"max_steps", e.check->maxAbs * 255.0},
+                                      {"differing_percent", e.check->differingFraction * 100.0}};
+    } else if (!e.noReference.empty()) {
+      variants.back()["reference"] = {{"pass", false}, {"missing", e.noReference}};
+    }
   }
   const nlohmann::ordered_json out{{"renderer", info.renderer}, {"version", info.version}, {"variants", variants}};
   return out.dump(2) + "\n";
@@ -146,6 +201,11 @@ Command galleryCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("-o,--output", args->output, "Gallery directory (created if missing)")->capture_default_str();
   cmd->add_option("--filter", args->filter, "Only variants whose name contains this text");
   cmd->add_option("--size", args->size, "Render every variant at WIDTHxHEIGHT instead of its own size");
+  cmd->add_option("--references", args->references,
+                  "Compare every variant with DIR/<scene>/<variant>.png (glint's tests/golden) at the reference tests' "
+                  "tolerance (mean ≤ 0.5/255, ≤ 0.2 % of pixels off by more than 1/255): figures in gallery.json, "
+                  "differences as <variant>.diff.png, exit 1 when one differs beyond it or has no reference")
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--repeats", args->repeats, "Frames timed per variant (0: no timing)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
@@ -180,6 +240,7 @@ Command galleryCommand(CLI::App& app, const GlobalOptions& global) {
         e.image = ref.fullName() + ".png";
         fs::create_directories(dir / fs::path(e.image).parent_path());
         saveImage(e.result.image, dir / e.image);
+        if (!args->references.empty()) compareWithReference(e, fs::path(args->references), dir);
       }
       entries.push_back(std::move(e));
       progress.advance();
@@ -189,6 +250,7 @@ Command galleryCommand(CLI::App& app, const GlobalOptions& global) {
     writeTextAtomically(dir / "gallery.json", json(entries, info));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log::info("gallery: {} variants in {:.1f} s → {}", entries.size(), seconds, (dir / "index.html").string());
+    if (!args->references.empty()) return referenceSummary(entries, args->references);
     return 0;
   }};
 }

@@ -53,6 +53,7 @@ set(glint_dependency_names
   assimp::assimp=assimp tinyobjloader::tinyobjloader=tinyobjloader draco::draco=draco embree=embree
   CGAL::CGAL=CGAL TinyGLTF::TinyGLTF=TinyGLTF glfw=glfw3 CLI11::CLI11=CLI11
   PkgConfig::EPOXY=epoxy PkgConfig::EGL=egl PkgConfig::SPNG=spng PkgConfig::IMGUI=imgui
+  JPEG::JPEG=JPEG OpenEXR::OpenEXR=OpenEXR
   PkgConfig::FFTW=peers glint_deps::fftw_threads=peers glint_deps::opencv=peers)
 
 # What linking glint_<component> brings, read from the link graph: its direct glint

@@ -9,6 +9,7 @@
 #include "glint/core/locations.h"
 #include "glint/image/image.h"
 
+#include "builtin_codecs.h"
 #include "oiio_locate.h"
 #include "oiio_module.h"
 
@@ -301,6 +302,16 @@ std::string sniffExtension(std::string_view head) {
   return "";
 }
 
+/// The first `count` bytes of a file (fewer when it is shorter; none when it cannot be read).
+std::string readFileHead(const fs::path& path, std::size_t count) {
+  std::string head(count, '\0');
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return {};
+  head.resize(std::fread(head.data(), 1, count, f));
+  std::fclose(f);
+  return head;
+}
+
 Image loadStdin() {
   std::string bytes;
   char buffer[1 << 16];
@@ -330,7 +341,19 @@ Image loadImage(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", path.string());
   if (fs::is_directory(path, ec)) fail(ErrorKind::Input, "cannot read '{}': it is a directory", path.string());
-  const OiioApi& oiio = theModule().get();
+  const OiioApi* module = nullptr;
+  try {
+    module = &theModule().get();
+  } catch (const Error& e) {
+    // No module (a bare machine): PNG, JPEG and OpenEXR are read without it, by what the
+    // file's first bytes say it is (or its extension).
+    if (e.kind() != ErrorKind::Internal) throw;
+    std::string ext = sniffExtension(readFileHead(path, 16));
+    if (ext.empty()) ext = lowerExtension(path);
+    if (!builtin::reads(ext)) throw;
+    return builtin::read(path, ext);
+  }
+  const OiioApi& oiio = *module;
   ReadTarget target;
   target.name = path.string();
   std::array<char, kErrorSize> error{};

@@ -89,4 +89,16 @@ RenderResult renderVariant(const VariantRef& ref, const RenderRequest& request) 
   return renderer.frame(time, request.timingRepeats);
 }
 
+ReferenceCheck checkAgainstReference(const Image& reference, const Image& actual) {
+  ImageDifference diff = compareImages(reference, actual);
+  ReferenceCheck check;
+  check.meanAbs = diff.meanAbs;
+  check.maxAbs = diff.maxAbs;
+  check.differingFraction = double(diff.differingPixels) / double(std::max<std::size_t>(reference.pixelCount(), 1));
+  check.pass = check.meanAbs <= ReferenceCheck::kMaxMeanDifference &&
+               check.differingFraction <= ReferenceCheck::kMaxDifferingFraction;
+  check.visual = std::move(diff.visual);
+  return check;
+}
+
 }  // namespace glint::scenes

@@ -119,6 +119,41 @@ TEST(Cli, RenderWritesTheImageAndNothingElse) {
   EXPECT_EQ(fileCount(d), 1u);  // no temporaries left behind
 }
 
+// glint gallery --references: every variant against its reference image at the golden
+// tests' tolerance (scenes::checkAgainstReference), as gpu-check runs it on a bare GPU
+// machine. The source tree's references pass; a reference with a changed patch fails,
+// exit 1, with its figures in gallery.json and a difference image; a missing one too.
+TEST(Cli, GalleryComparesEveryVariantWithItsReference) {
+  const auto d = dir("gallery-references");
+  const fs::path golden = fs::path(GLINT_SOURCE_DIR) / "tests" / "golden";
+  auto r = runGlint("gallery --filter basics/triangle --repeats 0 --references " + golden.string() + " -o " +
+                    (d / "same").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("2 of 2 variants within the tolerance"), std::string::npos) << r.output;
+  const auto same = nlohmann::json::parse(std::ifstream(d / "same" / "gallery.json"));
+  for (const auto& v : same["variants"]) {
+    EXPECT_TRUE(v["reference"]["pass"].get<bool>()) << v.dump();
+    EXPECT_LE(v["reference"]["mean_steps"].get<double>(), 0.5) << v.dump();
+  }
+
+  const fs::path changed = d / "references" / "basics" / "triangle";
+  fs::create_directories(changed);
+  Image color = loadImage(golden / "basics" / "triangle" / "color.png");
+  for (int y = 200; y < 240; ++y)
+    for (int x = 200; x < 240; ++x) color.set(x, y, 0, 1.0f - color.at(x, y, 0));
+  saveImage(color, changed / "color.png");  // and no depth.png
+  r = runGlint("gallery --filter basics/triangle --repeats 0 --references " + (d / "references").string() + " -o " +
+               (d / "changed").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("basics/triangle/color: beyond the reference's tolerance"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("basics/triangle/depth: no reference image"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(d / "changed" / "basics" / "triangle" / "color.diff.png"));
+  const auto json = nlohmann::json::parse(std::ifstream(d / "changed" / "gallery.json"));
+  EXPECT_FALSE(json["variants"][0]["reference"]["pass"].get<bool>());
+  EXPECT_GT(json["variants"][0]["reference"]["differing_percent"].get<double>(), 0.5);
+  EXPECT_TRUE(json["variants"][1]["reference"].contains("missing"));
+}
+
 TEST(Cli, UnknownSceneOrVariantIsAUsageError) {
   auto r = runGlint("render basics/nope -o /tmp/x.png");
   EXPECT_EQ(r.status, 2);

@@ -2,8 +2,9 @@
 // without extra code). Each renders the variant headless at its default size and time
 // and compares it with tests/golden/<scene>/<variant>.png.
 //
-// Tolerance: llvmpipe renders the same picture bit for bit on one Mesa build, so on a
-// CI machine like this one the difference is exactly zero. The slack (mean channel
+// Tolerance: scenes::checkAgainstReference's (runner.h; `glint gallery --references`
+// applies the same). llvmpipe renders the same picture bit for bit on one Mesa build, so
+// on a CI machine like this one the difference is exactly zero. The slack (mean channel
 // difference ≤ 0.5/255, at most 0.2% of pixels differing by more than 1/255) absorbs
 // what legitimately moves between Mesa/LLVM versions — rounding of interpolants on
 // edge pixels, SIMD width — while any visible change (a moved edge, a wrong colour, a
@@ -25,8 +26,8 @@ namespace fs = std::filesystem;
 using namespace glint;
 
 namespace {
-constexpr double kMaxMeanDifference = 0.5 / 255.0;
-constexpr double kMaxDifferingFraction = 0.002;
+constexpr double kMaxMeanDifference = scenes::ReferenceCheck::kMaxMeanDifference;
+constexpr double kMaxDifferingFraction = scenes::ReferenceCheck::kMaxDifferingFraction;
 
 scenes::ContextPool& contexts() {
   static scenes::ContextPool pool(/*debug=*/true);
@@ -74,9 +75,9 @@ TEST_P(Golden, MatchesReference) {
   const Image expected = loadImage(golden);
   ASSERT_EQ(expected.width(), result.image.width());
   ASSERT_EQ(expected.height(), result.image.height());
-  const auto diff = compareImages(expected, result.image);
-  const double differingFraction = double(diff.differingPixels) / double(expected.pixelCount());
-  const bool pass = diff.meanAbs <= kMaxMeanDifference && differingFraction <= kMaxDifferingFraction;
+  const auto diff = scenes::checkAgainstReference(expected, result.image);
+  const double differingFraction = diff.differingFraction;
+  const bool pass = diff.pass;
   if (!pass) {
     saveImage(result.image, actualPath);
     saveImage(diff.visual, outBase.string() + ".diff.png");

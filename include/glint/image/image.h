@@ -3,7 +3,8 @@
 //
 // Contents
 //   Image            pixel storage, typed access, conversions
-//   loadImage        read any format OpenImageIO reads (PNG, TGA, JPEG, EXR, HDR, TIFF)
+//   loadImage        read any format OpenImageIO reads (PNG, TGA, JPEG, EXR, HDR, TIFF);
+//                    PNG, JPEG and EXR also without its module
 //   saveImage        write atomically; format from the extension
 //   preloadImageIo   start loading the image I/O module in the background
 //   compareImages    max / mean difference and a visual diff image
@@ -88,7 +89,9 @@ private:
 /// Error(Input) with the reason when it is missing, unreadable or corrupt,
 /// or when its header claims more than 16384² pixels or more than 65536 on a side (refused
 /// before any pixel memory is allocated). 8-bit files load as U8, 16-bit as U16, everything
-/// else (half, float) as F32.
+/// else (half, float) as F32. When the image I/O module cannot load (a bare machine),
+/// PNG, JPEG and OpenEXR are still read, through libspng, libjpeg-turbo and OpenEXR's own
+/// library, to the same pixels; other formats fail as requireImageIo() does.
 Image loadImage(const std::filesystem::path& path);
 
 /// Writes an image atomically; the format follows the extension. Wider pixels than the

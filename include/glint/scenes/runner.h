@@ -91,4 +91,25 @@ private:
   std::unique_ptr<gl::RenderTarget> m_target;
 };
 
+/// A rendered variant against its reference image (tests/golden/<scene>/<variant>.png).
+/// The tolerance is the reference-image tests': the mean channel difference at most
+/// 0.5/255, and at most 0.2 % of the pixels differing by more than 1/255. llvmpipe renders
+/// the same picture bit for bit on one Mesa build; the slack absorbs what legitimately
+/// moves between Mesa/LLVM versions (interpolant rounding on edge pixels, SIMD width),
+/// while a visible change (a moved edge, a wrong colour, a missing object) exceeds it by
+/// orders of magnitude. Another GL (a GPU's) may also differ where GL allows it to
+/// (anisotropic filtering, derivatives): the figures say by how much.
+struct ReferenceCheck {
+  static constexpr double kMaxMeanDifference = 0.5 / 255.0;
+  static constexpr double kMaxDifferingFraction = 0.002;
+  double meanAbs = 0;            ///< mean absolute channel difference, 0..1
+  double maxAbs = 0;             ///< largest channel difference, 0..1
+  double differingFraction = 0;  ///< pixels differing by more than 1/255, 0..1
+  bool pass = false;             ///< within the tolerance above
+  Image visual;                  ///< |difference| × 8 per pixel, for eyes
+};
+
+/// Compares `actual` with `reference` (equal sizes; Error(Usage) otherwise).
+ReferenceCheck checkAgainstReference(const Image& reference, const Image& actual);
+
 }  // namespace glint::scenes
