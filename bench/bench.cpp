@@ -60,6 +60,11 @@ Suites& Suites::builtin() {
   return suites;
 }
 
+bool quick() {
+  const char* v = std::getenv("GLINT_BENCH_QUICK");
+  return v && *v && std::string_view(v) != "0";
+}
+
 double median(std::vector<double> values) {
   std::nth_element(values.begin(), values.begin() + long(values.size() / 2), values.end());
   return values[values.size() / 2];

@@ -167,10 +167,11 @@ void runView(Recorder& recorder, rp::Renderer& renderer, rp::Renderer& floatRend
 
 void runPipeDream(Recorder& recorder) {
   const scenes::SceneDesc& desc = *scenes::Registry::builtin().resolve("pipedream").scene;
-  ivec2 size = desc.defaultSize;
-  if (const char* s = std::getenv("GLINT_BENCH_PIPEDREAM_SIZE"); s && *s) std::sscanf(s, "%dx%d", &size.x, &size.y);
-  const int runs = envInt("GLINT_BENCH_PIPEDREAM_RUNS", 7);
-  const int detail = envInt("GLINT_BENCH_PIPEDREAM_DETAIL", pd::kDefaultDetail);
+  // GLINT_BENCH_QUICK: 320×180, one round, a coarse stage (its cut takes a second).
+  ivec2 size = quick() ? ivec2(320, 180) : desc.defaultSize;
+  if (const char* s = std::getenv("GLINT_BENCH_PIPEDREAM_SIZE"); s && *s && !quick()) std::sscanf(s, "%dx%d", &size.x, &size.y);
+  const int runs = quick() ? 1 : envInt("GLINT_BENCH_PIPEDREAM_RUNS", 7);
+  const int detail = quick() ? 2 : envInt("GLINT_BENCH_PIPEDREAM_DETAIL", pd::kDefaultDetail);
 
   const auto stage = pd::loadStage({.detail = detail});
   rp::Renderer renderer(stage->machine, stage->geometry);

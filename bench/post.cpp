@@ -83,12 +83,15 @@ double fftBytes(const post::Fft2d& fft) {
 
 void runEffects(Recorder& recorder) {
   // GLINT_BENCH_POST_SIZES=640x480,1920x1080 measures only those sizes (unset: all three).
+  // GLINT_BENCH_QUICK: 160×120 only, two rounds.
   const char* only = std::getenv("GLINT_BENCH_POST_SIZES");
-  for (const ivec2 size : {ivec2(640, 480), ivec2(1920, 1080), ivec2(3840, 2160)}) {
-    if (only && !std::strstr(only, fmt::format("{}x{}", size.x, size.y).c_str())) continue;
+  const std::vector<ivec2> sizes =
+      quick() ? std::vector<ivec2>{{160, 120}} : std::vector<ivec2>{{640, 480}, {1920, 1080}, {3840, 2160}};
+  for (const ivec2 size : sizes) {
+    if (only && !quick() && !std::strstr(only, fmt::format("{}x{}", size.x, size.y).c_str())) continue;
     const std::string group = fmt::format("{}x{}", size.x, size.y);
     const double pixels = double(size.x) * size.y;
-    const int rounds = size.x >= 3840 ? 3 : size.x >= 1920 ? 5 : 9;
+    const int rounds = quick() ? 2 : size.x >= 3840 ? 3 : size.x >= 1920 ? 5 : 9;
     const Image input = noise(size);  // the cost of these effects does not depend on the content
     const gl::Texture in = post::uploadFrame(input, "bench-input");
     gl::Texture out(GL_TEXTURE_2D, "bench-output");
@@ -314,6 +317,11 @@ void runAgainstFfmpeg(Recorder& recorder) {
 // module (a bare GPU machine's pack) its rows are dropped, one marked row says so, and the
 // suite goes on (issue 37).
 void withVideo(Recorder& recorder, const char* group, void (*part)(Recorder&)) {
+  if (quick()) {  // the video rows take minutes: a quick run measures the GPU's rows only
+    recorder.record({.group = group, .name = "(not measured)", .value = std::nan(""), .unit = "fps",
+                     .note = "GLINT_BENCH_QUICK: the video rows take minutes"});
+    return;
+  }
   try {
     part(recorder);
   } catch (const Error& e) {

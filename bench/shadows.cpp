@@ -28,9 +28,10 @@ constexpr ivec2 kSize{640, 360};
 
 void runShadows(Recorder& recorder) {
   for (std::size_t triangles : {10'000u, 100'000u, 1'000'000u}) {
+    if (quick() && triangles > 10'000u) break;
     const sh::World world = sh::makeBenchWorld(triangles);
     const std::string group = fmt::format("{}k tris", (world.triangleCount() + 500) / 1000);
-    const int repeats = triangles >= 1'000'000 ? 3 : 7;
+    const int repeats = quick() ? 2 : triangles >= 1'000'000 ? 3 : 7;
     gl::RenderTarget target(kSize, GL_RGBA8, "bench-shadows");
     const float aspect = float(kSize.x) / float(kSize.y);
     const render::Camera camera =

@@ -71,6 +71,10 @@ private:
 
 /// The middle value (the upper of the two middle ones for an even count); `values` not empty.
 double median(std::vector<double> values);
+/// GLINT_BENCH_QUICK=1: each GPU suite (post, pipedream, shadows, water, rtt) measures only
+/// a small case, a round or two — to test the benches and scripts/gpu-check's pack on
+/// llvmpipe in seconds (tests/gpu_check), not for figures.
+bool quick();
 /// Seconds of wall clock since `start`.
 double secondsSince(std::chrono::steady_clock::time_point start);
 /// CPU seconds of this process, all threads: a rate per CPU second does not depend on what
