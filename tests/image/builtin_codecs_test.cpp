@@ -28,10 +28,13 @@ namespace fs = std::filesystem;
 using namespace glint;
 
 namespace {
+/// This test's own directory, emptied when the test first asks for it.
 fs::path outDir() {
-  fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "builtin-codecs";
-  fs::create_directories(dir);
-  return dir;
+  static std::string emptied;
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  if (emptied == test) return fs::path(GLINT_TEST_OUTPUT_DIR) / "builtin-codecs" / test;
+  emptied = test;
+  return glint::testing::freshDir("builtin-codecs", test);
 }
 
 Image pattern(PixelType type, int channels, int width = 37, int height = 19) {
