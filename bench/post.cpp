@@ -77,7 +77,7 @@ std::string bound(double bytes) {
 // Bytes one FFT pass sequence moves: every radix pass reads and writes each element.
 double fftBytes(const post::Fft2d& fft) {
   const double elements = double(fft.size().x) * fft.size().y;
-  const double passes = double(fft.radices(0).size() + fft.radices(1).size());
+  const double passes = double(fft.dispatches());  // each reads and writes the buffer once
   return passes * elements * 2.0 * 8.0 * fft.lanes();
 }
 
@@ -178,6 +178,22 @@ void runEffects(Recorder& recorder) {
     row("fft gpu", [&] { luma.run(0, post::FftDirection::Forward); }, "fft fftw", peers::fftwForward(size),
         fmt::format("fftwf_execute, 2D complex float, FFTW_MEASURE, {} thread(s)", std::max(1u, std::thread::hardware_concurrency())),
         fftBytes(luma));
+    {
+      // The other way to run the axes (issue 37): one dispatch an axis through shared memory
+      // (fft_axis.comp), or one a radix pass; the default is the first on a GPU, the second
+      // on a software rasterizer. The ratio column is other ÷ default.
+      const bool shared = luma.inSharedMemory(0) || luma.inSharedMemory(1);
+      const int dispatches = luma.dispatches();
+      luma.setSharedAxes(!shared);
+      const auto other = [&] { luma.run(0, post::FftDirection::Forward); };
+      const auto [otherMs, none] = alternating(other, {}, rounds);
+      (void)none;
+      recorder.record({.group = group, .name = shared ? "fft gpu (per-radix passes)" : "fft gpu (one dispatch an axis)",
+                       .value = otherMs, .unit = "ms", .ratioTo = "fft gpu",
+                       .note = fmt::format("{} dispatches against the default's {}; GL_TIME_ELAPSED {:.3f} ms",
+                                           luma.dispatches(), dispatches, gl::GpuTimer::measureMs(other, rounds, 1))});
+      luma.setSharedAxes(shared);
+    }
     const auto [dftMs, unused] = alternating(peers::opencvDft(size), {}, rounds);
     (void)unused;
     recorder.record({.group = group, .name = "fft opencv", .value = dftMs, .unit = "ms", .ratioTo = "fft fftw",

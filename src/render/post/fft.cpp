@@ -1,10 +1,14 @@
 #include "glint/render/post/fft.h"
 
 #include "glint/core/error.h"
+#include "glint/gl/context.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string_view>
 #include <numbers>
 
 namespace glint::render::post {
@@ -70,7 +74,22 @@ void loadFftInput(const gl::Program& load, const Fft2d& fft, const gl::Texture& 
 }  // namespace
 
 // ---------------------------------------------------------------------------
-Fft2d::Fft2d(ivec2 size, int lanes) : m_size(size), m_lanes(lanes) {
+namespace {
+// One dispatch an axis where it fits (fft_axis.comp), except on a software rasterizer:
+// llvmpipe runs a workgroup's barriers as coroutines, and there the shared-memory axes
+// took twice the time of the passes (PostOracle.FftMatchesFftwAtLargeSizes: 16.4 s against
+// 7.7 s). GLINT_FFT_AXES=shared or =passes decides instead (benches, tests).
+bool sharedAxesByDefault() {
+  if (const char* v = std::getenv("GLINT_FFT_AXES"); v && *v) {
+    if (std::string_view(v) == "shared") return true;
+    if (std::string_view(v) == "passes") return false;
+    fail(ErrorKind::Usage, "GLINT_FFT_AXES must be 'shared' or 'passes', not '{}'", v);
+  }
+  return !gl::queryContextInfo().software;
+}
+}  // namespace
+
+Fft2d::Fft2d(ivec2 size, int lanes) : m_size(size), m_lanes(lanes), m_sharedAxes(sharedAxesByDefault()) {
   if (size.x < 1 || size.y < 1) fail(ErrorKind::Usage, "FFT size must be positive, got {}x{}", size.x, size.y);
   if (lanes != 1 && lanes != 2) fail(ErrorKind::Usage, "FFT lanes must be 1 or 2, got {}", lanes);
   for (int axis = 0; axis < 2; ++axis) {
@@ -85,6 +104,9 @@ Fft2d::Fft2d(ivec2 size, int lanes) : m_size(size), m_lanes(lanes) {
       table[std::size_t(m) * 2 + 1] = float(std::sin(angle));
     }
     a.twiddles = gl::Buffer(table.size() * sizeof(float), table.data(), 0, axis == 0 ? "fft-twiddles-x" : "fft-twiddles-y");
+    // fft_axis.comp: the line in 32 KB of shared memory, radices it has butterflies for.
+    a.fitsShared = a.length <= 4096 && a.radices.size() <= 16 && !a.radices.empty() &&
+                   std::all_of(a.radices.begin(), a.radices.end(), [](int r) { return r >= 2 && r <= 5; });
   }
   const std::size_t bytes = std::size_t(size.x) * std::size_t(size.y) * sizeof(float) * 2 * std::size_t(lanes);
   m_data[0] = gl::Buffer(bytes, nullptr, GL_DYNAMIC_STORAGE_BIT, "fft-data-0");
@@ -102,6 +124,18 @@ const gl::Program& Fft2d::program(int radix) {
   return it->second;
 }
 
+const gl::Program& Fft2d::axisProgram() {
+  if (!m_axisProgram) m_axisProgram = gl::Program::fromFiles({"post/fft_axis.comp"}, {fmt::format("LANES {}", m_lanes)});
+  return m_axisProgram;
+}
+
+int Fft2d::dispatches() const {
+  int count = 0;
+  for (int axis = 0; axis < 2; ++axis)
+    count += inSharedMemory(axis) ? 1 : int(m_axes[axis].radices.size());
+  return count;
+}
+
 int Fft2d::run(int from, FftDirection direction) {
   int current = from;
   const float sign = direction == FftDirection::Forward ? -1.0f : 1.0f;
@@ -109,6 +143,25 @@ int Fft2d::run(int from, FftDirection direction) {
   for (int axis = 0; axis < 2; ++axis) {
     const Axis& a = m_axes[axis];
     a.twiddles.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+    if (inSharedMemory(axis)) {  // every pass of the axis in one dispatch
+      const float scale =
+          direction == FftDirection::Inverse && axis == lastAxis ? float(1.0 / (double(m_size.x) * m_size.y)) : 1.0f;
+      const gl::Program& p = axisProgram();
+      p.use();
+      p.set("uAxis", axis);
+      p.set("uLength", a.length);
+      p.set("uSize", m_size);
+      p.set("uSign", sign);
+      p.set("uScale", scale);
+      p.set("uPasses", int(a.radices.size()));
+      glProgramUniform1iv(p.id(), p.uniformLocation("uRadices[0]"), GLsizei(a.radices.size()), a.radices.data());
+      m_data[current].bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+      m_data[1 - current].bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+      glDispatchCompute(GLuint(axis == 0 ? m_size.y : m_size.x), 1, 1);
+      storageBarrier();
+      current = 1 - current;
+      continue;
+    }
     int stride = 1;
     for (std::size_t pass = 0; pass < a.radices.size(); ++pass) {
       const int radix = a.radices[pass];

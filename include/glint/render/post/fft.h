@@ -8,8 +8,12 @@
 //   FrequencyFilterPass   frame → DFT → × H(u, v) → inverse DFT → frame (low/high/band-pass,
 //                         convolution by a Gaussian or a disk)
 //
-// The transform (shaders/post/fft.comp) is Stockham's autosort FFT, one compute dispatch
-// per radix pass, rows then columns, ping-ponging between two shader storage buffers.
+// The transform is Stockham's autosort FFT, rows then columns, ping-ponging between two
+// shader storage buffers. An axis of up to 4096 whose radices are all 2, 3, 4 or 5 (every
+// video size) runs in one dispatch (shaders/post/fft_axis.comp: a workgroup per line, the
+// line in shared memory through every pass, read and written once; issue 37); any other
+// axis one dispatch per radix pass (shaders/post/fft.comp). On a software rasterizer every
+// axis goes pass by pass (setSharedAxes).
 // Sizes need not be powers of two: each axis is factored into radices 4, 2, 3, 5 (every
 // video size — 640, 480, 1080, 1920, 2160, 3840 — is 2·3·5-smooth) and any other prime
 // factor p gets a direct radix-p step (O(p) per element). No padding, so the spectrum of a
@@ -64,6 +68,14 @@ public:
   int run(int from, FftDirection direction);
   /// Radices of each axis, in pass order (for reports).
   const std::vector<int>& radices(int axis) const { return m_axes[axis].radices; }
+  /// Whether `axis` runs in one dispatch through shared memory (see above), and the
+  /// switch to run every axis pass by pass instead. By default on, but on a software
+  /// rasterizer (llvmpipe runs workgroup barriers as coroutines: twice the passes' time);
+  /// GLINT_FFT_AXES=shared or =passes sets the default.
+  bool inSharedMemory(int axis) const { return m_sharedAxes && m_axes[axis].fitsShared; }
+  void setSharedAxes(bool on) { m_sharedAxes = on; }
+  /// Dispatches a run() makes (each reads and writes the whole data buffer once).
+  int dispatches() const;
 
   /// Convenience (tests, tools; lanes = 1): upload, transform, download.
   std::vector<std::complex<float>> transform(std::span<const std::complex<float>> data, FftDirection direction);
@@ -79,14 +91,18 @@ private:
     int length = 1;
     std::vector<int> radices;
     gl::Buffer twiddles;  // e^(−2πi·m/length), m = 0..length−1, vec2 per entry
+    bool fitsShared = false;
   };
   const gl::Program& program(int radix);
+  const gl::Program& axisProgram();
 
   ivec2 m_size{0};
   int m_lanes = 1;
   Axis m_axes[2];
   gl::Buffer m_data[2];
   std::map<int, gl::Program> m_programs;  // by radix
+  gl::Program m_axisProgram;              // fft_axis.comp
+  bool m_sharedAxes = true;
 };
 
 /// The spectrum view (image/fourier.h's spectrumReference): luma → FFT → centred
