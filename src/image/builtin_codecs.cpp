@@ -134,10 +134,9 @@ Image readJpeg(const fs::path& path) {
   }
   // libjpeg only warns of a truncated or damaged stream (and fills the rest with grey):
   // here that is an error, not a picture.
-  const long warnings = errors.manager.num_warnings;
   jpeg_finish_decompress(&info);
   jpeg_destroy_decompress(&info);
-  if (warnings > 0 || errors.manager.num_warnings > 0)
+  if (errors.manager.num_warnings > 0)
     fail(ErrorKind::Input, "cannot read image '{}': the JPEG data is truncated or corrupt", path.string());
   return std::move(*image);
 }

@@ -140,23 +140,27 @@ int Fft2d::run(int from, FftDirection direction) {
   int current = from;
   const float sign = direction == FftDirection::Forward ? -1.0f : 1.0f;
   const int lastAxis = m_axes[1].radices.empty() ? 0 : 1;
+  const float inverseScale = float(1.0 / (double(m_size.x) * m_size.y));
+  // What fft.comp and fft_axis.comp share: the axis, the direction, the scale (1/(w·h) on
+  // the inverse's last write, else 1) and the buffers, from `current` into the other.
+  const auto begin = [&](const gl::Program& p, int axis, bool lastWrite) {
+    p.use();
+    p.set("uAxis", axis);
+    p.set("uLength", m_axes[axis].length);
+    p.set("uSize", m_size);
+    p.set("uSign", sign);
+    p.set("uScale", direction == FftDirection::Inverse && lastWrite ? inverseScale : 1.0f);
+    m_data[current].bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    m_data[1 - current].bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+  };
   for (int axis = 0; axis < 2; ++axis) {
     const Axis& a = m_axes[axis];
     a.twiddles.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
     if (inSharedMemory(axis)) {  // every pass of the axis in one dispatch
-      const float scale =
-          direction == FftDirection::Inverse && axis == lastAxis ? float(1.0 / (double(m_size.x) * m_size.y)) : 1.0f;
       const gl::Program& p = axisProgram();
-      p.use();
-      p.set("uAxis", axis);
-      p.set("uLength", a.length);
-      p.set("uSize", m_size);
-      p.set("uSign", sign);
-      p.set("uScale", scale);
+      begin(p, axis, axis == lastAxis);
       p.set("uPasses", int(a.radices.size()));
       glProgramUniform1iv(p.id(), p.uniformLocation("uRadices[0]"), GLsizei(a.radices.size()), a.radices.data());
-      m_data[current].bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-      m_data[1 - current].bindBase(GL_SHADER_STORAGE_BUFFER, 1);
       glDispatchCompute(GLuint(axis == 0 ? m_size.y : m_size.x), 1, 1);
       storageBarrier();
       current = 1 - current;
@@ -165,18 +169,9 @@ int Fft2d::run(int from, FftDirection direction) {
     int stride = 1;
     for (std::size_t pass = 0; pass < a.radices.size(); ++pass) {
       const int radix = a.radices[pass];
-      const bool last = axis == lastAxis && pass + 1 == a.radices.size();
-      const float scale = direction == FftDirection::Inverse && last ? float(1.0 / (double(m_size.x) * m_size.y)) : 1.0f;
       const gl::Program& p = program(radix);
-      p.use();
-      p.set("uAxis", axis);
-      p.set("uLength", a.length);
+      begin(p, axis, axis == lastAxis && pass + 1 == a.radices.size());
       p.set("uStride", stride);
-      p.set("uSize", m_size);
-      p.set("uSign", sign);
-      p.set("uScale", scale);
-      m_data[current].bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-      m_data[1 - current].bindBase(GL_SHADER_STORAGE_BUFFER, 1);
       const int butterflies = a.length / radix;
       if (axis == 0) glDispatchCompute(groups(butterflies, 64), GLuint(m_size.y), 1);
       else glDispatchCompute(groups(m_size.x, 64), GLuint(butterflies), 1);
