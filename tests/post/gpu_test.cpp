@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <array>
 #include <bit>
 #include <cstdio>
@@ -154,13 +156,17 @@ TEST_F(PostGpu, KuwaharaChoosesTheReferenceQuadrantExactly) {
 }
 
 TEST_F(PostGpu, SpectrumAndFiltersMatchTheDftReference) {
-  // Small sizes: the reference is a direct DFT in double. 60×44 has factors 2, 3, 5, 11:
-  // with GLINT_FFT_AXES=shared its rows take one dispatch (fft_axis.comp; the filters' two
-  // lanes too), its columns (11) pass by pass.
-  for (const char* axes : {"passes", "shared"}) {
+  // Small sizes: the reference is a direct DFT in double. With GLINT_FFT_AXES=passes both
+  // sizes take the complex FFT pass by pass (llvmpipe's default). With =shared, 60×40
+  // (30 = 2·3·5, 40 = 2·4·5) takes the real-input transform fused with the view or the
+  // filter (RealFft2d); 60×44 (44 = 4·11) does not fit it: the complex FFT, its rows in one
+  // dispatch (fft_axis.comp; the filters' two lanes too), its columns (11) pass by pass.
+  ASSERT_TRUE(RealFft2d::fits({60, 40}));
+  ASSERT_FALSE(RealFft2d::fits({60, 44}));
+  for (const auto& [height, axes] : {std::pair{44, "passes"}, std::pair{44, "shared"}, std::pair{40, "shared"}}) {
   ::setenv("GLINT_FFT_AXES", axes, 1);
-  SCOPED_TRACE(axes);
-  const Image image = crop(photograph(), 130, 80, 60, 44);
+  SCOPED_TRACE(fmt::format("60x{} {}", height, axes));
+  const Image image = crop(photograph(), 130, 80, 60, height);
   SpectrumPass spectrum;
   const Image s = runPass(image, [&](auto& in, auto& out) { spectrum.run(in, out); });
   EXPECT_LE(compareSteps(s, spectrumReference(image)).maxSteps, 1);
@@ -178,9 +184,22 @@ TEST_F(PostGpu, SpectrumAndFiltersMatchTheDftReference) {
     const Image gpu = runPass(image, [&](auto& in, auto& out) { filter.run(in, out, f); });
     const auto d = compareSteps(gpu, frequencyFilterReference(image, f));
     EXPECT_LE(d.maxSteps, 1) << name << " at " << d.worstX << "," << d.worstY;
-    std::printf("[figure] %s 60x44 (%s) vs the direct DFT in double: max %d step(s), mean %.4f\n", name, axes, d.maxSteps,
-                d.meanSteps);
+    std::printf("[figure] %s 60x%d (%s) vs the direct DFT in double: max %d step(s), mean %.4f\n", name, height,
+                height == 40 ? "real-input, fused" : axes, d.maxSteps, d.meanSteps);
   }
+  }
+  // The widest rows the real-input path takes (4096 texels: 2048 complex values, the most its
+  // inverse rows keep in registers), on noise: every frequency present.
+  ::setenv("GLINT_FFT_AXES", "shared", 1);
+  const Image wide = noiseImage(4096, 2, 3);
+  {
+    const FrequencyFilter f{.kind = FilterKind::HighPass, .cutoff = 0.2f, .offset = 0.5f};
+    FrequencyFilterPass pass;
+    const Image gpu = runPass(wide, [&](auto& in, auto& out) { pass.run(in, out, f); });
+    const auto d = compareSteps(gpu, frequencyFilterReference(wide, f));
+    EXPECT_LE(d.maxSteps, 1) << "4096x2 at " << d.worstX << "," << d.worstY;
+    std::printf("[figure] filter 4096x2 (real-input, fused) vs the direct DFT in double: max %d step(s), mean %.4f\n",
+                d.maxSteps, d.meanSteps);
   }
   ::unsetenv("GLINT_FFT_AXES");
 }

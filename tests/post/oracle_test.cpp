@@ -21,6 +21,7 @@
 #include <complex>
 #include <cstdio>
 #include <random>
+#include <string_view>
 
 using namespace glint;
 using namespace glint::render::post;
@@ -113,8 +114,12 @@ TEST_F(PostOracle, SobelMatchesOpenCv) {
   }
 }
 
+// Both GPU paths: on llvmpipe the complex FFT pass by pass (the default there), and the
+// real-input transform fused with the view (GLINT_FFT_AXES=shared; both sizes fit it).
 TEST_F(PostOracle, SpectrumMatchesOpenCvDft) {
+  for (const char* axes : {"passes", "shared"})
   for (const Image& image : {photograph(), noiseImage(90, 64, 9)}) {
+    ::setenv("GLINT_FFT_AXES", axes, 1);
     const int w = image.width(), h = image.height();
     cv::Mat complexSpectrum;
     cv::dft(grayOf(image), complexSpectrum, cv::DFT_COMPLEX_OUTPUT);
@@ -131,7 +136,44 @@ TEST_F(PostOracle, SpectrumMatchesOpenCvDft) {
     const Image gpu = runPass(image, [&](auto& in, auto& out) { spectrum.run(in, out); });
     const auto d = compareSteps(gpu, expected);
     EXPECT_LE(d.maxSteps, 1) << w << "x" << h;
-    std::printf("[figure] spectrum %dx%d vs cv::dft: max %d step(s), mean %.4f steps\n", w, h, d.maxSteps, d.meanSteps);
+    std::printf("[figure] spectrum %dx%d (%s) vs cv::dft: max %d step(s), mean %.4f steps\n", w, h,
+                RealFft2d::fits({w, h}) && std::string_view(axes) == "shared" ? "real-input, fused" : "complex, passes",
+                d.maxSteps, d.meanSteps);
+  }
+  ::unsetenv("GLINT_FFT_AXES");
+}
+
+// The real-input transform (RealFft2d: the spectrum's and the filters' path on a GPU): each
+// channel's half spectrum against FFTW's r2c in double of the same values — the luma
+// (1 channel) and R, G, B (3) — at a video size, a small odd-radix one (90 = 2·45) and the
+// widest the path takes (4096: rows of 2048 complex values).
+TEST_F(PostOracle, RealFftMatchesFftwR2cInDouble) {
+  for (const ivec2 size : {ivec2(90, 64), ivec2(640, 480), ivec2(4096, 4)}) {
+    ASSERT_TRUE(RealFft2d::fits(size));
+    const Image image = noiseImage(size.x, size.y, 5);
+    const gl::Texture texture = uploadFrame(image, "real-fft-input");
+    const std::size_t n = std::size_t(size.x) * std::size_t(size.y), half = std::size_t(size.x / 2 + 1);
+    std::vector<double> x(n);
+    std::vector<std::complex<double>> expected(half * std::size_t(size.y));
+    for (const int channels : {1, 3}) {
+      RealFft2d fft(size, channels);
+      for (int c = 0; c < channels; ++c) {
+        for (int y = 0; y < size.y; ++y)
+          for (int px = 0; px < size.x; ++px) {
+            const auto value = [&](int k) { return double(float(image.at(px, y, k))); };
+            x[std::size_t(y) * std::size_t(size.x) + std::size_t(px)] =
+                channels == 1 ? 0.299 * value(0) + 0.587 * value(1) + 0.114 * value(2) : value(c);
+          }
+        fftw_plan plan = fftw_plan_dft_r2c_2d(size.y, size.x, x.data(), reinterpret_cast<fftw_complex*>(expected.data()),
+                                              FFTW_ESTIMATE);
+        fftw_execute(plan);
+        fftw_destroy_plan(plan);
+        const double error = relativeL2(fft.halfSpectrum(texture, c), expected);
+        EXPECT_LE(error, 1e-5) << size.x << "x" << size.y << " channel " << c << " of " << channels;
+        std::printf("[figure] real-input FFT %dx%d, channel %d of %d, vs FFTW r2c in double: relative L2 %.3g\n", size.x,
+                    size.y, c, channels, error);
+      }
+    }
   }
 }
 

@@ -41,6 +41,30 @@ std::vector<int> factor(int n) {
 
 GLuint groups(int count, int size) { return GLuint((count + size - 1) / size); }
 
+// e^(−2πi·m/n), m = 0..n−1, as vec2: computed in double and reduced exactly (m < n), so
+// every entry is within half an ulp of float.
+gl::Buffer twiddleTable(int n, const char* label) {
+  std::vector<float> table(std::size_t(n) * 2);
+  for (int m = 0; m < n; ++m) {
+    const double angle = -2.0 * std::numbers::pi * double(m) / double(n);
+    table[std::size_t(m) * 2] = float(std::cos(angle));
+    table[std::size_t(m) * 2 + 1] = float(std::sin(angle));
+  }
+  return gl::Buffer(table.size() * sizeof(float), table.data(), 0, label);
+}
+
+// Whether post/fft_line.glsl takes a line of n with these radices: 32 KB of shared memory,
+// the butterflies it has.
+bool lineFitsShared(int n, const std::vector<int>& radices) {
+  return n <= 4096 && radices.size() <= 16 && !radices.empty() &&
+         std::all_of(radices.begin(), radices.end(), [](int r) { return r >= 2 && r <= 5; });
+}
+// The line's radices for post/fft_line.glsl.
+void setLineUniforms(const gl::Program& p, const std::vector<int>& radices) {
+  p.set("uPasses", int(radices.size()));
+  glProgramUniform1iv(p.id(), p.uniformLocation("uRadices[0]"), GLsizei(radices.size()), radices.data());
+}
+
 void storageBarrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); }
 // After imageStore, before the texture is sampled, drawn into, read back or copied.
 void imageBarrier() {
@@ -96,17 +120,8 @@ Fft2d::Fft2d(ivec2 size, int lanes) : m_size(size), m_lanes(lanes), m_sharedAxes
     Axis& a = m_axes[axis];
     a.length = axis == 0 ? size.x : size.y;
     a.radices = factor(a.length);
-    std::vector<float> table(std::size_t(a.length) * 2);
-    for (int m = 0; m < a.length; ++m) {
-      // In double, reduced exactly (m < N): float twiddles within half an ulp.
-      const double angle = -2.0 * std::numbers::pi * double(m) / double(a.length);
-      table[std::size_t(m) * 2] = float(std::cos(angle));
-      table[std::size_t(m) * 2 + 1] = float(std::sin(angle));
-    }
-    a.twiddles = gl::Buffer(table.size() * sizeof(float), table.data(), 0, axis == 0 ? "fft-twiddles-x" : "fft-twiddles-y");
-    // fft_axis.comp: the line in 32 KB of shared memory, radices it has butterflies for.
-    a.fitsShared = a.length <= 4096 && a.radices.size() <= 16 && !a.radices.empty() &&
-                   std::all_of(a.radices.begin(), a.radices.end(), [](int r) { return r >= 2 && r <= 5; });
+    a.twiddles = twiddleTable(a.length, axis == 0 ? "fft-twiddles-x" : "fft-twiddles-y");
+    a.fitsShared = lineFitsShared(a.length, a.radices);  // fft_axis.comp
   }
   const std::size_t bytes = std::size_t(size.x) * std::size_t(size.y) * sizeof(float) * 2 * std::size_t(lanes);
   m_data[0] = gl::Buffer(bytes, nullptr, GL_DYNAMIC_STORAGE_BIT, "fft-data-0");
@@ -159,8 +174,7 @@ int Fft2d::run(int from, FftDirection direction) {
     if (inSharedMemory(axis)) {  // every pass of the axis in one dispatch
       const gl::Program& p = axisProgram();
       begin(p, axis, axis == lastAxis);
-      p.set("uPasses", int(a.radices.size()));
-      glProgramUniform1iv(p.id(), p.uniformLocation("uRadices[0]"), GLsizei(a.radices.size()), a.radices.data());
+      setLineUniforms(p, a.radices);
       glDispatchCompute(GLuint(axis == 0 ? m_size.y : m_size.x), 1, 1);
       storageBarrier();
       current = 1 - current;
@@ -197,18 +211,133 @@ std::vector<std::complex<float>> Fft2d::transform(std::span<const std::complex<f
 }
 
 // ---------------------------------------------------------------------------
-void SpectrumPass::prepare(ivec2 size) {
-  if (m_fft && m_fft->size() == size) return;
-  m_fft = std::make_unique<Fft2d>(size, 1);
-  if (!m_load) {
-    m_load = gl::Program::fromFiles({"post/fft_load.comp"}, {"LANES 1"});
+bool RealFft2d::fits(ivec2 size) {
+  if (size.x < 2 || size.y < 1 || size.x % 2 != 0 || size.x / 2 > 2048) return false;
+  return lineFitsShared(size.x / 2, factor(size.x / 2)) && lineFitsShared(size.y, factor(size.y));
+}
+
+RealFft2d::RealFft2d(ivec2 size, int channels) : m_size(size), m_channels(channels) {
+  if (!fits(size)) {
+    fail(ErrorKind::Usage, "the real-input FFT takes an even width up to 4096 and a height up to 4096 with factors "
+                           "2, 3 and 5 only, not {}x{}", size.x, size.y);
   }
+  if (channels != 1 && channels != 3) fail(ErrorKind::Usage, "the real-input FFT takes 1 or 3 channels, got {}", channels);
+  m_rowRadices = factor(size.x / 2);
+  m_columnRadices = factor(size.y);
+  m_rowTwiddles = twiddleTable(size.x, "fft-real-twiddles-x");  // the rows' n = w/2 point FFT takes every second
+  m_columnTwiddles = twiddleTable(size.y, "fft-real-twiddles-y");
+  const std::size_t values = std::size_t(halfWidth()) * std::size_t(size.y) * std::size_t(channels);
+  m_data = gl::Buffer(values * sizeof(std::complex<float>), nullptr, 0, "fft-real-planes");
+}
+
+const gl::Program& RealFft2d::program(gl::Program& slot, const char* file, std::vector<std::string> defines) {
+  if (!slot) slot = gl::Program::fromFiles({file}, defines);
+  return slot;
+}
+
+void RealFft2d::forwardRows(const gl::Texture& input) {
+  if (input.width() != m_size.x || input.height() != m_size.y)
+    fail(ErrorKind::Usage, "real FFT of {}x{}: the input is {}x{}", m_size.x, m_size.y, input.width(), input.height());
+  const gl::Program& p = program(m_rows, "post/fft_real_rows.comp", {"FORWARD 1", fmt::format("CHANNELS {}", m_channels)});
+  p.use();
+  p.set("uInput", 0);
+  p.set("uSize", m_size);
+  setLineUniforms(p, m_rowRadices);
+  bindInput(input, 0);
+  m_rowTwiddles.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+  m_data.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+  glDispatchCompute(GLuint(m_size.y), 1, 1);
+  storageBarrier();
+}
+
+// The columns' dispatch: `p` is fft_real_columns.comp in one of its modes.
+void RealFft2d::columns(const gl::Program& p, int channels) {
+  p.use();
+  p.set("uSize", m_size);
+  setLineUniforms(p, m_columnRadices);
+  m_columnTwiddles.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+  m_data.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  glDispatchCompute(GLuint(halfWidth()), GLuint(channels), 1);
+}
+
+std::vector<std::complex<float>> RealFft2d::halfSpectrum(const gl::Texture& input, int channel) {
+  if (channel < 0 || channel >= m_channels) fail(ErrorKind::Usage, "real FFT: no channel {}", channel);
+  forwardRows(input);
+  // COLUMNS_ONLY: each column's forward FFT written back, so the planes hold the 2D DFT.
+  columns(program(m_columnsOnly, "post/fft_real_columns.comp", {"COLUMNS_ONLY 1"}), m_channels);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const std::size_t plane = std::size_t(halfWidth()) * std::size_t(m_size.y);
+  std::vector<std::complex<float>> out(plane);
+  m_data.read(plane * std::size_t(channel) * sizeof(std::complex<float>), plane * sizeof(std::complex<float>), out.data());
+  return out;
+}
+
+void RealFft2d::spectrum(const gl::Texture& output) {
+  if (m_channels != 1) fail(ErrorKind::Usage, "the spectrum is of the luma: a 1-channel real FFT");
+  const bool wide = output.internalFormat() == GL_RGBA32F;
+  const gl::Program& p = wide ? program(m_spectrumFloat, "post/fft_real_columns.comp", {"SPECTRUM 1", "FLOAT_OUTPUT 1"})
+                              : program(m_spectrum, "post/fft_real_columns.comp", {"SPECTRUM 1"});
+  output.bindImage(0, GL_WRITE_ONLY, output.internalFormat());
+  columns(p, 1);
+  imageBarrier();
+}
+
+void RealFft2d::filterColumns(const gl::Buffer& transfer) {
+  transfer.bindBase(GL_SHADER_STORAGE_BUFFER, 3);
+  columns(program(m_columns, "post/fft_real_columns.comp", {"FILTER 1"}), m_channels);
+  storageBarrier();
+}
+
+void RealFft2d::inverseRows(const gl::Texture& input, const gl::Texture& output, float offset) {
+  if (m_channels != 3) fail(ErrorKind::Usage, "the inverse rows write R, G and B: a 3-channel real FFT");
+  const bool wide = output.internalFormat() == GL_RGBA32F;
+  const gl::Program& p = wide ? program(m_inverseRowsFloat, "post/fft_real_rows.comp", {"INVERSE 1", "FLOAT_OUTPUT 1"})
+                              : program(m_inverseRows, "post/fft_real_rows.comp", {"INVERSE 1"});
+  p.use();
+  p.set("uInput", 0);
+  p.set("uSize", m_size);
+  p.set("uScale", float(1.0 / (double(m_size.x / 2) * double(m_size.y))));
+  p.set("uOffset", offset);
+  setLineUniforms(p, m_rowRadices);
+  bindInput(input, 0);
+  m_rowTwiddles.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
+  m_data.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  output.bindImage(0, GL_WRITE_ONLY, output.internalFormat());
+  glDispatchCompute(GLuint(m_size.y), 1, 1);
+  imageBarrier();
+}
+
+// ---------------------------------------------------------------------------
+namespace {
+// Whether a pass set to `path` runs RealFft2d at `size`.
+bool takesRealInput(FftPath path, ivec2 size) {
+  if (path == FftPath::Complex || !RealFft2d::fits(size)) return false;
+  return path == FftPath::RealInput || sharedAxesByDefault();
+}
+}  // namespace
+
+void SpectrumPass::prepare(ivec2 size) {
+  const bool real = takesRealInput(m_path, size);
+  if (real ? m_real && m_real->size() == size : m_fft && m_fft->size() == size) return;
+  m_real.reset();
+  m_fft.reset();
+  if (real) {
+    m_real = std::make_unique<RealFft2d>(size, 1);
+    return;
+  }
+  m_fft = std::make_unique<Fft2d>(size, 1);
+  if (!m_load) m_load = gl::Program::fromFiles({"post/fft_load.comp"}, {"LANES 1"});
 }
 
 void SpectrumPass::run(const gl::Texture& input, const gl::Texture& output) {
   checkOutput("spectrum", input, output);
   const ivec2 size(input.width(), input.height());
   prepare(size);
+  if (m_real) {  // 2 dispatches: the luma's rows, the columns drawn
+    m_real->forwardRows(input);
+    m_real->spectrum(output);
+    return;
+  }
   loadFftInput(m_load, *m_fft, input, size);
   const int result = m_fft->run(0, FftDirection::Forward);
   const bool wide = output.internalFormat() == GL_RGBA32F;
@@ -225,36 +354,48 @@ void SpectrumPass::run(const gl::Texture& input, const gl::Texture& output) {
 // ---------------------------------------------------------------------------
 void FrequencyFilterPass::prepare(ivec2 size, const FrequencyFilter& filter) {
   validateFilter(filter, size.x, size.y);
-  if (!m_fft || m_fft->size() != size) {
-    m_fft = std::make_unique<Fft2d>(size, 2);
+  const bool real = takesRealInput(m_path, size);
+  if (real ? !(m_real && m_real->size() == size) : !(m_fft && m_fft->size() == size)) {
+    m_real.reset();
+    m_fft.reset();
     m_kernelFft.reset();
     m_hasTransfer = false;
-  }
-  if (!m_load) {
-    m_load = gl::Program::fromFiles({"post/fft_load.comp"}, {"LANES 2"});
-    m_multiply = gl::Program::fromFiles({"post/fft_multiply.comp"});
+    if (real) {
+      m_real = std::make_unique<RealFft2d>(size, 3);
+    } else {
+      m_fft = std::make_unique<Fft2d>(size, 2);
+      if (!m_load) {
+        m_load = gl::Program::fromFiles({"post/fft_load.comp"}, {"LANES 2"});
+        m_multiply = gl::Program::fromFiles({"post/fft_multiply.comp"});
+      }
+    }
   }
   const auto& p = m_prepared;
   const bool same = m_hasTransfer && p.kind == filter.kind && p.cutoff == filter.cutoff && p.low == filter.low &&
                     p.order == filter.order && p.kernel == filter.kernel && p.size == filter.size;
   if (same) return;
-  const std::size_t n = std::size_t(size.x) * std::size_t(size.y);
+  // H(u, v): row-major over every frequency for the complex path; for the real path only
+  // u ≤ w/2 (the rest mirrors it), column-major, as its columns read it.
+  const int w = size.x, h = size.y, columns = m_real ? m_real->halfWidth() : w;
+  const auto at = [&](int u, int v) {
+    return m_real ? std::size_t(u) * std::size_t(h) + std::size_t(v) : std::size_t(v) * std::size_t(w) + std::size_t(u);
+  };
+  std::vector<std::complex<float>> transfer(std::size_t(columns) * std::size_t(h));
   if (filter.kind == FilterKind::Kernel) {
     // H = DFT(kernel), on the GPU: the kernel (image/fourier.h's, the reference's) goes in as
-    // real values and its transform stays on the GPU as the transfer function.
-    const auto kernel = filterKernel(filter, size.x, size.y);
-    std::vector<std::complex<float>> values(n);
-    for (std::size_t i = 0; i < n; ++i) values[i] = float(kernel[i]);
+    // real values, once per size and kernel.
+    const auto kernel = filterKernel(filter, w, h);
+    std::vector<std::complex<float>> values(kernel.size());
+    for (std::size_t i = 0; i < kernel.size(); ++i) values[i] = float(kernel[i]);
     if (!m_kernelFft) m_kernelFft = std::make_unique<Fft2d>(size, 1);
-    const auto transfer = m_kernelFft->forward(values);
-    m_transfer = gl::Buffer(std::span<const std::complex<float>>(transfer), 0, "fft-transfer");
+    const auto full = m_kernelFft->forward(values);
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < columns; ++u) transfer[at(u, v)] = full[std::size_t(v) * std::size_t(w) + std::size_t(u)];
   } else {
-    std::vector<std::complex<float>> transfer(n);
-    for (int v = 0; v < size.y; ++v)
-      for (int u = 0; u < size.x; ++u)
-        transfer[std::size_t(v) * std::size_t(size.x) + std::size_t(u)] = float(filterGain(filter, u, v, size.x, size.y));
-    m_transfer = gl::Buffer(std::span<const std::complex<float>>(transfer), 0, "fft-transfer");
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < columns; ++u) transfer[at(u, v)] = float(filterGain(filter, u, v, w, h));
   }
+  m_transfer = gl::Buffer(std::span<const std::complex<float>>(transfer), 0, "fft-transfer");
   m_prepared = filter;
   m_hasTransfer = true;
 }
@@ -263,6 +404,12 @@ void FrequencyFilterPass::run(const gl::Texture& input, const gl::Texture& outpu
   checkOutput("frequency filter", input, output);
   const ivec2 size(input.width(), input.height());
   prepare(size, filter);
+  if (m_real) {  // 3 dispatches: rows, columns (forward, × H, inverse), inverse rows into the output
+    m_real->forwardRows(input);
+    m_real->filterColumns(m_transfer);
+    m_real->inverseRows(input, output, filter.offset);
+    return;
+  }
   loadFftInput(m_load, *m_fft, input, size);
   int result = m_fft->run(0, FftDirection::Forward);
   m_multiply.use();

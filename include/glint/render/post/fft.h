@@ -4,6 +4,8 @@
 //
 // Contents
 //   Fft2d                 forward and inverse complex 2D FFT of w × h values in float
+//   RealFft2d             the real-input transform of an image's luma or RGB, fused with
+//                         the spectrum view or a filter (3 dispatches a filter, 2 a spectrum)
 //   SpectrumPass          frame → log-magnitude spectrum of its luma, centred
 //   FrequencyFilterPass   frame → DFT → × H(u, v) → inverse DFT → frame (low/high/band-pass,
 //                         convolution by a Gaussian or a disk)
@@ -105,16 +107,90 @@ private:
   bool m_sharedAxes = true;
 };
 
+/// The real-input 2D FFT of an image (issue 37), fused with what the spectrum and the
+/// filters do around it: the GPU path of SpectrumPass and FrequencyFilterPass wherever
+/// Fft2d's axes run in shared memory and the size fits(). An image's channels are real, so
+/// half of each row's DFT is the conjugate of the other half: a row of w values is
+/// transformed as w/2 complex ones (x[2j] + i·x[2j+1]) and unpacked into its w/2 + 1
+/// frequencies; the columns run on those only. Per channel that is half the transform and
+/// half the data of a complex FFT: the filter's three channels take 3 planes of
+/// (w/2 + 1)·h complex values where the complex path's two lanes (R + iG, B + 0i) take 2 of
+/// w·h. And the steps around the transform are fused into it:
+///
+///   spectrum: rows of the luma straight from the texture → columns, written as the
+///             centred log-magnitude view (each column also draws its mirror)   2 dispatches
+///   filter:   rows of R, G, B from the texture → per column: FFT, × H, inverse FFT, in
+///             place → inverse rows + offset, clamped, into the output image    3 dispatches
+///
+/// where the complex path takes load, the axes, multiply, the inverse axes and store (7 on a
+/// GPU, one a radix pass on a software rasterizer). Same conventions as Fft2d; the half
+/// spectrum of channel c is plane c, h rows of w/2 + 1 complex values.
+class RealFft2d {
+public:
+  /// Whether the fused path takes `size`: w even, w/2 ≤ 2048 (w ≤ 4096) and h ≤ 4096, both
+  /// w/2 and h with radices 2, 3, 4, 5 only — every video size up to 4096 wide.
+  static bool fits(ivec2 size);
+  /// channels: 1 (the luma) or 3 (R, G, B). Error(Usage) for a size that does not fit().
+  RealFft2d(ivec2 size, int channels);
+
+  ivec2 size() const { return m_size; }
+  int channels() const { return m_channels; }
+  /// Frequencies a row keeps: w/2 + 1.
+  int halfWidth() const { return m_size.x / 2 + 1; }
+  /// The planes of the half spectrum after forwardRows() / filterColumns().
+  const gl::Buffer& buffer() const { return m_data; }
+
+  /// Dispatch 1: every row of the input texture (w × h, any float-sampled format) to its
+  /// real DFT, per channel. After it, plane c holds the rows' transforms (not the 2D DFT).
+  void forwardRows(const gl::Texture& input);
+  /// Dispatch 1 and the columns' forward FFT, for tests: the half spectrum of channel c,
+  /// row-major (v·(w/2 + 1) + u), equal to FFTW's r2c of the same values.
+  std::vector<std::complex<float>> halfSpectrum(const gl::Texture& input, int channel);
+  /// Dispatch 2 of the spectrum (channels = 1): the columns' FFT drawn straight into
+  /// `output` (RGBA8 or RGBA32F, w × h) as SpectrumPass draws it.
+  void spectrum(const gl::Texture& output);
+  /// Dispatch 2 of a filter (channels = 3): each column's FFT, × `transfer` (H(u, v) for
+  /// u ≤ w/2 as vec2, column-major: u·h + v), the inverse FFT, in place.
+  void filterColumns(const gl::Buffer& transfer);
+  /// Dispatch 3 of a filter: the inverse rows, scaled by 1/((w/2)·h), plus `offset`, into
+  /// `output` (RGBA8 clamped, or RGBA32F), alpha from `input`.
+  void inverseRows(const gl::Texture& input, const gl::Texture& output, float offset);
+
+private:
+  const gl::Program& program(gl::Program& slot, const char* file, std::vector<std::string> defines);
+  void columns(const gl::Program& p, int channels);
+
+  ivec2 m_size{0};
+  int m_channels = 1;
+  std::vector<int> m_rowRadices, m_columnRadices;  // of w/2 and of h
+  gl::Buffer m_rowTwiddles, m_columnTwiddles;      // e^(−2πi·m/w), e^(−2πi·m/h)
+  gl::Buffer m_data;
+  gl::Program m_rows, m_inverseRows, m_inverseRowsFloat, m_columns, m_spectrum, m_spectrumFloat, m_columnsOnly;
+};
+
+/// Which transform SpectrumPass and FrequencyFilterPass run.
+enum class FftPath {
+  Auto,       ///< RealInput where the size fits and Fft2d's axes run in shared memory (a GPU), else Complex
+  RealInput,  ///< RealFft2d wherever the size fits it (else Complex), on any renderer
+  Complex     ///< Fft2d with load, multiply and store passes around it
+};
+
 /// The spectrum view (image/fourier.h's spectrumReference): luma → FFT → centred
 /// log(1 + |F|) / log(1 + w·h), gray, into an RGBA8 (or other image-storable RGBA) texture.
 class SpectrumPass {
 public:
   SpectrumPass() = default;
   void run(const gl::Texture& input, const gl::Texture& output);
+  /// The transform it runs (benches compare them); Auto by default.
+  void setPath(FftPath path) { m_path = path; }
+  /// Whether the last run() took RealFft2d's fused path.
+  bool realInput() const { return m_real != nullptr; }
 
 private:
   void prepare(ivec2 size);
   std::unique_ptr<Fft2d> m_fft;
+  std::unique_ptr<RealFft2d> m_real;        // the RealInput path (FftPath)
+  FftPath m_path = FftPath::Auto;
   gl::Program m_load, m_show, m_showFloat;  // m_showFloat: for RGBA32F outputs
 };
 
@@ -126,12 +202,18 @@ class FrequencyFilterPass {
 public:
   FrequencyFilterPass() = default;
   void run(const gl::Texture& input, const gl::Texture& output, const FrequencyFilter& filter);
+  /// The transform it runs (benches compare them); Auto by default.
+  void setPath(FftPath path) { m_path = path; }
+  /// Whether the last run() took RealFft2d's fused path.
+  bool realInput() const { return m_real != nullptr; }
 
 private:
   void prepare(ivec2 size, const FrequencyFilter& filter);
   std::unique_ptr<Fft2d> m_fft;
   std::unique_ptr<Fft2d> m_kernelFft;
-  gl::Buffer m_transfer;  // H(u, v) as vec2 per frequency
+  std::unique_ptr<RealFft2d> m_real;  // the RealInput path (FftPath)
+  FftPath m_path = FftPath::Auto;
+  gl::Buffer m_transfer;  // H(u, v) as vec2 per frequency (m_real: u ≤ w/2, column-major)
   FrequencyFilter m_prepared;
   bool m_hasTransfer = false;
   gl::Program m_load, m_multiply, m_store, m_storeFloat;  // m_storeFloat: for RGBA32F outputs
