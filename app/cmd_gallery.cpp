@@ -8,6 +8,7 @@
 #include "glint/core/text.h"
 #include "glint/gl/context.h"
 #include "glint/scenes/runner.h"
+#include "glint/video/source.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -146,9 +147,10 @@ void compareWithReference(Entry& e, const fs::path& references, const fs::path& 
 
 // The comparison's summary: one line, plus a line per variant beyond the tolerance. 1 when any.
 int referenceSummary(const std::vector<Entry>& entries, const std::string& references) {
-  std::size_t compared = 0, passed = 0, missing = 0;
+  std::size_t compared = 0, passed = 0, missing = 0, skipped = 0;
   double worstMean = 0.0;
   for (const Entry& e : entries) {
+    skipped += e.skipped.empty() ? 0 : 1;
     if (!e.noReference.empty()) {
       ++missing;
       log::warn("{}: {}", e.ref.fullName(), e.noReference);
@@ -163,8 +165,9 @@ int referenceSummary(const std::vector<Entry>& entries, const std::string& refer
                 e.ref.fullName(), e.check->meanAbs * 255.0, e.check->differingFraction * 100.0, e.check->maxAbs * 255.0);
     }
   }
-  log::info("gallery: {} of {} variants within the tolerance of {} (worst mean {:.2f}/255){}", passed, compared, references,
-            worstMean * 255.0, missing ? fmt::format("; {} without a reference", missing) : "");
+  log::info("gallery: {} of {} variants within the tolerance of {} (worst mean {:.2f}/255){}{}", passed, compared,
+            references, worstMean * 255.0, missing ? fmt::format("; {} without a reference", missing) : "",
+            skipped ? fmt::format("; {} skipped (see above)", skipped) : "");
   return passed == compared && missing == 0 ? 0 : 1;
 }
 
@@ -197,7 +200,8 @@ Command galleryCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<GalleryArgs>();
   auto* cmd = app.add_subcommand("gallery", "Render every variant and write an HTML page of pictures and frame times");
   cmd->footer("Writes DIR/index.html, DIR/gallery.json and DIR/<scene>/<variant>.png.\n"
-              "Variants that need a compatibility-profile context are skipped (and marked) where none exists.");
+              "Variants that need a compatibility-profile context are skipped (and marked) where none exists, and so\n"
+              "are those that read their frames through the video module (post/camera) where it cannot load.");
   cmd->add_option("-o,--output", args->output, "Gallery directory (created if missing)")->capture_default_str();
   cmd->add_option("--filter", args->filter, "Only variants whose name contains this text");
   cmd->add_option("--size", args->size, "Render every variant at WIDTHxHEIGHT instead of its own size");
@@ -233,6 +237,9 @@ Command galleryCommand(CLI::App& app, const GlobalOptions& global) {
       Entry e{.ref = ref};
       if (!contexts.available(ref.scene->profile)) {
         e.skipped = contexts.unavailableReason(ref.scene->profile);
+        log::warn("{}: skipped ({})", ref.fullName(), e.skipped);
+      } else if (const std::string why = ref.scene->needsVideo ? video::unavailableReason() : ""; !why.empty()) {
+        e.skipped = "its frames come through the video module: " + why;
         log::warn("{}: skipped ({})", ref.fullName(), e.skipped);
       } else {
         contexts.use(ref.scene->profile);

@@ -49,6 +49,15 @@ void check(const backend::Status& status) {
 }
 }  // namespace
 
+std::string unavailableReason() {
+  try {
+    api();
+    return {};
+  } catch (const Error& e) {
+    return e.what();
+  }
+}
+
 bool isImagePath(const std::string& name) {
   std::string ext = fs::path(name).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });

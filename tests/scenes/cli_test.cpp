@@ -152,6 +152,19 @@ TEST(Cli, GalleryComparesEveryVariantWithItsReference) {
   EXPECT_FALSE(json["variants"][0]["reference"]["pass"].get<bool>());
   EXPECT_GT(json["variants"][0]["reference"]["differing_percent"].get<double>(), 0.5);
   EXPECT_TRUE(json["variants"][1]["reference"].contains("missing"));
+
+  // Where the video module cannot load (a bare GPU machine's pack), post/camera, whose frames
+  // come through it, is skipped and marked; the comparison of the rest still passes.
+  r = runGlint("gallery --filter post/camera/sepia --repeats 0 --references " + golden.string() + " -o " +
+                   (d / "no-video").string(),
+               "GLINT_FFMPEG_MODULE=" + (d / "nowhere" / "glint_ffmpeg.so").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("post/camera/sepia: skipped (its frames come through the video module: cannot load"),
+            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("0 of 0 variants within the tolerance"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 skipped"), std::string::npos) << r.output;
+  const auto noVideo = nlohmann::json::parse(std::ifstream(d / "no-video" / "gallery.json"));
+  EXPECT_NE(noVideo["variants"][0]["skipped"].get<std::string>().find("video module"), std::string::npos);
 }
 
 TEST(Cli, UnknownSceneOrVariantIsAUsageError) {

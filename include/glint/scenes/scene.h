@@ -104,6 +104,9 @@ struct SceneDesc {
   std::string summary;   ///< one line: the technique and where the seeds describe it
   std::vector<VariantDesc> variants;
   gl::Profile profile = gl::Profile::Core;  ///< Compatibility: needs a compatibility context
+  /// Reads its frames through the video module (FFmpeg): post/camera, whose default input is
+  /// an FFmpeg test pattern. `glint gallery` skips it, marked, where the module cannot load.
+  bool needsVideo = false;
   ivec2 defaultSize{640, 360};
   double defaultTime = 0.0;                 ///< time rendered when --time is not given
   /// Builds the scene for variants[variant]. Called with a current context of `profile`.

@@ -165,6 +165,10 @@ struct FrameIndex {
 /// cannot be read or has no video stream. Reads the whole file once (packets only).
 FrameIndex indexFrames(const std::string& path);
 
+/// Why video cannot be read or written here, in one line ("cannot load the video module
+/// …", or a build without video), or empty when it can: loads the module (FFmpeg) once.
+std::string unavailableReason();
+
 /// Whether `name` looks like a still image glint reads through OpenImageIO (by extension:
 /// .png .jpg .jpeg .tga .tif .tiff .exr .hdr .bmp .webp), not a video.
 bool isImagePath(const std::string& name);

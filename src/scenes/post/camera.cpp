@@ -240,6 +240,7 @@ void registerPostCamera(Registry& registry) {
                 .summary = "seeds/001's live demo: a camera (--set input=/dev/video0), a video file or a lavfi "
                            "source through the post effects; E switches effects, B splits before/after",
                 .variants = variants,
+                .needsVideo = true,
                 .defaultSize = {640, 480},
                 .create = [](int v) { return std::make_unique<CameraScene>(kVariants[std::size_t(v)].effect); }});
 }
