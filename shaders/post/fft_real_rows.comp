@@ -31,8 +31,8 @@ layout(local_size_x = 256) in;
 uniform sampler2D uInput;
 uniform ivec2 uSize;  // (w, h)
 
-// Rows of up to 2 · 2048 texels: an invocation keeps its share of the row's three channels
-// in registers until all three are back.
+// Rows of up to 2 · 2048 texels: an invocation keeps its share of the row's channels in
+// registers (read once from the texture; on the way back, until all three are done).
 const int kMaxPerThread = 2048 / kThreads;
 
 #ifdef FORWARD
@@ -49,11 +49,14 @@ float channel(vec4 texel, int c) {
 void main() {
   const int row = int(gl_WorkGroupID.x), thread = int(gl_LocalInvocationID.x), n = uSize.x / 2;
   const int plane = (n + 1) * uSize.y;
+  // The row's texels, read once: (x[2j], x[2j+1]) of each channel, j = thread + 256·m.
+  vec2 values[CHANNELS][kMaxPerThread];
+  for (int j = thread, m = 0; j < n; j += kThreads, ++m) {
+    const vec4 a = texelFetch(uInput, ivec2(2 * j, row), 0), b = texelFetch(uInput, ivec2(2 * j + 1, row), 0);
+    for (int c = 0; c < CHANNELS; ++c) values[c][m] = vec2(channel(a, c), channel(b, c));
+  }
   for (int c = 0; c < CHANNELS; ++c) {
-    for (int j = thread; j < n; j += kThreads) {
-      sLine[j] = vec2(channel(texelFetch(uInput, ivec2(2 * j, row), 0), c),
-                      channel(texelFetch(uInput, ivec2(2 * j + 1, row), 0), c));
-    }
+    for (int j = thread, m = 0; j < n; j += kThreads, ++m) sLine[j] = values[c][m];
     fftLine(n, 2, -1.0);
     for (int k = thread; k <= n; k += kThreads) {
       const vec2 z = sLine[k % n], mirror = conjugate(sLine[(n - k) % n]);
