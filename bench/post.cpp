@@ -174,8 +174,8 @@ void runEffects(Recorder& recorder) {
     const auto spectrumBytes = [&](bool real) {
       return real ? pixels * 4 + 2 * half + pixels * 4 : pixels * (4 + 8) + fftBytes(luma) + pixels * (8 + 4);
     };
-    const auto filterBytes = [&](bool real) {  // real: rows, columns (and H), inverse rows with the alpha
-      return real ? pixels * 4 + 3 * half + 6 * half + half / 2 + 3 * half + pixels * 8
+    const auto filterBytes = [&](bool real) {  // real: rows, columns and H (a plane), inverse rows with the alpha
+      return real ? pixels * 4 + 3 * half + 6 * half + half + 3 * half + pixels * 8
                   : pixels * (4 + 16) + 2 * fftBytes(colour) + pixels * (16 + 8 + 16) + pixels * (16 + 4 + 4);
     };
     spectrum.run(in, out);  // decides its path
