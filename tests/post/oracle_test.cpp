@@ -4,6 +4,7 @@
 // prime sizes. Each test prints its figure ("[figure] ...") for docs/post.md.
 //
 // OpenCV's headers are heavy: this is the only test file that includes them.
+#include "glint/core/error.h"
 #include "glint/image/fourier.h"
 #include "glint/image/post.h"
 #include "glint/render/post/chain.h"
@@ -175,6 +176,16 @@ TEST_F(PostOracle, RealFftMatchesFftwR2cInDouble) {
       }
     }
   }
+  // Sizes it does not take (the passes fall back on the complex FFT), and a texture of
+  // another size: usage errors, nothing dispatched.
+  EXPECT_FALSE(RealFft2d::fits({91, 64}));   // odd width
+  EXPECT_FALSE(RealFft2d::fits({4098, 4}));  // rows over 2048 complex values
+  EXPECT_FALSE(RealFft2d::fits({60, 44}));   // a factor 11
+  EXPECT_THROW(RealFft2d({91, 64}, 1), Error);
+  EXPECT_THROW(RealFft2d({90, 64}, 2), Error);
+  RealFft2d small({90, 64}, 1);
+  const gl::Texture other = uploadFrame(noiseImage(64, 64, 1), "real-fft-other");
+  EXPECT_THROW(small.forwardRows(other), Error);
 }
 
 static void checkAgainstFftw(ivec2 size, bool sharedAxes) {

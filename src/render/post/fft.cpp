@@ -235,9 +235,14 @@ const gl::Program& RealFft2d::program(gl::Program& slot, const char* file, std::
   return slot;
 }
 
+// Error(Usage) unless `texture` is the transform's size.
+void RealFft2d::checkSize(const gl::Texture& texture, const char* what) const {
+  if (texture.width() != m_size.x || texture.height() != m_size.y)
+    fail(ErrorKind::Usage, "real FFT of {}x{}: the {} is {}x{}", m_size.x, m_size.y, what, texture.width(), texture.height());
+}
+
 void RealFft2d::forwardRows(const gl::Texture& input) {
-  if (input.width() != m_size.x || input.height() != m_size.y)
-    fail(ErrorKind::Usage, "real FFT of {}x{}: the input is {}x{}", m_size.x, m_size.y, input.width(), input.height());
+  checkSize(input, "input");
   const gl::Program& p = program(m_rows, "post/fft_real_rows.comp", {"FORWARD 1", fmt::format("CHANNELS {}", m_channels)});
   p.use();
   p.set("uInput", 0);
@@ -274,6 +279,7 @@ std::vector<std::complex<float>> RealFft2d::halfSpectrum(const gl::Texture& inpu
 
 void RealFft2d::spectrum(const gl::Texture& output) {
   if (m_channels != 1) fail(ErrorKind::Usage, "the spectrum is of the luma: a 1-channel real FFT");
+  checkSize(output, "output");
   const bool wide = output.internalFormat() == GL_RGBA32F;
   const gl::Program& p = wide ? program(m_spectrumFloat, "post/fft_real_columns.comp", {"SPECTRUM 1", "FLOAT_OUTPUT 1"})
                               : program(m_spectrum, "post/fft_real_columns.comp", {"SPECTRUM 1"});
@@ -290,6 +296,8 @@ void RealFft2d::filterColumns(const gl::Buffer& transfer) {
 
 void RealFft2d::inverseRows(const gl::Texture& input, const gl::Texture& output, float offset) {
   if (m_channels != 3) fail(ErrorKind::Usage, "the inverse rows write R, G and B: a 3-channel real FFT");
+  checkSize(input, "input");
+  checkSize(output, "output");
   const bool wide = output.internalFormat() == GL_RGBA32F;
   const gl::Program& p = wide ? program(m_inverseRowsFloat, "post/fft_real_rows.comp", {"INVERSE 1", "FLOAT_OUTPUT 1"})
                               : program(m_inverseRows, "post/fft_real_rows.comp", {"INVERSE 1"});

@@ -141,7 +141,7 @@ public:
   const gl::Buffer& buffer() const { return m_data; }
 
   /// Dispatch 1: every row of the input texture (w × h, any float-sampled format) to its
-  /// real DFT, per channel. After it, plane c holds the rows' transforms (not the 2D DFT).
+  /// real DFT, per channel. Every texture argument must be w × h (else Error(Usage)). After it, plane c holds the rows' transforms (not the 2D DFT).
   void forwardRows(const gl::Texture& input);
   /// Dispatch 1 and the columns' forward FFT, for tests: the half spectrum of channel c,
   /// row-major (v·(w/2 + 1) + u), equal to FFTW's r2c of the same values.
@@ -159,6 +159,7 @@ public:
 private:
   const gl::Program& program(gl::Program& slot, const char* file, std::vector<std::string> defines);
   void columns(const gl::Program& p, int channels);
+  void checkSize(const gl::Texture& texture, const char* what) const;
 
   ivec2 m_size{0};
   int m_channels = 1;
