@@ -317,19 +317,25 @@ void RealFft2d::inverseRows(const gl::Texture& input, const gl::Texture& output,
 
 // ---------------------------------------------------------------------------
 namespace {
-// Whether a pass set to `path` runs RealFft2d at `size`.
+// Whether a pass set to `path` runs RealFft2d at `size`. Asked once per size and path (it
+// queries the context: not a question for every frame).
 bool takesRealInput(FftPath path, ivec2 size) {
   if (path == FftPath::Complex || !RealFft2d::fits(size)) return false;
   return path == FftPath::RealInput || sharedAxesByDefault();
 }
+
+// The size the pass's transform was made for; 0 × 0 before the first run.
+ivec2 preparedSize(const std::unique_ptr<RealFft2d>& real, const std::unique_ptr<Fft2d>& fft) {
+  return real ? real->size() : fft ? fft->size() : ivec2(0);
+}
 }  // namespace
 
 void SpectrumPass::prepare(ivec2 size) {
-  const bool real = takesRealInput(m_path, size);
-  if (real ? m_real && m_real->size() == size : m_fft && m_fft->size() == size) return;
+  if (preparedSize(m_real, m_fft) == size && m_preparedPath == m_path) return;
+  m_preparedPath = m_path;
   m_real.reset();
   m_fft.reset();
-  if (real) {
+  if (takesRealInput(m_path, size)) {
     m_real = std::make_unique<RealFft2d>(size, 1);
     return;
   }
@@ -362,13 +368,13 @@ void SpectrumPass::run(const gl::Texture& input, const gl::Texture& output) {
 // ---------------------------------------------------------------------------
 void FrequencyFilterPass::prepare(ivec2 size, const FrequencyFilter& filter) {
   validateFilter(filter, size.x, size.y);
-  const bool real = takesRealInput(m_path, size);
-  if (real ? !(m_real && m_real->size() == size) : !(m_fft && m_fft->size() == size)) {
+  if (preparedSize(m_real, m_fft) != size || m_preparedPath != m_path) {
+    m_preparedPath = m_path;
     m_real.reset();
     m_fft.reset();
     m_kernelFft.reset();
     m_hasTransfer = false;
-    if (real) {
+    if (takesRealInput(m_path, size)) {
       m_real = std::make_unique<RealFft2d>(size, 3);
     } else {
       m_fft = std::make_unique<Fft2d>(size, 2);

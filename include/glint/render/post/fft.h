@@ -192,6 +192,7 @@ private:
   std::unique_ptr<Fft2d> m_fft;
   std::unique_ptr<RealFft2d> m_real;        // the RealInput path (FftPath)
   FftPath m_path = FftPath::Auto;
+  FftPath m_preparedPath = FftPath::Auto;   // what m_fft or m_real were chosen for
   gl::Program m_load, m_show, m_showFloat;  // m_showFloat: for RGBA32F outputs
 };
 
@@ -214,6 +215,7 @@ private:
   std::unique_ptr<Fft2d> m_kernelFft;
   std::unique_ptr<RealFft2d> m_real;  // the RealInput path (FftPath)
   FftPath m_path = FftPath::Auto;
+  FftPath m_preparedPath = FftPath::Auto;  // what m_fft or m_real were chosen for
   gl::Buffer m_transfer;  // H(u, v) as vec2 per frequency (m_real: u ≤ w/2, column-major)
   FrequencyFilter m_prepared;
   bool m_hasTransfer = false;
