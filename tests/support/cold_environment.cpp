@@ -10,34 +10,34 @@
 //                                   by the test processes of one run
 // `make test` empties both directories before each run (Makefile).
 //
-// Where they are: under the build tree, or, when GLINT_TEST_ROOT is set, under that
-// directory (test-home/cache, cache, test-output). scripts/gpu-check sets it for the test
+// Where they are: test-home/cache, cache and test-output under the build tree, or, when
+// GLINT_TEST_ROOT is set, under that directory. scripts/gpu-check sets it for the test
 // executables it ships in its pack, which run on a machine without the build tree.
 #include "support/test_paths.h"
 
 #include <cstdlib>
 #include <string>
 
-#if !defined(GLINT_TEST_CACHE_HOME) || !defined(GLINT_TEST_GLINT_CACHE) || !defined(GLINT_TEST_BUILD_OUTPUT_DIR)
-#error "GLINT_TEST_CACHE_HOME, GLINT_TEST_GLINT_CACHE and GLINT_TEST_BUILD_OUTPUT_DIR must be defined"
+#if !defined(GLINT_TEST_BUILD_DIR)
+#error "GLINT_TEST_BUILD_DIR (the build tree) must be defined"
 #endif
 
 namespace {
-// GLINT_TEST_ROOT/<relative>, or the build tree's path when the variable is unset or empty.
-std::string underRoot(const char* relative, const char* buildPath) {
+// <root>/<relative>: root is $GLINT_TEST_ROOT, or the build tree when it is unset or empty.
+std::string underRoot(const char* relative) {
   const char* root = std::getenv("GLINT_TEST_ROOT");
-  return root && *root ? std::string(root) + "/" + relative : std::string(buildPath);
+  return std::string(root && *root ? root : GLINT_TEST_BUILD_DIR) + "/" + relative;
 }
 
 const std::string& outputDir() {
-  static const std::string dir = underRoot("test-output", GLINT_TEST_BUILD_OUTPUT_DIR);
+  static const std::string dir = underRoot("test-output");
   return dir;
 }
 
 const bool kCold = [] {
   ::setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);
-  ::setenv("XDG_CACHE_HOME", underRoot("test-home/cache", GLINT_TEST_CACHE_HOME).c_str(), 1);
-  ::setenv("GLINT_CACHE_DIR", underRoot("cache", GLINT_TEST_GLINT_CACHE).c_str(), 1);
+  ::setenv("XDG_CACHE_HOME", underRoot("test-home/cache").c_str(), 1);
+  ::setenv("GLINT_CACHE_DIR", underRoot("cache").c_str(), 1);
   return true;
 }();
 }  // namespace
