@@ -11,7 +11,6 @@
 #include "glint/scenes/model.h"
 #include "glint/viewer/viewer.h"
 
-#include <cctype>
 #include <filesystem>
 
 namespace glint::app {
@@ -30,16 +29,12 @@ int exportWeb(const std::string& file, const std::string& dir) {
     fail(ErrorKind::Usage, "--export-web needs a model file (.glb .gltf .obj .ply .fbx), got '{}'", file);
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) fail(ErrorKind::Output, "--export-web '{}' is a file, not a folder", dir);
-  std::vector<unsigned char> glb;
-  std::string ext = fs::path(file).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".glb") {
-    scenes::loadModelFile(file);  // a file the viewer reads, or its one-line error
-    const std::string bytes = readTextFile(file);
-    glb.assign(bytes.begin(), bytes.end());
-  } else {
-    glb = scenes::modelGlb(scenes::loadModelFile(file));
-  }
+  // The page holds only what glint read and wrote again: never the file's own bytes, so
+  // a texture glint does not read (an emissive map with an http: uri) is not fetched by a
+  // browser opening the page. What is left out is said.
+  const scenes::ModelFile model = scenes::loadModelFile(file);
+  for (const std::string& what : model.dropped) log::warn("--export-web: {} is left out of the page (glint does not read it)", what);
+  const std::vector<unsigned char> glb = scenes::modelGlb(model);
   bake::savePreviewPage(glb, fs::path(file).filename().string(), dir);
   log::info("view: {} → {}", file, (fs::path(dir) / "index.html").string());
   return 0;

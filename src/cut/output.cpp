@@ -259,87 +259,11 @@ Mesh loadScene(const std::vector<std::filesystem::path>& paths, std::vector<Ligh
 }
 
 std::vector<Light> loadGltfLights(const std::filesystem::path& path) {
-  const std::string ext = lower(path.extension().string());
-  if (ext != ".glb" && ext != ".gltf") return {};
-  // Only the JSON is needed (nodes and the extension), not the buffers: it is read here
-  // with nlohmann-json, from the file or from a .glb's first chunk.
-  const std::string data = readTextFile(path);
-  std::string_view text = data;
-  if (ext == ".glb") {
-    std::uint32_t header[5] = {};
-    if (data.size() < sizeof header) fail(ErrorKind::Input, "'{}' is not a glTF binary", path.string());
-    std::memcpy(header, data.data(), sizeof header);
-    if (header[0] != 0x46546C67u || header[4] != 0x4E4F534Au || std::size_t(header[3]) > data.size() - 20)
-      fail(ErrorKind::Input, "'{}' is not a glTF binary", path.string());
-    text = std::string_view(data).substr(20, header[3]);
-  }
-  const nlohmann::json gltf = nlohmann::json::parse(text, nullptr, false);
-  if (gltf.is_discarded() || !gltf.is_object()) fail(ErrorKind::Input, "'{}' is not glTF (its JSON does not parse)", path.string());
-  // The JSON is the file's: any field may have any type. nlohmann's type errors (a light
-  // index that is an array, a node that is a string) become one clear input error.
+  if (!gltf::isGltf(path)) return {};
+  // glint's one glTF reader (mesh/gltf.h): the nodes' KHR_lights_punctual point and spot
+  // lights at their world positions, every index and transform checked.
   std::vector<Light> out;
-  try {
-    const auto lightsIt = gltf.find("extensions");
-    if (lightsIt == gltf.end() || !lightsIt->contains("KHR_lights_punctual")) return {};
-    const nlohmann::json& defs = (*lightsIt)["KHR_lights_punctual"].value("lights", nlohmann::json::array());
-    const nlohmann::json& nodes = gltf.value("nodes", nlohmann::json::array());
-    const auto number = [](const nlohmann::json& v, double fallback) { return v.is_number() ? v.get<double>() : fallback; };
-    // A glTF index is a non-negative integer. nlohmann converts a JSON fraction, a negative
-    // or a number past 2^64 to std::size_t by a C++ cast, which is undefined for the last
-    // two: anything but an unsigned integer is the file's error, said in one line.
-    const auto gltfIndex = [&](const nlohmann::json& object, const char* key, std::size_t absent) {
-      if (!object.is_object())
-        fail(ErrorKind::Input, "'{}': a glTF object holding \"{}\" is {}", path.string(), key, printable(object.dump()));
-      const auto it = object.find(key);
-      if (it == object.end()) return absent;
-      if (!it->is_number_unsigned())
-        fail(ErrorKind::Input, "'{}': glTF \"{}\" is {}, not an index (a non-negative integer)", path.string(), key,
-             printable(it->dump()));
-      return it->get<std::size_t>();
-    };
-    // World transforms down the default scene's node tree (depth-limited against cycles).
-    const std::function<void(std::size_t, const glm::dmat4&, int)> visit = [&](std::size_t index, const glm::dmat4& parent,
-                                                                                int depth) {
-      if (index >= nodes.size() || depth > 64) return;
-      const nlohmann::json& n = nodes[index];
-      glm::dmat4 local(1.0);
-      if (n.contains("matrix") && n["matrix"].size() == 16) {
-        for (int i = 0; i < 16; ++i) local[i / 4][i % 4] = number(n["matrix"][std::size_t(i)], 0.0);
-      } else {
-        if (n.contains("translation") && n["translation"].size() == 3)
-          local = glm::translate(local, glm::dvec3(number(n["translation"][0], 0), number(n["translation"][1], 0),
-                                                   number(n["translation"][2], 0)));
-        if (n.contains("rotation") && n["rotation"].size() == 4)
-          local *= glm::mat4_cast(glm::dquat(number(n["rotation"][3], 1), number(n["rotation"][0], 0),
-                                             number(n["rotation"][1], 0), number(n["rotation"][2], 0)));
-        if (n.contains("scale") && n["scale"].size() == 3)
-          local = glm::scale(local, glm::dvec3(number(n["scale"][0], 1), number(n["scale"][1], 1), number(n["scale"][2], 1)));
-      }
-      const glm::dmat4 world = parent * local;
-      if (n.contains("extensions") && n["extensions"].contains("KHR_lights_punctual")) {
-        const auto& ref = n["extensions"]["KHR_lights_punctual"];
-        const std::size_t li = gltfIndex(ref, "light", std::size_t(-1));
-        if (li < defs.size() && defs[li].value("type", "") != "directional") {
-          const glm::dvec3 p(world[3]);
-          out.push_back({vec3(p), defs[li].value("name", "")});
-        }
-      }
-      if (n.contains("children") && n["children"].is_array())
-        for (const auto& c : n["children"])
-          if (c.is_number_unsigned()) visit(c.get<std::size_t>(), world, depth + 1);
-    };
-    const nlohmann::json& scenes = gltf.value("scenes", nlohmann::json::array());
-    const std::size_t scene = gltfIndex(gltf, "scene", 0);
-    if (scene < scenes.size() && scenes[scene].contains("nodes"))
-      for (const auto& root : scenes[scene]["nodes"])
-        if (root.is_number_unsigned()) visit(root.get<std::size_t>(), glm::dmat4(1.0), 0);
-  } catch (const nlohmann::json::exception& e) {
-    fail(ErrorKind::Input, "'{}': malformed glTF lights or nodes ({})", path.string(), e.what());
-  }
-  for (const Light& l : out) {
-    if (!std::isfinite(l.position.x) || !std::isfinite(l.position.y) || !std::isfinite(l.position.z))
-      fail(ErrorKind::Input, "'{}': light '{}' has a non-finite position", path.string(), printable(l.name));
-  }
+  for (gltf::Light& l : gltf::read(path, {.images = false}).lights) out.push_back({l.position, std::move(l.name)});
   return out;
 }
 

@@ -19,6 +19,7 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -44,14 +45,24 @@ File openForReading(const fs::path& path) {
 }
 
 // ---------------------------------------------------------------------------------- PNG
-Image readPng(const fs::path& path) {
-  File file = openForReading(path);
+/// Where an image's bytes come from: a file, or memory (an image inside a model file).
+struct Source {
+  fs::path path;                               ///< the name messages give
+  std::span<const unsigned char> memory;       ///< read from here when `inMemory`
+  bool inMemory = false;
+};
+
+Image readPng(const Source& source) {
+  const fs::path& path = source.path;
+  File file(nullptr, &std::fclose);
+  if (!source.inMemory) file = openForReading(path);
   std::unique_ptr<spng_ctx, decltype(&spng_ctx_free)> ctx(spng_ctx_new(0), &spng_ctx_free);
   if (!ctx) fail(ErrorKind::Internal, "cannot read image '{}': out of memory", path.string());
   const auto check = [&](int status) {
     if (status != 0) fail(ErrorKind::Input, "cannot read image '{}': {}", path.string(), spng_strerror(status));
   };
-  check(spng_set_png_file(ctx.get(), file.get()));
+  if (source.inMemory) check(spng_set_png_buffer(ctx.get(), source.memory.data(), source.memory.size()));
+  else check(spng_set_png_file(ctx.get(), file.get()));
   spng_ihdr ihdr{};
   check(spng_get_ihdr(ctx.get(), &ihdr));
   checkSize(path, ihdr.width, ihdr.height);
@@ -95,8 +106,10 @@ struct JpegErrors {
   char message[JMSG_LENGTH_MAX];
 };
 
-Image readJpeg(const fs::path& path) {
-  File file = openForReading(path);
+Image readJpeg(const Source& source) {
+  const fs::path& path = source.path;
+  File file(nullptr, &std::fclose);
+  if (!source.inMemory) file = openForReading(path);
   // Declared before setjmp: a longjmp back here leaves them as they were (libjpeg's C
   // frames are all it skips).
   jpeg_decompress_struct info{};
@@ -114,7 +127,12 @@ Image readJpeg(const fs::path& path) {
     fail(ErrorKind::Input, "cannot read image '{}': {}", path.string(), errors.message);
   }
   jpeg_create_decompress(&info);
-  jpeg_stdio_src(&info, file.get());
+  if (source.inMemory) {
+    if (source.memory.empty()) fail(ErrorKind::Input, "cannot read image '{}': no data", path.string());
+    jpeg_mem_src(&info, source.memory.data(), static_cast<unsigned long>(source.memory.size()));
+  } else {
+    jpeg_stdio_src(&info, file.get());
+  }
   jpeg_read_header(&info, TRUE);
   if (info.jpeg_color_space == JCS_CMYK || info.jpeg_color_space == JCS_YCCK) {
     jpeg_destroy_decompress(&info);
@@ -191,10 +209,17 @@ bool reads(std::string_view extension) {
 }
 
 Image read(const fs::path& path, std::string_view extension) {
-  if (extension == ".png") return readPng(path);
-  if (extension == ".jpg" || extension == ".jpeg") return readJpeg(path);
+  if (extension == ".png") return readPng({path});
+  if (extension == ".jpg" || extension == ".jpeg") return readJpeg({path});
   if (extension == ".exr") return readExr(path);
   fail(ErrorKind::Internal, "no built-in reader for '{}'", std::string(extension));
+}
+
+Image decode(std::span<const unsigned char> bytes, const std::string& name) {
+  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPng, 8) == 0) return readPng({name, bytes, true});
+  if (bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return readJpeg({name, bytes, true});
+  fail(ErrorKind::Input, "cannot read image '{}': neither PNG nor JPEG data", name);
 }
 
 }  // namespace glint::builtin

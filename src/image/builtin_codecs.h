@@ -7,6 +7,8 @@
 #include "glint/image/image.h"
 
 #include <filesystem>
+#include <span>
+#include <string>
 #include <string_view>
 
 namespace glint::builtin {
@@ -18,5 +20,9 @@ bool reads(std::string_view extension);
 /// tRNS as alpha; EXR's R, G, B and A, or Y and A), 8 or 16 bits, EXR as 32-bit float.
 /// Error(Input) for a file it cannot read.
 Image read(const std::filesystem::path& path, std::string_view extension);
+
+/// A PNG or JPEG file's bytes (told apart by their signature) decoded as read() decodes
+/// the file; `name` is what messages call it. Error(Input) for other or corrupt data.
+Image decode(std::span<const unsigned char> bytes, const std::string& name);
 
 }  // namespace glint::builtin

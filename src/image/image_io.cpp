@@ -336,6 +336,12 @@ Image loadStdin() {
 }
 }  // namespace
 
+Image decodeImage(std::span<const unsigned char> bytes, const std::string& name) {
+  // The built-in readers: a model's images are PNG or JPEG (glTF allows no other without
+  // an extension), and they give OpenImageIO's pixels (tests/image/builtin_codecs_test.cpp).
+  return builtin::decode(bytes, name);
+}
+
 Image loadImage(const fs::path& path) {
   if (path == "-") return loadStdin();
   std::error_code ec;

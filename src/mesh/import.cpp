@@ -2,11 +2,15 @@
 // fast paths (obj_import.cpp, ply_import.cpp), everything else through Assimp.
 #include "glint/core/error.h"
 #include "glint/core/log.h"
+#include "glint/core/text.h"
+#include "glint/mesh/fence.h"
+#include "glint/mesh/gltf.h"
 #include "glint/mesh/mesh.h"
 #include "glint/mesh/parts.h"
 
 #include "import_steps.h"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/material.h>
@@ -139,6 +143,118 @@ std::string lowerExtension(const std::filesystem::path& path) {
   return ext;
 }
 
+/// Assimp's file system, fenced: the model and the files inside its folder open, nothing
+/// else (an OBJ's `mtllib ../../x`, an FBX's or a COLLADA's side files). A refused file is
+/// one Assimp cannot open: it warns and goes on without it, as for a missing one.
+class FencedIOSystem : public Assimp::DefaultIOSystem {
+public:
+  explicit FencedIOSystem(const std::filesystem::path& model) : m_fence(model) {}
+  bool Exists(const char* file) const override { return m_fence.allows(file) && DefaultIOSystem::Exists(file); }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (!m_fence.allows(file)) {
+      log::warn("'{}': not reading '{}': a model may only reference files in its own folder", printable(m_fence.model().string()),
+                printable(file));
+      return nullptr;
+    }
+    return DefaultIOSystem::Open(file, mode);
+  }
+
+private:
+  ModelFence m_fence;
+};
+
+/// One glTF primitive as the fast paths make a part (Assimp's steps: smooth normals where
+/// it has none, vertices joined), placed by its node. A primitive with vertex colours keeps
+/// its vertices (the colours stay one per vertex) and, without normals, gets Assimp's smooth
+/// normals on one vertex per corner.
+Mesh gltfPart(gltf::Primitive&& p, const MeshLoadOptions& options, bool& generated, std::vector<vec4>* colors) {
+  Mesh mesh;
+  if (p.colors.empty() || !colors) {
+    detail::PolyMesh poly;
+    poly.positions = std::move(p.positions);
+    poly.normals = std::move(p.normals);
+    poly.uvs = std::move(p.uvs);
+    poly.faceStart.resize(p.indices.size() / 3 + 1);
+    for (std::size_t f = 0; f < poly.faceStart.size(); ++f) poly.faceStart[f] = std::uint32_t(3 * f);
+    poly.corners = std::move(p.indices);
+    mesh = detail::finishPart(std::move(poly), options.joinVertices, options.generateNormals, generated);
+    if (colors) colors->clear();
+  } else {
+    generated = options.generateNormals && p.normals.empty();
+    if (generated) {
+      const std::size_t n = p.indices.size();
+      mesh.positions.resize(n);
+      mesh.uvs.resize(p.uvs.empty() ? 0 : n);
+      colors->resize(n);
+      mesh.indices.resize(n);
+      for (std::size_t c = 0; c < n; ++c) {
+        const std::uint32_t v = p.indices[c];
+        mesh.positions[c] = p.positions[v];
+        if (!p.uvs.empty()) mesh.uvs[c] = p.uvs[v];
+        (*colors)[c] = p.colors[v];
+        mesh.indices[c] = std::uint32_t(c);
+      }
+      mesh.normals = detail::smoothNormals(mesh.positions, mesh.indices);
+      for (vec3& n : mesh.normals) n = glm::length(n) > 0.0f ? glm::normalize(n) : n;
+    } else {
+      mesh.positions = std::move(p.positions);
+      mesh.normals = std::move(p.normals);
+      mesh.uvs = std::move(p.uvs);
+      mesh.indices = std::move(p.indices);
+      *colors = std::move(p.colors);
+    }
+  }
+  mesh.transform(p.world);
+  return mesh;
+}
+
+/// A glTF file through glint's reader (mesh/gltf.h) as parts: each primitive a part named
+/// by its node (else its mesh), its material by name ("material N" when unnamed).
+MeshParts loadGltfParts(const std::filesystem::path& path, const MeshLoadOptions& options, bool keepParts) {
+  const std::string name = printable(path.string());
+  gltf::Model model = gltf::read(path, {.images = false});
+  MeshParts result;
+  std::vector<char> hasColors;
+  unsigned missingNormals = 0;
+  const auto primitives = unsigned(model.primitives.size());
+  for (gltf::Primitive& p : model.primitives) {
+    std::string partName = !p.node.empty() ? p.node : p.mesh;
+    std::uint32_t material = MeshParts::kNoMaterial;
+    if (p.material >= 0) {
+      const std::string& m = model.materials[std::size_t(p.material)].name;
+      const std::string materialName = m.empty() ? fmt::format("material {}", p.material) : m;
+      const auto found = std::find(result.materialNames.begin(), result.materialNames.end(), materialName);
+      material = std::uint32_t(found - result.materialNames.begin());
+      if (found == result.materialNames.end()) result.materialNames.push_back(materialName);
+    }
+    bool generated = false;
+    std::vector<vec4> colors;
+    const Mesh part = gltfPart(std::move(p), options, generated, keepParts ? &colors : nullptr);
+    missingNormals += generated ? 1 : 0;
+    if (!keepParts) {
+      result.mesh.append(part);
+      continue;
+    }
+    const auto it = std::find(result.partNames.begin(), result.partNames.end(), partName);
+    const auto partIndex = std::uint32_t(it - result.partNames.begin());
+    if (it == result.partNames.end()) result.partNames.push_back(partName);
+    result.mesh.append(part);
+    result.trianglePart.insert(result.trianglePart.end(), part.triangleCount(), partIndex);
+    result.triangleMaterial.insert(result.triangleMaterial.end(), part.triangleCount(), material);
+    result.colors.resize(result.mesh.vertexCount(), vec4(1.0f));
+    hasColors.resize(result.mesh.vertexCount(), 0);
+    std::copy(colors.begin(), colors.end(), result.colors.end() - std::ptrdiff_t(colors.size()));
+    std::fill(hasColors.end() - std::ptrdiff_t(colors.size()), hasColors.end(), char(!colors.empty()));
+  }
+  if (options.generateNormals) detail::warnMissingNormals(name, missingNormals, primitives);
+  if (result.mesh.indices.empty()) fail(ErrorKind::Input, "cannot read mesh '{}': it has no triangles", name);
+  if (std::find(hasColors.begin(), hasColors.end(), 1) == hasColors.end()) result.colors.clear();
+  if (std::all_of(result.triangleMaterial.begin(), result.triangleMaterial.end(),
+                  [](std::uint32_t m) { return m == MeshParts::kNoMaterial; }))
+    result.triangleMaterial.clear();
+  return result;
+}
+
 /// The scene of a file after glint's post-processing (triangulated, normals generated,
 /// vertices joined as the options say); Error(Input) when it has no triangles.
 const aiScene& readScene(Assimp::Importer& importer, const std::filesystem::path& path, const MeshLoadOptions& options) {
@@ -150,6 +266,9 @@ const aiScene& readScene(Assimp::Importer& importer, const std::filesystem::path
   //  - normals are generated before JoinIdenticalVertices: Assimp's smooth-normal
   //    step needs one vertex per face corner (on joined vertices it would keep
   //    only the last face's normal), and we want to know whether to warn.
+  if (gltf::isGltf(path))
+    fail(ErrorKind::Usage, "'{}': glTF is read by glint's own reader (mesh/gltf.h), not by Assimp", printable(name));
+  importer.SetIOHandler(new FencedIOSystem(path));  // the importer owns it
   const aiScene* scene = importer.ReadFile(name, aiProcess_ValidateDataStructure);
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
     fail(ErrorKind::Input, "cannot read mesh '{}': {}", name, firstLine(importer.GetErrorString()));
@@ -243,6 +362,13 @@ MeshParts loadMeshParts(const std::filesystem::path& path, const MeshLoadOptions
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", name);
   if (!std::filesystem::is_regular_file(path, ec)) fail(ErrorKind::Input, "cannot read '{}': not a regular file", name);
+  if (gltf::isGltf(path)) {
+    MeshParts result = loadGltfParts(path, options, true);
+    result.mesh.validate(fmt::format("mesh '{}'", name));
+    return result;
+  }
+  // A PLY reaches Assimp only after the fast path's check of its whole layout.
+  if (lowerExtension(path) == ".ply") detail::checkPly(path);
   Assimp::Importer importer;
   const aiScene& scene = readScene(importer, path, options);
   MeshParts result;
@@ -273,6 +399,9 @@ Mesh loadMesh(const std::filesystem::path& path, const MeshLoadOptions& options)
         done = true;
       } else if (ext == ".ply") {
         result = detail::loadPlyFast(path, options);
+        done = true;
+      } else if (ext == ".gltf" || ext == ".glb") {
+        result = loadGltfParts(path, options, false).mesh;
         done = true;
       } else if (options.parser == MeshParser::Fast) {
         fail(ErrorKind::Input, "cannot read mesh '{}': no fast parser for '{}' files", name, ext);

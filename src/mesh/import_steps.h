@@ -98,6 +98,10 @@ Mesh finishPart(PolyMesh&& part, bool join, bool generateNormals, bool& generate
 /// against (tests/mesh/obj_lane_test.cpp, fuzz/mesh.cpp).
 Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& options, bool fastLane = true);
 Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& options);
+/// The fast PLY path's check of a file's whole layout (header grammar, the elements glint
+/// reads, the body against the header), in linear time: what every PLY passes before
+/// Assimp reads it. Error(Input), one line.
+void checkPly(const std::filesystem::path& path);
 
 /// "'file': N of M meshes have no normals; generating smooth normals" — the one warning
 /// both paths log.

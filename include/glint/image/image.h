@@ -94,6 +94,11 @@ private:
 /// library, to the same pixels; other formats fail as requireImageIo() does.
 Image loadImage(const std::filesystem::path& path);
 
+/// A PNG or JPEG file's bytes held in memory (an image inside a model file) as loadImage
+/// reads the file: the same pixels, the same 16384² limit. `name` is what a message calls
+/// it ("'crate.glb' image 2"). Error(Input) for other formats or corrupt data.
+Image decodeImage(std::span<const unsigned char> bytes, const std::string& name);
+
 /// Writes an image atomically; the format follows the extension. Wider pixels than the
 /// format holds are converted (float into PNG becomes 16-bit). "-" writes to standard output
 /// in `format` ("png", "jpg", ...; PNG when empty). Error(Output) when the file cannot be

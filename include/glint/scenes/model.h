@@ -61,7 +61,8 @@ struct ModelFile {
   std::string name;                    ///< the file's name
   std::vector<ModelPart> parts;
   std::vector<ModelMaterial> materials;
-  nlohmann::json bake;                 ///< a `glint bake --asset`'s extras.glint_bake; null otherwise
+  nlohmann::json bake;                 ///< a `glint bake --asset`'s extras.glint_bake (an object); null otherwise
+  std::vector<std::string> dropped;    ///< what the file has and glint does not read (gltf::Model::dropped)
   Bounds bounds() const;
   /// The names of every map some material shows (the "show" option's list, 1-based).
   std::vector<std::string> mapNames() const;
@@ -71,9 +72,10 @@ struct ModelFile {
 /// whatever the case), whether or not it exists.
 bool isModelFile(std::string_view name);
 
-/// Reads a model: glTF through TinyGLTF (materials, textures, a bake's extras, node
-/// transforms, COLOR_0, TANGENT; MikkTSpace tangents made where a normal map has none),
-/// the others through mesh/parts.h (geometry and UVs). Error(Input), one line, for a
+/// Reads a model: glTF through glint's reader, mesh/gltf.h (materials, textures, a bake's
+/// extras, node transforms, COLOR_0, TANGENT; MikkTSpace tangents made where a normal map
+/// has none), the others through mesh/parts.h (geometry and UVs). Either way the file may
+/// reference only files in its own folder (mesh/fence.h). Error(Input), one line, for a
 /// missing, corrupt or empty file.
 ModelFile loadModelFile(const std::filesystem::path& path);
 

@@ -1,5 +1,5 @@
-// Model files as the viewer reads them (scenes/model.h): glTF through TinyGLTF, the other
-// formats through mesh/parts.h.
+// Model files as the viewer reads them (scenes/model.h): glTF through glint's reader
+// (mesh/gltf.h), the other formats through mesh/parts.h.
 #include "glint/core/error.h"
 #include "glint/mesh/gltf.h"
 #include "glint/mesh/parts.h"
@@ -9,7 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <tiny_gltf.h>
+#include "glint/core/text.h"
 
 #include <algorithm>
 #include <cctype>
@@ -30,114 +30,26 @@ std::string lowerExtension(const fs::path& path) {
   return ext;
 }
 
-/// An accessor's elements as floats (`components` each): float, or normalized unsigned
-/// bytes and shorts (colours). Error(Input) for anything else.
-std::vector<float> readFloats(const tinygltf::Model& m, int index, int components, const std::string& file) {
-  const tinygltf::Accessor& a = m.accessors.at(std::size_t(index));
-  if (tinygltf::GetNumComponentsInType(std::uint32_t(a.type)) != components)
-    fail(ErrorKind::Input, "'{}': an accessor has {} components, {} expected", file,
-         tinygltf::GetNumComponentsInType(std::uint32_t(a.type)), components);
-  if (a.bufferView < 0) fail(ErrorKind::Input, "'{}': an accessor without a buffer view (sparse) is not read", file);
-  const tinygltf::BufferView& v = m.bufferViews.at(std::size_t(a.bufferView));
-  const auto& data = m.buffers.at(std::size_t(v.buffer)).data;
-  const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType));
-  if (size <= 0) fail(ErrorKind::Input, "'{}': an accessor of component type {} is not read", file, a.componentType);
-  const std::size_t stride = v.byteStride ? v.byteStride : std::size_t(size * components);
-  const std::size_t start = v.byteOffset + a.byteOffset;
-  // Checked before anything is allocated: a count a corrupt file claims is not trusted.
-  if (a.count > 0 && (a.count > data.size() || start + (a.count - 1) * stride + std::size_t(size * components) > data.size()))
-    fail(ErrorKind::Input, "'{}': an accessor reaches past its buffer", file);
-  std::vector<float> out(a.count * std::size_t(components), 0.0f);
-  for (std::size_t i = 0; i < a.count; ++i)
-    for (int c = 0; c < components; ++c) {
-      const unsigned char* p = data.data() + start + i * stride + std::size_t(c * size);
-      float value = 0.0f;
-      switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, p, 4); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = float(*p) / 255.0f; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-          std::uint16_t s;
-          std::memcpy(&s, p, 2);
-          value = float(s) / 65535.0f;
-          break;
-        }
-        default: fail(ErrorKind::Input, "'{}': an attribute of component type {} is not read", file, a.componentType);
-      }
-      out[i * std::size_t(components) + std::size_t(c)] = value;
-    }
-  return out;
+/// A material's image, decoded; empty for none or one left out. A texture that does not
+/// decode is the file's error.
+Image decodedImage(const gltf::Model& m, int index, const std::string& file) {
+  if (index < 0) return {};
+  const gltf::ImageBytes& im = m.images[std::size_t(index)];
+  if (im.bytes.empty()) return {};
+  return decodeImage(im.bytes, fmt::format("{} images[{}]", file, index));
 }
 
-std::vector<std::uint32_t> readIndices(const tinygltf::Model& m, int index, const std::string& file) {
-  const tinygltf::Accessor& a = m.accessors.at(std::size_t(index));
-  if (a.bufferView < 0) fail(ErrorKind::Input, "'{}': indices without a buffer view", file);
-  const tinygltf::BufferView& v = m.bufferViews.at(std::size_t(a.bufferView));
-  const auto& data = m.buffers.at(std::size_t(v.buffer)).data;
-  const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType));
-  if (size != 1 && size != 2 && size != 4) fail(ErrorKind::Input, "'{}': indices of component type {}", file, a.componentType);
-  const std::size_t stride = v.byteStride ? v.byteStride : std::size_t(size), start = v.byteOffset + a.byteOffset;
-  if (a.count > 0 && (a.count > data.size() || start + (a.count - 1) * stride + std::size_t(size) > data.size()))
-    fail(ErrorKind::Input, "'{}': the indices reach past their buffer", file);
-  std::vector<std::uint32_t> out(a.count);
-  for (std::size_t i = 0; i < a.count; ++i) {
-    const unsigned char* p = data.data() + start + i * stride;
-    std::uint32_t value = 0;
-    std::memcpy(&value, p, std::size_t(size));  // little-endian: the low bytes
-    out[i] = value;
-  }
-  return out;
-}
-
-/// A TinyGLTF value as JSON (extras).
-nlohmann::json toJson(const tinygltf::Value& v) {
-  if (v.IsBool()) return v.Get<bool>();
-  if (v.IsInt()) return v.Get<int>();
-  if (v.IsNumber()) return v.GetNumberAsDouble();
-  if (v.IsString()) return v.Get<std::string>();
-  if (v.IsArray()) {
-    nlohmann::json a = nlohmann::json::array();
-    for (std::size_t i = 0; i < v.ArrayLen(); ++i) a.push_back(toJson(v.Get(int(i))));
-    return a;
-  }
-  if (v.IsObject()) {
-    nlohmann::json o = nlohmann::json::object();
-    for (const std::string& k : v.Keys()) o[k] = toJson(v.Get(k));
-    return o;
-  }
-  return nullptr;
-}
-
-Image textureImage(const tinygltf::Model& m, int texture, const std::string& file) {
-  if (texture < 0 || std::size_t(texture) >= m.textures.size()) return {};
-  const int source = m.textures[std::size_t(texture)].source;
-  if (source < 0 || std::size_t(source) >= m.images.size()) return {};
-  const tinygltf::Image& im = m.images[std::size_t(source)];
-  if (im.width <= 0 || im.height <= 0 || im.component < 1 || im.component > 4 || im.image.empty())
-    fail(ErrorKind::Input, "'{}': image {} could not be decoded", file, source);
-  Image out(im.width, im.height, im.component, im.bits == 16 ? PixelType::U16 : PixelType::U8);
-  if (out.bytes().size() != im.image.size()) fail(ErrorKind::Input, "'{}': image {} has the wrong size", file, source);
-  std::memcpy(out.bytes().data(), im.image.data(), im.image.size());
-  return out;
-}
-
-ModelMaterial readMaterial(const tinygltf::Model& m, const tinygltf::Material& g, const std::string& file) {
+ModelMaterial readMaterial(const gltf::Model& m, const gltf::Material& g, const std::string& file) {
   ModelMaterial mat;
   mat.name = g.name;
-  const auto& pbr = g.pbrMetallicRoughness;
-  if (pbr.baseColorFactor.size() == 4)
-    mat.baseColor = vec4(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2]),
-                         float(pbr.baseColorFactor[3]));
-  mat.roughness = float(pbr.roughnessFactor);
-  mat.baseColorMap = textureImage(m, pbr.baseColorTexture.index, file);
-  mat.normalMap = textureImage(m, g.normalTexture.index, file);
-  mat.occlusionMap = textureImage(m, g.occlusionTexture.index, file);
+  mat.baseColor = g.baseColor;
+  mat.roughness = g.roughness;
+  mat.baseColorMap = decodedImage(m, g.baseColorImage, file);
+  mat.normalMap = decodedImage(m, g.normalImage, file);
+  mat.occlusionMap = decodedImage(m, g.occlusionImage, file);
   // A bake's maps, in the table's order; else the material's own textures.
-  const tinygltf::Value& maps = g.extras.Get("glint_maps");
-  if (maps.IsObject()) {
-    std::vector<std::pair<int, std::string>> order;
-    for (const std::string& k : maps.Keys()) order.emplace_back(maps.Get(k).Get("order").GetNumberAsInt(), k);
-    std::sort(order.begin(), order.end());
-    for (const auto& [_, k] : order) mat.maps.emplace_back(k, textureImage(m, maps.Get(k).Get("texture").GetNumberAsInt(), file));
+  if (!g.maps.empty()) {
+    for (const auto& [name, image] : g.maps) mat.maps.emplace_back(name, decodedImage(m, image, file));
   } else {
     for (const auto& [name, image] : {std::pair{"base_color", &mat.baseColorMap}, std::pair{"normal", &mat.normalMap},
                                       std::pair{"ao", &mat.occlusionMap}})
@@ -146,84 +58,30 @@ ModelMaterial readMaterial(const tinygltf::Model& m, const tinygltf::Material& g
   return mat;
 }
 
-mat4 nodeMatrix(const tinygltf::Node& n) {
-  if (n.matrix.size() == 16) {
-    mat4 m;
-    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(n.matrix[std::size_t(i)]);
-    return m;
-  }
-  mat4 m(1.0f);
-  if (n.translation.size() == 3) m = glm::translate(m, vec3(n.translation[0], n.translation[1], n.translation[2]));
-  if (n.rotation.size() == 4)
-    m *= glm::mat4_cast(glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2])));
-  if (n.scale.size() == 3) m = glm::scale(m, vec3(n.scale[0], n.scale[1], n.scale[2]));
-  return m;
-}
-
-ModelPart readPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, const mat4& world, const std::string& file) {
-  ModelPart part;
-  part.material = p.material;
-  Mesh& mesh = part.mesh;
-  const auto attribute = [&](const char* name) { const auto it = p.attributes.find(name); return it == p.attributes.end() ? -1 : it->second; };
-  const int position = attribute("POSITION");
-  if (position < 0) fail(ErrorKind::Input, "'{}': a primitive has no POSITION", file);
-  const std::vector<float> pos = readFloats(m, position, 3, file);
-  for (std::size_t i = 0; i < pos.size(); i += 3) mesh.positions.emplace_back(pos[i], pos[i + 1], pos[i + 2]);
-  if (const int a = attribute("NORMAL"); a >= 0) {
-    const std::vector<float> n = readFloats(m, a, 3, file);
-    for (std::size_t i = 0; i < n.size(); i += 3) mesh.normals.emplace_back(n[i], n[i + 1], n[i + 2]);
-  }
-  if (const int a = attribute("TEXCOORD_0"); a >= 0) {
-    const std::vector<float> t = readFloats(m, a, 2, file);
-    for (std::size_t i = 0; i < t.size(); i += 2) mesh.uvs.emplace_back(t[i], 1.0f - t[i + 1]);  // glTF's t down → v up
-  }
-  if (const int a = attribute("TANGENT"); a >= 0) {
-    const std::vector<float> t = readFloats(m, a, 4, file);
-    for (std::size_t i = 0; i < t.size(); i += 4) mesh.tangents.emplace_back(t[i], t[i + 1], t[i + 2], t[i + 3]);
-  }
-  if (const int a = attribute("COLOR_0"); a >= 0) {
-    const int components = tinygltf::GetNumComponentsInType(std::uint32_t(m.accessors.at(std::size_t(a)).type));
-    const std::vector<float> c = readFloats(m, a, components, file);
-    for (std::size_t i = 0; i + std::size_t(components) <= c.size(); i += std::size_t(components))
-      part.colors.emplace_back(c[i], c[i + 1], c[i + 2], components == 4 ? c[i + 3] : 1.0f);
-  }
-  if (p.indices >= 0) {
-    mesh.indices = readIndices(m, p.indices, file);
-  } else {
-    for (std::uint32_t i = 0; i < mesh.positions.size(); ++i) mesh.indices.push_back(i);
-  }
-  mesh.indices.resize(mesh.indices.size() / 3 * 3);
-  mesh.validate("'" + file + "'");
-  if (!mesh.hasNormals()) computeNormals(mesh);
-  mesh.transform(world);
-  return part;
-}
-
 ModelFile loadGltf(const fs::path& path) {
-  tinygltf::TinyGLTF loader;
-  tinygltf::Model m;
-  std::string error, warning;
-  const std::string file = path.string();
-  const bool ok = lowerExtension(path) == ".glb" ? loader.LoadBinaryFromFile(&m, &error, &warning, file)
-                                                 : loader.LoadASCIIFromFile(&m, &error, &warning, file);
-  if (!ok) {
-    std::replace(error.begin(), error.end(), '\n', ' ');
-    fail(ErrorKind::Input, "cannot read '{}': {}", file, error.empty() ? "not a glTF file" : error);
-  }
+  const std::string file = printable(path.string());
+  gltf::Model m = gltf::read(path);
   ModelFile model;
-  for (const tinygltf::Material& g : m.materials) model.materials.push_back(readMaterial(m, g, file));
-  if (m.extras.Has("glint_bake")) model.bake = toJson(m.extras.Get("glint_bake"));
-  const std::function<void(int, const mat4&)> visit = [&](int index, const mat4& parent) {
-    const tinygltf::Node& node = m.nodes.at(std::size_t(index));
-    const mat4 world = parent * nodeMatrix(node);
-    if (node.mesh >= 0)
-      for (const tinygltf::Primitive& p : m.meshes.at(std::size_t(node.mesh)).primitives)
-        if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == -1) model.parts.push_back(readPrimitive(m, p, world, file));
-    for (int child : node.children) visit(child, world);
-  };
-  const int scene = m.defaultScene >= 0 ? m.defaultScene : 0;
-  if (std::size_t(scene) < m.scenes.size())
-    for (int root : m.scenes[std::size_t(scene)].nodes) visit(root, mat4(1.0f));
+  for (const gltf::Material& g : m.materials) model.materials.push_back(readMaterial(m, g, file));
+  // A bake asset's record (extras.glint_bake): kept only as the object glint writes.
+  if (m.extras.is_object() && m.extras.contains("glint_bake") && m.extras["glint_bake"].is_object())
+    model.bake = m.extras["glint_bake"];
+  model.dropped = std::move(m.dropped);
+  for (gltf::Primitive& p : m.primitives) {
+    ModelPart part;
+    part.material = p.material;
+    part.colors = std::move(p.colors);
+    Mesh& mesh = part.mesh;
+    mesh.positions = std::move(p.positions);
+    mesh.normals = std::move(p.normals);
+    mesh.uvs = std::move(p.uvs);
+    mesh.tangents = std::move(p.tangents);
+    mesh.indices = std::move(p.indices);
+    mesh.validate("'" + file + "'");
+    if (!mesh.hasNormals()) computeNormals(mesh);
+    mesh.transform(p.world);
+    model.parts.push_back(std::move(part));
+  }
   return model;
 }
 
@@ -240,11 +98,7 @@ ModelFile loadModelFile(const fs::path& path) {
   ModelFile model;
   const std::string ext = lowerExtension(path);
   if (ext == ".glb" || ext == ".gltf") {
-    try {
-      model = loadGltf(path);
-    } catch (const std::out_of_range&) {  // an index into an array the file does not have
-      fail(ErrorKind::Input, "cannot read '{}': an index points past the end of its array", path.string());
-    }
+    model = loadGltf(path);
   } else {
     MeshParts parts = loadMeshParts(path);
     ModelPart part;

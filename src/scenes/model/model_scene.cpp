@@ -1,5 +1,6 @@
 // Any model file as a scene (scenes/model.h): `glint view FILE`, `glint render FILE`.
 #include "glint/core/error.h"
+#include "glint/core/text.h"
 #include "glint/gl/shader.h"
 #include "glint/render/bump/textures.h"
 #include "glint/render/env/environment.h"
@@ -182,7 +183,12 @@ public:
       text += "; maps:";
       for (const std::string& n : m_names) text += " " + n;
     }
-    if (!m_model->bake.is_null()) text += fmt::format("; baked by glint from {}", m_model->bake.value("high", std::string("?")));
+    if (m_model->bake.is_object()) {
+      // The file's JSON: "high" may be anything, so its type is asked first.
+      const auto high = m_model->bake.find("high");
+      text += fmt::format("; baked by glint from {}", high != m_model->bake.end() && high->is_string()
+                                                          ? printable(high->get<std::string>()) : std::string("?"));
+    }
     return text;
   }
 
