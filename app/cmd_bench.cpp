@@ -2,6 +2,7 @@
 #include "common.h"
 
 #include "glint/bench/bench.h"
+#include "glint/core/json.h"
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
@@ -50,7 +51,7 @@ Command benchCommand(CLI::App& app, const GlobalOptions& global) {
       fmt::print("{}\n", bench::formatTable(suite->name, recorder));
       json.push_back(bench::toJson(suite->name, recorder));
     }
-    if (!args->json.empty()) writeTextAtomically(args->json, json.dump(2) + "\n");
+    if (!args->json.empty()) writeTextAtomically(args->json, jsonText(json));
     return 0;
   }};
 }

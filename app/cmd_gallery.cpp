@@ -1,6 +1,7 @@
 // glint gallery — every variant rendered, timed, and laid out in index.html.
 #include "common.h"
 
+#include "glint/core/json.h"
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
@@ -192,7 +193,7 @@ std::string json(const std::vector<Entry>& entries, const gl::ContextInfo& info)
     }
   }
   const nlohmann::ordered_json out{{"renderer", info.renderer}, {"version", info.version}, {"variants", variants}};
-  return out.dump(2) + "\n";
+  return jsonText(out);
 }
 }  // namespace
 

@@ -13,6 +13,7 @@
 #include "glint/core/error.h"
 #include "glint/core/log.h"
 #include "glint/core/progress.h"
+#include "glint/core/text.h"
 #include "glint/core/tool.h"
 #include "glint/cut/cutter.h"
 #include "glint/image/image.h"
@@ -50,7 +51,7 @@ py::object pythonJson(const nlohmann::ordered_json& value) {
   switch (value.type()) {
     case nlohmann::json::value_t::object: {
       py::dict d;
-      for (const auto& [key, item] : value.items()) d[py::str(key)] = pythonJson(item);
+      for (const auto& [key, item] : value.items()) d[py::str(utf8Escaped(key))] = pythonJson(item);
       return std::move(d);
     }
     case nlohmann::json::value_t::array: {
@@ -58,7 +59,8 @@ py::object pythonJson(const nlohmann::ordered_json& value) {
       for (const auto& item : value) l.append(pythonJson(item));
       return std::move(l);
     }
-    case nlohmann::json::value_t::string: return py::str(value.get_ref<const std::string&>());
+    // A file name that is not UTF-8 as the command's report writes it (core/json.h).
+    case nlohmann::json::value_t::string: return py::str(utf8Escaped(value.get_ref<const std::string&>()));
     case nlohmann::json::value_t::boolean: return py::bool_(value.get<bool>());
     case nlohmann::json::value_t::number_integer: return py::int_(value.get<std::int64_t>());
     case nlohmann::json::value_t::number_unsigned: return py::int_(value.get<std::uint64_t>());
@@ -479,10 +481,12 @@ PYBIND11_MODULE(_glint, m) {
       if (p) std::rethrow_exception(p);
     } catch (const Error& e) {
       if (e.kind() == ErrorKind::Interrupted) {
-        PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+        PyErr_SetString(PyExc_KeyboardInterrupt, oneLine(e.what()).c_str());
         return;
       }
-      PyErr_SetString(g_errors[int(e.kind())], e.what());
+      // One line of valid UTF-8, as the command prints it (a message quoting a file name
+      // that is not UTF-8 would otherwise become a UnicodeDecodeError).
+      PyErr_SetString(g_errors[int(e.kind())], oneLine(e.what()).c_str());
     } catch (const std::bad_alloc&) {
       PyErr_SetString(g_errors[int(ErrorKind::OutOfMemory)], "out of memory");
     }

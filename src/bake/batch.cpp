@@ -3,6 +3,7 @@
 // with their high meshes shared, or planned for a farm (one task per bake).
 #include "glint/bake/job.h"
 
+#include "glint/core/json.h"
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
@@ -41,16 +42,7 @@ struct BatchFile {
 
 BatchFile readBatchFile(const std::string& path) {
   const std::string text = readTextFile(path);  // Error(Input): exit 3, like every unreadable input
-  Json doc;
-  try {
-    doc = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..."
-    std::string what = e.what();
-    if (const auto end = what.find("] "); what.starts_with("[json.exception") && end != std::string::npos)
-      what.erase(0, end + 2);
-    fail(ErrorKind::Usage, "bake: {}: not valid JSON: {}", path, printable(what));
-  }
+  const Json doc = parseJson<Json>(text, fmt::format("bake: {}", path), ErrorKind::Usage);
   if (!doc.is_object())
     fail(ErrorKind::Usage, "bake: {}: a batch file is an object {{\"defaults\": {{...}}, \"bakes\": [...]}}, got {}", path,
          doc.type_name());
@@ -366,7 +358,7 @@ int runBatch(const BatchRequest& request) {
     report["failed"] = failed;
     report["seconds"] = {{"total", seconds}};
     report["peak_memory_mib"] = ToolRun::peakMemoryMiB();
-    const std::string text = report.dump(2) + "\n";
+    const std::string text = jsonText(report);
     if (request.tool.json == "-") {
       std::fputs(text.c_str(), stdout);
       std::fflush(stdout);

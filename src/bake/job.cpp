@@ -41,6 +41,8 @@ namespace {
 /// Whether a file's bytes contain `text` (names are stored as plain strings in OBJ, PLY, FBX
 /// and glTF alike): a millisecond's check before reading a low poly as parts.
 bool mentionsText(const std::string& path, const std::string& text) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return false;  // the mesh loader says what it is instead
   std::ifstream in(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return bytes.find(text) != std::string::npos;

@@ -4,6 +4,7 @@
 #include "glint/core/error.h"
 #include "glint/core/log.h"
 #include "glint/mesh/tangents.h"
+#include "glint/raytrace/raytracer.h"
 #include "internal.h"
 
 #include <cfloat>
@@ -67,9 +68,11 @@ Prepared prepareInputs(const Mesh& low, const Mesh& high, const BakeOptions& opt
     fail(ErrorKind::Input, "low-poly mesh has no UVs: unwrap it (one UV set, islands spaced apart) before baking");
   }
   low.validate("low-poly mesh");
+  raytrace::checkRange(low.positions, "low-poly mesh");  // the rays start on it
   checkFinite(low.uvs, "low-poly mesh", "UV");
   checkFinite(low.normals, "low-poly mesh", "normal");
   high.validate("high-poly mesh");
+  raytrace::checkRange(high.positions, "high-poly mesh");
   checkFinite(high.normals, "high-poly mesh", "normal");
 
   Prepared p;
@@ -91,6 +94,7 @@ Prepared prepareInputs(const Mesh& low, const Mesh& high, const BakeOptions& opt
   if (options.cage) {
     const Mesh& cage = *options.cage;
     cage.validate("cage mesh");
+    raytrace::checkRange(cage.positions, "cage mesh");
     if (cage.vertexCount() != low.vertexCount() || cage.indices != low.indices) {
       fail(ErrorKind::Input, "cage mesh must have the low poly's vertices and triangles ({} vertices, {} triangles), "
            "got {} and {}", low.vertexCount(), low.triangleCount(), cage.vertexCount(), cage.triangleCount());

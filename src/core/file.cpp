@@ -22,14 +22,28 @@ namespace fs = std::filesystem;
 
 // ---------------------------------------------------------------------------- output sets
 
+std::string fitFileName(const fs::path& dir, std::string stem, std::string_view tail, std::size_t reserved) {
+  const long limit = ::pathconf(dir.empty() ? "." : dir.c_str(), _PC_NAME_MAX);
+  const std::size_t nameMax = limit > 0 ? std::size_t(limit) : 255;
+  std::string end(tail);
+  if (reserved + end.size() > nameMax) end.resize(nameMax > reserved ? nameMax - reserved : 0);
+  const std::size_t room = nameMax - reserved - end.size();
+  if (stem.size() > room) {
+    std::size_t cut = room;
+    while (cut > 0 && (static_cast<unsigned char>(stem[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+    stem.resize(cut);
+  }
+  return stem + end;
+}
+
 namespace {
 // Temporary files are named ".<stem>.tmp<pid>-<n><extension>": hidden, saying what they
-// are, and naming the process that writes them.
+// are, and naming the process that writes them; the stem shortened as fitFileName says.
 fs::path temporarySibling(const fs::path& destination) {
   static std::atomic<unsigned> counter{0};
-  const auto name = fmt::format(".{}.tmp{}-{}{}", destination.stem().string(), getpid(),
-                                counter.fetch_add(1), destination.extension().string());
-  return destination.parent_path() / name;
+  const fs::path dir = destination.parent_path();
+  return dir / ("." + fitFileName(dir, destination.stem().string(),
+                                  fmt::format(".tmp{}-{}{}", getpid(), counter.fetch_add(1), destination.extension().string()), 1));
 }
 
 }  // namespace
@@ -359,6 +373,8 @@ void writeTextAtomically(const fs::path& destination, std::string_view contents)
 }
 
 std::string readTextFile(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) fail(ErrorKind::Input, "cannot read '{}': it is a directory", path.string());
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(ErrorKind::Input, "cannot read '{}': {}", path.string(), std::strerror(errno));
   std::ostringstream ss;

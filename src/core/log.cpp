@@ -1,5 +1,7 @@
 #include "glint/core/log.h"
 
+#include "glint/core/text.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -18,9 +20,9 @@ Level level() { return g_level; }
 
 void write(Level l, std::string_view message) {
   static constexpr const char* kPrefix[] = {"debug: ", "", "warning: ", "error: ", ""};
+  const std::string line = oneLine(message);  // one line, whatever a file name holds
   std::lock_guard lock(g_mutex);
-  std::fprintf(stderr, "%s%.*s\n", kPrefix[static_cast<int>(l)], static_cast<int>(message.size()),
-               message.data());
+  std::fprintf(stderr, "%s%.*s\n", kPrefix[static_cast<int>(l)], static_cast<int>(line.size()), line.data());
   if (l == Level::Warn)
     for (WarningCapture* c : g_captures) c->m_warnings.emplace_back(message);
 }

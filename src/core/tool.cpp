@@ -1,5 +1,7 @@
 #include "glint/core/tool.h"
 
+#include "glint/core/json.h"
+
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
@@ -160,7 +162,7 @@ OutputSet& ToolRun::outputs() { return m_impl->outputs; }
 nlohmann::ordered_json ToolRun::finish() {
   nlohmann::ordered_json out = completedReport();
   // Non-finite numbers have no JSON spelling: nlohmann writes them as null.
-  const std::string text = out.dump(2) + "\n";
+  const std::string text = jsonText(out);
   if (!m_settings.json.empty() && m_settings.json != "-") writeTextAtomically(m_settings.json, text);
   m_impl->outputs.commit();  // every output of the run, the report included, or none
   if (m_settings.json == "-") {

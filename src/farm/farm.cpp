@@ -1,5 +1,6 @@
 #include "glint/farm/farm.h"
 
+#include "glint/core/json.h"
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/hash.h"
@@ -381,7 +382,7 @@ void Farm::loadRecord() {
 
 void Farm::saveRecord() const {
   nlohmann::json record{{"key", m_key}, {"array", m_arrayJob}, {"join", m_joinJob}, {"pieces", m_pieceJobs}};
-  writeTextAtomically(m_directory / "submission.json", record.dump(2) + "\n");
+  writeTextAtomically(m_directory / "submission.json", jsonText(record));
 }
 
 std::vector<PieceStatus> Farm::status() {

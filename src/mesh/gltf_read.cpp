@@ -4,6 +4,7 @@
 #include "glint/mesh/gltf.h"
 
 #include "glint/core/error.h"
+#include "glint/core/json.h"
 #include "glint/core/log.h"
 #include "glint/core/text.h"
 #include "glint/mesh/fence.h"
@@ -26,25 +27,6 @@
 namespace glint::gltf {
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::size_t jsonDepth(std::string_view text) {
-  std::size_t depth = 0, deepest = 0;
-  bool inString = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (inString) {
-      if (c == '\\') ++i;
-      else if (c == '"') inString = false;
-    } else if (c == '"') {
-      inString = true;
-    } else if (c == '{' || c == '[') {
-      deepest = std::max(deepest, ++depth);
-    } else if ((c == '}' || c == ']') && depth > 0) {
-      --depth;
-    }
-  }
-  return deepest;
-}
 
 namespace {
 
@@ -379,7 +361,8 @@ void Reader::readElements(std::size_t accessor, const AccessorInfo& info, std::v
 std::vector<float> Reader::floats(std::size_t accessor, std::initializer_list<int> accepted, const std::string& what, int& components) const {
   const AccessorInfo info = accessorInfo(accessor);
   if (std::find(accepted.begin(), accepted.end(), info.components) == accepted.end())
-    bad(what, fmt::format("accessor {} has {} components per element, which {} does not take", accessor, info.components, what));
+    bad(what, fmt::format("accessor {} has {} component{} per element, which this attribute does not take", accessor, info.components,
+                          info.components == 1 ? "" : "s"));
   if (info.componentType == 5125) bad(what, fmt::format("accessor {} is of unsigned int, which glTF does not allow for vertex data", accessor));
   components = info.components;
   std::vector<double> values;

@@ -533,10 +533,10 @@ namespace {
 /// Where a partial video goes when the output already exists: beside it, never over it
 /// ("graded.mkv" → "graded.partial.mkv", or the first of "graded.partial-2.mkv", ... that is free).
 std::filesystem::path partialName(const std::filesystem::path& output) {
-  const std::filesystem::path stem = output.parent_path() / (output.stem().string() + ".partial");
   for (int n = 1;; ++n) {
-    std::filesystem::path candidate = stem;
-    candidate += (n == 1 ? "" : fmt::format("-{}", n)) + output.extension().string();
+    const std::filesystem::path candidate =
+        output.parent_path() / fitFileName(output.parent_path(), output.stem().string(),
+                                           ".partial" + (n == 1 ? std::string() : fmt::format("-{}", n)) + output.extension().string());
     std::error_code ec;
     if (!std::filesystem::exists(candidate, ec)) return candidate;
   }

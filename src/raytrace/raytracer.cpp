@@ -46,6 +46,21 @@ RTCBuildQuality toEmbree(SceneOptions::Quality q) {
   return RTC_BUILD_QUALITY_MEDIUM;
 }
 
+}  // namespace
+
+void checkRange(std::span<const vec3> positions, const std::string& what) {
+  // Embree's range: beyond it, its builder and traversal abort the process.
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const vec3& p = positions[i];
+    for (int k = 0; k < 3; ++k)
+      if (std::isfinite(p[k]) && std::fabs(p[k]) > kMaxCoordinate)
+        fail(ErrorKind::Input, "{}: vertex {} at ({}, {}, {}) lies beyond ±{:.4g}, the range Embree traces", what, i, p.x, p.y, p.z,
+             kMaxCoordinate);
+  }
+}
+
+namespace {
+
 void checkMesh(const Mesh& mesh, const std::string& what) {
   if (mesh.indices.empty()) fail(ErrorKind::Input, "{}: has no triangles", what);
   if (mesh.indices.size() % 3 != 0) {
@@ -57,11 +72,34 @@ void checkMesh(const Mesh& mesh, const std::string& what) {
       fail(ErrorKind::Input, "{}: index {} is {}, out of range for {} vertices", what, i, mesh.indices[i], n);
     }
   }
+  checkRange(mesh.positions, what);
+}
+
+/// Whether Embree may be given the ray: origin and direction within its range (it
+/// asserts on others, aborting the process), tnear not NaN.
+bool traceable(const Ray& ray) {
+  bool ok = !std::isnan(ray.tnear) && !std::isnan(ray.tfar);
+  for (int k = 0; k < 3; ++k) ok &= std::fabs(ray.origin[k]) <= kMaxCoordinate && std::fabs(ray.direction[k]) <= kMaxCoordinate;
+  return ok;
 }
 
 /// Fills `rh` in place (building a temporary and copying it made the processor wait on
 /// partial stores it could not forward: measurable in the baker's inner loop).
 void toEmbree(const Ray& ray, RTCRayHit& rh) {
+  if (!traceable(ray)) [[unlikely]] {
+    // Outside Embree's range: an empty segment (tnear > tfar) at the origin, which hits nothing.
+    rh.ray.org_x = rh.ray.org_y = rh.ray.org_z = 0.0f;
+    rh.ray.dir_x = rh.ray.dir_y = 0.0f;
+    rh.ray.dir_z = 1.0f;
+    rh.ray.tnear = 1.0f;
+    rh.ray.tfar = 0.0f;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = rh.hit.primID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return;
+  }
   rh.ray.org_x = ray.origin.x;
   rh.ray.org_y = ray.origin.y;
   rh.ray.org_z = ray.origin.z;
@@ -187,6 +225,7 @@ Scene::Scene(Scene&& other) noexcept = default;
 Scene& Scene::operator=(Scene&& other) noexcept = default;
 
 std::optional<Hit> Scene::intersect(const Ray& ray) const {
+  if (!traceable(ray)) [[unlikely]] return std::nullopt;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -198,6 +237,7 @@ std::optional<Hit> Scene::intersect(const Ray& ray) const {
 }
 
 bool Scene::occluded(const Ray& ray) const {
+  if (!traceable(ray)) [[unlikely]] return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;

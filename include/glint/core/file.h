@@ -119,6 +119,13 @@ private:
 /// free)" when its filesystem is full (or `error` is ENOSPC), else strerror(error).
 std::string writeFailure(const std::filesystem::path& destination, int error);
 
+/// `stem + tail` as a file name that fits the limit of names in `dir` (NAME_MAX, 255 bytes
+/// on most filesystems) with `reserved` bytes to spare: the stem is shortened, at the start
+/// of a UTF-8 character, and `tail` (a suffix and an extension) kept whole where it fits.
+/// The temporaries beside an output and a partial video's name are made with it, so every
+/// output name the filesystem accepts can be written.
+std::string fitFileName(const std::filesystem::path& dir, std::string stem, std::string_view tail, std::size_t reserved = 0);
+
 /// Writes `contents` to `destination` atomically.
 void writeTextAtomically(const std::filesystem::path& destination, std::string_view contents);
 

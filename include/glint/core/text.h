@@ -31,6 +31,21 @@ std::string escapeHtml(std::string_view text);
 /// `text` for a one-line message: control characters shown as '?', cut after 200 characters.
 std::string printable(std::string_view text);
 
+/// `text` on one line, nothing lost: control characters as escapes ("\n", "\t", "\x1b"),
+/// and bytes that are not part of a UTF-8 character as "\xNN"; valid UTF-8 is kept.
+/// Every message glint prints goes through it (errors, warnings, Python's exceptions), so
+/// a file name with a line break in it still makes one line.
+std::string oneLine(std::string_view text);
+
+/// `text` as valid UTF-8, nothing lost: unchanged when it is UTF-8; otherwise each byte that
+/// is not part of a UTF-8 character is written "\xNN", and each backslash "\x5c", so
+/// the original bytes can be recovered. For file names in JSON reports (a name on Linux is
+/// any bytes; JSON text is UTF-8).
+std::string utf8Escaped(std::string_view text);
+
+/// Whether `text` is valid UTF-8 (no overlong forms, no surrogates, at most U+10FFFF).
+bool isUtf8(std::string_view text);
+
 /// Largest width or height parseSize accepts (also GL's usual texture limit).
 constexpr int kMaxImageSide = 16384;
 

@@ -56,8 +56,6 @@ namespace glint::gltf {
 
 // ----------------------------------------------------------------------------- reading
 
-/// The deepest JSON nesting read: glTF itself needs about 10 levels; extras get the rest.
-inline constexpr std::size_t kMaxJsonDepth = 64;
 /// The most vertices a file's scene may make once its instances are flattened.
 inline constexpr std::uint64_t kMaxVertices = std::uint64_t(1) << 28;
 
@@ -120,9 +118,6 @@ bool isGltf(const std::filesystem::path& path);
 /// or needs an extension glint does not read (extensionsRequired). Points and lines are
 /// skipped; a file without triangles gives a Model without primitives (the caller decides).
 Model read(const std::filesystem::path& path, const ReadOptions& options = {});
-
-/// The deepest nesting of arrays and objects in JSON text (strings skipped), in one pass.
-std::size_t jsonDepth(std::string_view text);
 
 // ----------------------------------------------------------------------------- writing
 

@@ -41,6 +41,9 @@
 //     the same scene and ray, whatever the thread count.
 //   - Triangles with a non-finite vertex and degenerate (zero-area) triangles
 //     never hit; they are kept so that triangle ids still match the mesh.
+//   - Embree traces within ±kMaxCoordinate (its FLT_LARGE, 1.844e18) and aborts the
+//     process beyond it: a finite vertex farther out is Error(Input) when the Scene is
+//     built, and a ray whose origin or direction lies beyond it never hits.
 //   - Self-intersection is the caller's business: offset the origin or raise
 //     tnear (a shadow ray from a surface point needs tnear ≈ 1e-4·scene size).
 //
@@ -58,9 +61,18 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace glint::raytrace {
+
+/// The largest coordinate (and direction component) Embree traces: its FLT_LARGE.
+inline constexpr float kMaxCoordinate = 1.844e18f;
+
+/// Error(Input) naming the first finite vertex beyond ±kMaxCoordinate ("<what>: vertex 7
+/// at (1e+38, 0, 0) lies beyond ±1.844e+18, the range Embree traces"). Scene checks its
+/// meshes with it; a caller whose rays start on another mesh (the baker's low poly) checks that one.
+void checkRange(std::span<const vec3> positions, const std::string& what);
 
 /// A ray: the points origin + t·direction for t in [tnear, tfar].
 struct Ray {
