@@ -31,14 +31,14 @@ int run(const Command& command) {
     if (command.readsImages) preloadImageIo();
     return command.run();
   } catch (const Error& e) {
-    std::fprintf(stderr, "glint: %s\n", oneLine(e.what()).c_str());  // one line, whatever a file name holds
+    std::fprintf(stderr, "glint: %s\n", escapedLine(e.what()).c_str());  // one line, whatever a file name holds
     return exitCode(e.kind());
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "glint: out of memory: the job needed more than this machine could give (a smaller job, or "
                  "--max-memory to be told before it starts)\n");
     return exitCode(ErrorKind::OutOfMemory);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "glint: internal error: %s\n", oneLine(e.what()).c_str());
+    std::fprintf(stderr, "glint: internal error: %s\n", escapedLine(e.what()).c_str());
     return 1;
   }
 }
@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line and the usage exit code, like every other glint error.
-    std::fprintf(stderr, "glint: %s (see --help)\n", oneLine(e.what()).c_str());
+    std::fprintf(stderr, "glint: %s (see --help)\n", escapedLine(e.what()).c_str());
     return exitCode(ErrorKind::Usage);
   }
   log::setLevel(global.verbose ? log::Level::Debug : global.quiet ? log::Level::Warn : log::Level::Info);

@@ -481,12 +481,12 @@ PYBIND11_MODULE(_glint, m) {
       if (p) std::rethrow_exception(p);
     } catch (const Error& e) {
       if (e.kind() == ErrorKind::Interrupted) {
-        PyErr_SetString(PyExc_KeyboardInterrupt, oneLine(e.what()).c_str());
+        PyErr_SetString(PyExc_KeyboardInterrupt, escapedLine(e.what()).c_str());
         return;
       }
       // One line of valid UTF-8, as the command prints it (a message quoting a file name
       // that is not UTF-8 would otherwise become a UnicodeDecodeError).
-      PyErr_SetString(g_errors[int(e.kind())], oneLine(e.what()).c_str());
+      PyErr_SetString(g_errors[int(e.kind())], escapedLine(e.what()).c_str());
     } catch (const std::bad_alloc&) {
       PyErr_SetString(g_errors[int(ErrorKind::OutOfMemory)], "out of memory");
     }

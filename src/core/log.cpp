@@ -20,7 +20,7 @@ Level level() { return g_level; }
 
 void write(Level l, std::string_view message) {
   static constexpr const char* kPrefix[] = {"debug: ", "", "warning: ", "error: ", ""};
-  const std::string line = oneLine(message);  // one line, whatever a file name holds
+  const std::string line = escapedLine(message);  // one line, whatever a file name holds
   std::lock_guard lock(g_mutex);
   std::fprintf(stderr, "%s%.*s\n", kPrefix[static_cast<int>(l)], static_cast<int>(line.size()), line.data());
   if (l == Level::Warn)

@@ -94,7 +94,7 @@ bool isUtf8(std::string_view text) {
   return true;
 }
 
-std::string oneLine(std::string_view text) {
+std::string escapedLine(std::string_view text) {
   std::string out;
   out.reserve(text.size());
   for (std::size_t i = 0; i < text.size();) {

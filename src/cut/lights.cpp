@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace glint::cut {
@@ -33,6 +34,9 @@ void checkLights(const std::vector<Light>& lights) {
     const vec3& p = lights[i].position;
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       fail(ErrorKind::Usage, "light '{}' has a non-finite position", lightName(lights[i], i));
+    // A name is written into a PLY header line and JSON: one line of text.
+    if (std::any_of(lights[i].name.begin(), lights[i].name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+      fail(ErrorKind::Usage, "light {}'s name '{}' holds a control character", i, escapedLine(lights[i].name));
   }
 }
 

@@ -120,7 +120,7 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, tinygltf::Buffer& buffe
 nlohmann::json primitiveExtras(LightMask mask, const std::vector<Light>& lights) {
   nlohmann::json litBy = nlohmann::json::array();
   for (std::size_t l = 0; l < lights.size(); ++l)
-    if (mask & (LightMask(1) << l)) litBy.push_back(lightName(lights[l], l));
+    if (mask & (LightMask(1) << l)) litBy.push_back(utf8Escaped(lightName(lights[l], l)));  // JSON text is UTF-8
   return {{"light_mask", mask}, {"lit_by", litBy}};
 }
 
@@ -128,7 +128,7 @@ nlohmann::json primitiveExtras(LightMask mask, const std::vector<Light>& lights)
 void addLights(tinygltf::Model& model, tinygltf::Scene& scene, const std::vector<Light>& lights) {
   for (std::size_t l = 0; l < lights.size(); ++l) {
     tinygltf::Light light;
-    light.name = lightName(lights[l], l);
+    light.name = utf8Escaped(lightName(lights[l], l));  // JSON text is UTF-8
     light.type = "point";
     light.color = {1.0, 1.0, 1.0};
     model.lights.push_back(light);

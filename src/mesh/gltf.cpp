@@ -3,6 +3,7 @@
 
 #include "glint/core/error.h"
 #include "glint/core/file.h"
+#include "glint/core/json.h"
 
 #include <algorithm>
 #include <bit>
@@ -62,7 +63,7 @@ void saveFile(const std::filesystem::path& path, nlohmann::json json, const std:
   constexpr std::string_view kHole = "\"glint: the buffer goes here\"";
   json["buffers"] = nlohmann::json::array({{{"byteLength", bin.size()}}});
   if (!binary) json["buffers"][0]["uri"] = std::string(kHole.substr(1, kHole.size() - 2));
-  const std::string text = json.dump();
+  const std::string text = jsonText(json, -1);  // names that are not UTF-8 escaped (core/json.h)
   const std::size_t hole = text.find(kHole);
   if (!binary && hole == std::string::npos) fail(ErrorKind::Output, "cannot write '{}': no place for the buffer", path.string());
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
@@ -126,7 +127,7 @@ std::vector<unsigned char> Document::glb() const {
   nlohmann::json doc = json;
   doc["buffers"] = nlohmann::json::array({{{"byteLength", m_buffer.size()}}});
   std::ostringstream out;
-  writeGlb(out, doc.dump(), m_buffer, "a .glb");
+  writeGlb(out, jsonText(doc, -1), m_buffer, "a .glb");
   const std::string bytes = std::move(out).str();
   return {bytes.begin(), bytes.end()};
 }

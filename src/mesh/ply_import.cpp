@@ -98,6 +98,9 @@ std::string_view nextWord(std::string_view& text) {
   return word;
 }
 
+/// The most properties a PLY element may declare.
+constexpr std::size_t kMaxPlyProperties = 1024;
+
 /// A property of a PLY element as the header declares it.
 struct Property {
   std::size_t size = 0;       // of a value
@@ -181,6 +184,10 @@ Layout readHeader(std::string_view file, const std::string& name) {
       if (ec != std::errc() || end != w[2].data() + w[2].size() || e.count > file.size()) {
         bad("a PLY element count the file cannot hold", *line);
       }
+    } else if (!w.empty() && w[0] == "property" && !elements.empty() && elements.back().properties.size() >= kMaxPlyProperties) {
+      // Assimp's reader takes time quadratic in an element's properties (100,000 of them:
+      // 11 s); real files have a few dozen (a Gaussian splat's vertex: 62).
+      bad(fmt::format("a PLY element with more than {} properties", kMaxPlyProperties), *line);
     } else if (!w.empty() && w[0] == "property" && !elements.empty() && !propertyNames.insert(w.back()).second) {
       // Sets, not scans: a header of 100,000 properties is read in linear time.
       bad("a PLY property declared twice in one element", *line);

@@ -35,7 +35,7 @@ std::string printable(std::string_view text);
 /// and bytes that are not part of a UTF-8 character as "\xNN"; valid UTF-8 is kept.
 /// Every message glint prints goes through it (errors, warnings, Python's exceptions), so
 /// a file name with a line break in it still makes one line.
-std::string oneLine(std::string_view text);
+std::string escapedLine(std::string_view text);
 
 /// `text` as valid UTF-8, nothing lost: unchanged when it is UTF-8; otherwise each byte that
 /// is not part of a UTF-8 character is written "\xNN", and each backslash "\x5c", so
