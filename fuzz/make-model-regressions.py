@@ -143,6 +143,10 @@ def main():
     doc = triangle_doc(len(data))
     doc["accessors"][3]["count"] = 2**40
     write("index-count-past-file.glb", glb(doc, data))
+    doc = embedded(triangle_doc(len(data)), data)  # found by fuzz/gltf.cpp: a memcpy from null (UBSan)
+    doc["accessors"][0]["count"] = 0
+    doc["accessors"][1]["count"] = 0
+    gltf("accessor-count-zero.gltf", doc)
 
     # 4. What TinyGLTF, stb, Assimp or Embree cannot take.
     doc = triangle_doc(len(data) + len(PNG_1x1))

@@ -184,6 +184,22 @@ py::array arrayOf(Image&& image) {
   return py::array(dtype, shape, strides, owned->bytes().data(), owner);
 }
 
+/// `object` as a C-contiguous numpy array (of `dtype`, when given: "float32", "int64"),
+/// checked: numpy's conversion copies a non-contiguous array or casts, and a copy that does
+/// not fit in memory raises MemoryError here (pybind11's ensure() would return a null array
+/// and drop the error). A value that is no array of numbers is Error(Usage) naming `what`.
+py::array contiguous(const py::handle& object, const char* dtype, std::string_view what) {
+  const py::object numpy = py::module_::import("numpy");
+  try {
+    py::object converted = dtype ? numpy.attr("ascontiguousarray")(object, py::arg("dtype") = dtype)
+                                 : numpy.attr("ascontiguousarray")(object);
+    return py::reinterpret_borrow<py::array>(converted);
+  } catch (py::error_already_set& e) {
+    if (e.matches(PyExc_MemoryError)) throw;
+    fail(ErrorKind::Usage, "{} is not an array of numbers ({})", what, escapedLine(py::str(e.value()).cast<std::string>()));
+  }
+}
+
 /// A numpy image (H×W or H×W×C, C 1–4; uint8, uint16 or float32) as an Image (one copy:
 /// Image owns its pixels). Error(Usage) for another shape or type.
 Image imageFrom(const py::array& array, const char* what) {
@@ -197,9 +213,9 @@ Image imageFrom(const py::array& array, const char* what) {
   else if (array.dtype().is(py::dtype::of<std::uint16_t>())) type = PixelType::U16;
   else if (array.dtype().is(py::dtype::of<float>())) type = PixelType::F32;
   else fail(ErrorKind::Usage, "{} must be uint8, uint16 or float32, got {}", what, std::string(py::str(array.dtype())));
+  const py::array pixels = contiguous(array, nullptr, what);
   Image image(w, h, c, type);
-  const auto contiguous = py::array::ensure(array, py::array::c_style);
-  std::memcpy(image.bytes().data(), contiguous.data(), image.bytes().size());
+  std::memcpy(image.bytes().data(), pixels.data(), image.bytes().size());
   return image;
 }
 
@@ -221,8 +237,8 @@ template <typename Vec>
 std::vector<Vec> rowsFrom(const py::object& object, int width, const char* what) {
   std::vector<Vec> out;
   if (object.is_none()) return out;
-  const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(object);
-  if (!a || a.ndim() != 2 || a.shape(1) != width)
+  const py::array a = contiguous(object, "float32", fmt::format("Mesh {}", what));
+  if (a.ndim() != 2 || a.shape(1) != width)
     fail(ErrorKind::Usage, "Mesh {} must be an N×{} array of numbers", what, width);
   out.resize(std::size_t(a.shape(0)));
   std::memcpy(out.data(), a.data(), out.size() * sizeof(Vec));
@@ -235,10 +251,10 @@ std::shared_ptr<Mesh> meshFrom(const py::object& positions, const py::object& in
   mesh->positions = rowsFrom<vec3>(positions, 3, "positions");
   // uint32 and int32 indices (Blender's and numpy's usual types) are read as they are;
   // anything else is converted to int64 first.
-  py::array tri = py::array::ensure(indices, py::array::c_style);
-  if (tri && !tri.dtype().is(py::dtype::of<std::uint32_t>()) && !tri.dtype().is(py::dtype::of<std::int32_t>()))
-    tri = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(indices);
-  if (!tri || (!(tri.ndim() == 2 && tri.shape(1) == 3) && tri.ndim() != 1))
+  py::array tri = contiguous(indices, nullptr, "Mesh indices");
+  if (!tri.dtype().is(py::dtype::of<std::uint32_t>()) && !tri.dtype().is(py::dtype::of<std::int32_t>()))
+    tri = contiguous(indices, "int64", "Mesh indices");
+  if (!(tri.ndim() == 2 && tri.shape(1) == 3) && tri.ndim() != 1)
     fail(ErrorKind::Usage, "Mesh indices must be an M×3 array of vertex indices (or a flat array of 3·M)");
   mesh->indices.resize(std::size_t(tri.size()));
   const auto copyChecked = [&](const auto* in) {
@@ -284,8 +300,8 @@ void rowsUp(const T* src, int w, int h, int c, float scale, float* dst) {
 }
 
 py::array_t<float> rgbaRowsUp(const py::array& input) {
-  const py::array array = py::array::ensure(input, py::array::c_style);
-  if (!array || (array.ndim() != 2 && array.ndim() != 3)) fail(ErrorKind::Usage, "the image must be an H×W or H×W×C array");
+  const py::array array = contiguous(input, nullptr, "the image");
+  if (array.ndim() != 2 && array.ndim() != 3) fail(ErrorKind::Usage, "the image must be an H×W or H×W×C array");
   const int h = int(array.shape(0)), w = int(array.shape(1)), c = array.ndim() == 3 ? int(array.shape(2)) : 1;
   if (c < 1 || c > 4) fail(ErrorKind::Usage, "the image must have 1 to 4 channels, got {}", c);
   py::array_t<float> out(py::ssize_t(w) * h * 4);

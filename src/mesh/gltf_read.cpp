@@ -277,6 +277,7 @@ Reader::AccessorInfo Reader::accessorInfo(std::size_t accessor) const {
   if (normalized && !normalized->is_boolean()) bad(field(where, "normalized"), "is not true or false");
   info.normalized = normalized && normalized->get<bool>();
   info.count = required(a, "count", where);
+  if (info.count == 0) bad(field(where, "count"), "is 0 (glTF: at least 1)");
   return info;
 }
 
@@ -473,7 +474,7 @@ void Reader::readPrimitive(Model& model, std::size_t meshIndex, std::size_t p, c
   if (m_instancedVertices > kMaxVertices)
     bad(where, fmt::format("the scene's instances make over {} vertices, more than glint reads", kMaxVertices));
   out.positions.resize(vertices);
-  std::memcpy(out.positions.data(), pos.data(), pos.size() * sizeof(float));
+  if (!pos.empty()) std::memcpy(out.positions.data(), pos.data(), pos.size() * sizeof(float));
   const auto same = [&](const std::vector<float>& v, int components, const char* name) {
     if (v.size() / std::size_t(components) != vertices)
       bad(field(aw, name), fmt::format("has {} elements for {} positions", v.size() / std::size_t(components), vertices));
@@ -482,7 +483,7 @@ void Reader::readPrimitive(Model& model, std::size_t meshIndex, std::size_t p, c
     const std::vector<float> v = floats(*a, {3}, field(aw, "NORMAL"), n);
     same(v, 3, "NORMAL");
     out.normals.resize(vertices);
-    std::memcpy(out.normals.data(), v.data(), v.size() * sizeof(float));
+    if (!v.empty()) std::memcpy(out.normals.data(), v.data(), v.size() * sizeof(float));
   }
   if (const auto a = index(*attributes, "TEXCOORD_0", aw, accessors, "accessors")) {
     const std::vector<float> v = floats(*a, {2}, field(aw, "TEXCOORD_0"), n);
@@ -494,7 +495,7 @@ void Reader::readPrimitive(Model& model, std::size_t meshIndex, std::size_t p, c
     const std::vector<float> v = floats(*a, {4}, field(aw, "TANGENT"), n);
     same(v, 4, "TANGENT");
     out.tangents.resize(vertices);
-    std::memcpy(out.tangents.data(), v.data(), v.size() * sizeof(float));
+    if (!v.empty()) std::memcpy(out.tangents.data(), v.data(), v.size() * sizeof(float));
   }
   if (const auto a = index(*attributes, "COLOR_0", aw, accessors, "accessors")) {
     int c = 0;

@@ -332,3 +332,108 @@ TEST(BakePreview, AFileNameWithMarkupQuotesAndALineBreakStaysTextInThePage) {
   EXPECT_FALSE(fs::exists(d / "PWNED"));
   EXPECT_FALSE(fs::exists("PWNED"));
 }
+
+namespace {
+/// base64 text's bytes (the alphabet only; anything else ends the text).
+std::string fromBase64(std::string_view text) {
+  std::string out;
+  std::uint32_t bits = 0;
+  int count = 0;
+  for (const char c : text) {
+    const char* at = std::strchr("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/", c);
+    if (!at || c == '\0') break;
+    bits = bits << 6 | std::uint32_t(at - "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/");
+    if (++count == 4) {
+      out += char(bits >> 16), out += char(bits >> 8), out += char(bits);
+      bits = 0, count = 0;
+    }
+  }
+  return out;
+}
+
+/// A .glb's JSON chunk.
+std::string glbJson(const std::string& glb) {
+  if (glb.size() < 20) return {};
+  std::uint32_t length = 0;
+  std::memcpy(&length, glb.data() + 12, 4);
+  return glb.substr(20, length);
+}
+}  // namespace
+
+// An exported page holds only what glint wrote (issue 44): the model file carries a texture
+// glint does not read, an emissive map at an http: address, which a browser would fetch
+// from the network if the file's own bytes were copied. The page leaves it out and says so;
+// nothing glint writes names an address with a scheme or a path out of the folder; and
+// Chromium, with every host unresolvable, loads only files in the folder and starts no
+// request of the page's own (its NetLog: every request's initiator; Chromium's own
+// background requests have none).
+TEST(BakePreview, AnExportedPageHoldsOnlyWhatGlintWroteAndFetchesNothingOutsideItsFolder) {
+  const auto d = dir("export-self-contained");
+  const fs::path model = d / "lamp.glb";
+  fs::copy_file(fs::path(GLINT_SOURCE_DIR) / "fuzz/regressions/models/export-http-emissive-texture.glb", model);
+  ASSERT_NE(readBytes(model).find("http://example.com/emissive.png"), std::string::npos) << "the model references the network";
+  const auto web = runGlint("view " + q(model) + " --export-web " + q(d / "web"));
+  ASSERT_EQ(web.status, 0) << web.output;
+  EXPECT_NE(web.output.find("warning: --export-web: materials[0].emissiveTexture is left out of the page"), std::string::npos)
+      << web.output;
+
+  // What glint wrote: the page, its script (the model as base64: decoded), the model's JSON.
+  const std::string script = readBytes(d / "web/model.js");
+  const auto quote = script.find('"');
+  ASSERT_NE(quote, std::string::npos);
+  const std::string embedded = fromBase64(std::string_view(script).substr(quote + 1));
+  EXPECT_EQ(embedded, readBytes(d / "web/model.glb")) << "model.js holds model.glb";
+  const std::map<std::string, std::string> written = {{"index.html", readBytes(d / "web/index.html")},
+                                                      {"model.js", script},
+                                                      {"model.glb's JSON", glbJson(embedded)}};
+  for (const auto& [name, text] : written) {
+    ASSERT_FALSE(text.empty()) << name;
+    for (const char* reference : {"http:", "https:", "file:", "../", "\"uri\""})
+      EXPECT_EQ(text.find(reference), std::string::npos) << name << " holds " << reference;
+  }
+  const auto json = nlohmann::json::parse(glbJson(embedded));
+  ASSERT_FALSE(json["images"].empty()) << "the base colour texture";
+  for (const auto& image : json["images"]) EXPECT_TRUE(image.contains("bufferView")) << image << ": embedded";
+  EXPECT_EQ(json["materials"][0].count("emissiveTexture"), 0u);
+
+  const auto chromium = runShell(fmt::format(
+      "HOME={0} XDG_CONFIG_HOME={0}/config XDG_CACHE_HOME={0}/cache timeout 120 chromium --headless --no-sandbox "
+      "--use-angle=swiftshader --enable-unsafe-swiftshader --window-size=320,240 --virtual-time-budget=20000 "
+      "--no-first-run --disable-background-networking --disable-component-update --disable-sync "
+      "--host-resolver-rules='MAP * ~NOTFOUND' --log-net-log={1} --net-log-capture-mode=Default --dump-dom {2} > {3} 2> {4}",
+      q(d / "profile"), q(d / "net.json"), q("file://" + (d / "web/index.html").string() + "#clean=1"), q(d / "dom.out"),
+      q(d / "dom.log")));
+  ASSERT_EQ(chromium.status, 0) << readBytes(d / "dom.log");
+  const std::string page = readBytes(d / "dom.out");
+  const std::string open = "<div id=\"status\" hidden=\"\">";
+  const auto at = page.find(open);
+  ASSERT_NE(at, std::string::npos) << page.substr(0, 2000);
+  std::string text = page.substr(at + open.size(), page.find("</div>", at) - at - open.size());
+  for (auto p = text.find("&quot;"); p != std::string::npos; p = text.find("&quot;", p)) text.replace(p, 6, "\"");
+  for (auto p = text.find("&amp;"); p != std::string::npos; p = text.find("&amp;", p + 1)) text.replace(p, 5, "&");
+  const auto status = nlohmann::json::parse(text);
+  ASSERT_TRUE(status.value("ready", false)) << text;
+  const std::string folder = "file://" + (d / "web").string() + "/";
+  ASSERT_GE(status["resources"].size(), 5u) << status.dump(1) << ": three.js's three scripts, model.js and the texture";
+  for (const auto& url : status["resources"]) {
+    const std::string u = url.get<std::string>();
+    EXPECT_TRUE(u.starts_with(folder) || u.starts_with("blob:")) << u << " is neither a file of the page's folder nor in memory";
+  }
+
+  // The NetLog: no request started by the page (an initiator other than Chromium's own).
+  const auto net = nlohmann::json::parse(readBytes(d / "net.json"), nullptr, false);
+  ASSERT_FALSE(net.is_discarded()) << "Chromium's NetLog did not parse";
+  const int startJob = net["constants"]["logEventTypes"].value("URL_REQUEST_START_JOB", -1);
+  ASSERT_GE(startJob, 0);
+  int browserRequests = 0;
+  for (const auto& event : net["events"]) {
+    if (event.value("type", -1) != startJob || !event.contains("params") || !event["params"].contains("url")) continue;
+    const auto& params = event["params"];  // the job's start (its end has no address)
+    if (params.value("initiator", "") == "not an origin") {
+      ++browserRequests;  // Chromium's own (time, updates): refused by the resolver rules
+      continue;
+    }
+    ADD_FAILURE() << "the page requested " << params.value("url", "?") << " (initiator " << params.value("initiator", "?") << ")";
+  }
+  RecordProperty("chromium_background_requests", browserRequests);
+}

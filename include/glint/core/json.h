@@ -36,7 +36,7 @@ Json parseJson(std::string_view text, const std::string& what, ErrorKind kind = 
   if (jsonDepth(text) > kMaxJsonDepth) fail(kind, "{}: JSON nested deeper than {} levels", what, kMaxJsonDepth);
   try {
     return Json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for a number past a double (1e999)
     // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..."
     std::string why = e.what();
     if (const auto end = why.find("] "); why.starts_with("[json.exception") && end != std::string::npos) why.erase(0, end + 2);
