@@ -8,9 +8,13 @@
 // normals within 1e-5 (file normals are normalized the same way; generated normals sum
 // the same face normals in a different order).
 #include "glint/core/error.h"
+#include "glint/mesh/gltf.h"
 #include "glint/mesh/mesh.h"
 #include "import_steps.h"  // detail::loadObjFast without its fast lane
 
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
 
 #include "support/files.h"
@@ -21,6 +25,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -424,4 +429,81 @@ TEST(ImportOracle, FastParserRefusesOtherFormats) {
                                              "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");
   EXPECT_EQ(loadMesh(path).triangleCount(), 1u);
   expectInputError(path, MeshParser::Fast);
+}
+
+namespace {
+/// Assimp's own reading of a glTF file (the oracle glint's glTF reader is held to): its
+/// importer with triangulation, smooth normals where a mesh has none and joined vertices,
+/// every node's meshes placed by its world transform, depth first.
+Mesh assimpReading(const fs::path& path) {
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path.string(), aiProcess_Triangulate | aiProcess_SortByPType |
+                                                              aiProcess_GenSmoothNormals | aiProcess_JoinIdenticalVertices);
+  if (!scene || !scene->mRootNode) return {};
+  Mesh out;
+  const std::function<void(const aiNode&, const mat4&)> visit = [&](const aiNode& node, const mat4& parent) {
+    const mat4 world = parent * glm::transpose(glm::make_mat4(&node.mTransformation.a1));
+    for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+      const aiMesh& in = *scene->mMeshes[node.mMeshes[i]];
+      if (!(in.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+      Mesh part;
+      for (unsigned v = 0; v < in.mNumVertices; ++v) {
+        part.positions.emplace_back(in.mVertices[v].x, in.mVertices[v].y, in.mVertices[v].z);
+        if (in.HasNormals()) part.normals.push_back(glm::normalize(vec3(in.mNormals[v].x, in.mNormals[v].y, in.mNormals[v].z)));
+        if (in.HasTextureCoords(0)) part.uvs.emplace_back(in.mTextureCoords[0][v].x, in.mTextureCoords[0][v].y);
+      }
+      for (unsigned f = 0; f < in.mNumFaces; ++f) part.indices.insert(part.indices.end(), in.mFaces[f].mIndices, in.mFaces[f].mIndices + 3);
+      part.transform(world);
+      out.append(part);
+    }
+    for (unsigned c = 0; c < node.mNumChildren; ++c) visit(*node.mChildren[c], world);
+  };
+  visit(*scene->mRootNode, mat4(1.0f));
+  return out;
+}
+}  // namespace
+
+// glTF is read by glint's own reader (mesh/gltf.h) on every path, never by Assimp; Assimp
+// reading the same clean files is the oracle: the same triangles, vertex order, positions,
+// normals and uvs. A Blender 3.4 export (two objects, materials, normals, uvs), a glint bake
+// asset, and a node tree written here: translation, rotation, non-uniform and mirroring
+// scale, a mesh used by two nodes, a primitive without normals.
+TEST(ImportOracle, GlintsGltfReaderGivesAssimpsMesh) {
+  const fs::path corpus = fs::path(GLINT_SOURCE_DIR) / "fuzz/corpus/mesh_parts";
+  const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0.5f};
+  const float normals[] = {0, 0, 1, 0, 0.6f, 0.8f, 0.6f, 0, 0.8f, 0, 1, 0};
+  const std::uint32_t indices[] = {0, 1, 2, 2, 1, 3};
+  gltf::Document doc("glint import_oracle_test");
+  const int p = doc.addAccessor(positions, 4, gltf::kFloat, "VEC3", gltf::kVertices, {0, 0, 0}, {1, 1, 0.5});
+  const int n = doc.addAccessor(normals, 4, gltf::kFloat, "VEC3", gltf::kVertices);
+  const int ix = doc.addAccessor(indices, 6, gltf::kUnsignedInt, "SCALAR", gltf::kIndices);
+  doc.json["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", p}, {"NORMAL", n}}}, {"indices", ix}}}}}};
+  doc.json["nodes"] = {{{"children", {1, 2}}, {"translation", {1, 2, 3}}},
+                       {{"mesh", 0}, {"rotation", {0, 0.3826834, 0, 0.9238795}}, {"scale", {2, 1, 0.5}}},
+                       {{"mesh", 0}, {"scale", {-1, 1, 1}}, {"translation", {-4, 0, 0}}}};
+  doc.json["scenes"] = {{{"nodes", {0}}}};
+  doc.json["scene"] = 0;
+  doc.save(outDir() / "tree.gltf");
+  for (const fs::path& path : {corpus / "blender-export.glb", corpus / "glint-bake-asset.glb", outDir() / "tree.gltf"}) {
+    SCOPED_TRACE(path.filename().string());
+    const Mesh oracle = assimpReading(path);
+    ASSERT_GT(oracle.triangleCount(), 0u) << "Assimp read nothing";
+    expectSameMesh(loadMesh(path), oracle, "Assimp");
+  }
+  // Without normals, glint makes them as for every format (Assimp's GenSmoothNormals on one
+  // vertex per corner, then joined): the same mesh as the same triangles in a PLY file, whose
+  // reading the tests above hold to Assimp's.
+  doc.json["meshes"][0]["primitives"][0]["attributes"].erase("NORMAL");
+  doc.json["nodes"] = {{{"mesh", 0}}};
+  doc.save(outDir() / "bare.glb");
+  const fs::path ply = writeFile("bare.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                             "property float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+                                             "end_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0.5\n3 0 1 2\n3 2 1 3\n");
+  for (const bool join : {true, false}) {
+    SCOPED_TRACE(join ? "joined" : "not joined");
+    expectSameMesh(loadMesh(outDir() / "bare.glb", {.joinVertices = join}), loadMesh(ply, {.joinVertices = join}), "PLY");
+  }
+  // Assimp is never handed glTF by glint: asking for it is a usage error.
+  const Error e = captureError([&] { loadMesh(outDir() / "tree.gltf", {.parser = MeshParser::Assimp}); });
+  EXPECT_EQ(e.kind(), ErrorKind::Usage) << e.what();
 }

@@ -214,3 +214,37 @@ TEST(HostileModels, EveryCommandEndsEveryFileCleanlyAndReadsNothingOutsideItsFol
   EXPECT_TRUE(glint::testing::oneLine(missing.output)) << missing.output;
   EXPECT_NE(missing.output.find("no\\nsuch\\xff.glb"), std::string::npos) << missing.output;
 }
+
+// Names the filesystem takes are names glint takes (issue 44): an output name of 250 bytes
+// (its temporary must fit the 255-byte limit too), and names that are not UTF-8 in the
+// reports every tool writes (JSON is UTF-8: each stray byte is written \xNN).
+TEST(HostileNames, LongNamesAndNamesThatAreNotUtf8AreWrittenAndReported) {
+  const fs::path d = freshDir("hostile", "names");
+  writeObj(makeUvSphere(1.0f, 8, 4), d / "low.obj");
+  const std::string stem(246, 'n');  // + ".png" = 250 bytes
+  const CliRun longName = runGlint("bake " + q(d / "low.obj") + " " + q(d / "low.obj") + " -o " + q(d / (stem + ".png")) +
+                                   " --size 16x16 -q --json " + q(d / (stem.substr(0, 245) + ".json")));
+  ASSERT_EQ(longName.status, 0) << longName.output;
+  EXPECT_TRUE(fs::exists(d / (stem + ".png")));
+
+  const std::string latin = "caf\xe9";  // Latin-1 é: not UTF-8
+  fs::copy_file(d / "low.obj", d / (latin + ".obj"));
+  const CliRun bake = runGlint("bake " + q(d / (latin + ".obj")) + " " + q(d / "low.obj") + " -o " + q(d / (latin + ".png")) +
+                               " --size 16x16 -q --json " + q(d / "bake.json"));
+  ASSERT_EQ(bake.status, 0) << bake.output;
+  const CliRun cut = runGlint("cut " + q(d / (latin + ".obj")) + " -o " + q(d / (latin + ".glb")) + " --light 0,3,0," + q(latin) +
+                              " -q --json " + q(d / "cut.json"));
+  ASSERT_EQ(cut.status, 0) << cut.output;
+  const CliRun post = runGlint("post " + q(d / (latin + ".png")) + " -o " + q(d / (latin + "-sepia.png")) + " -e sepia -q --json " +
+                               q(d / "post.json"));
+  ASSERT_EQ(post.status, 0) << post.output;
+  for (const char* report : {"bake.json", "cut.json", "post.json"}) {
+    const std::string text = readBytes(d / report);
+    EXPECT_TRUE(isUtf8(text)) << report;
+    EXPECT_NE(text.find("caf\\\\xe9"), std::string::npos) << report << " names the file, its stray byte escaped:\n" << text;
+  }
+  // The cut's glTF names its light the same way, and glint reads it back.
+  const CliRun info = runGlint("mesh-info " + q(d / (latin + ".glb")));
+  EXPECT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(readBytes(d / (latin + ".glb")).find("caf\\\\xe9"), std::string::npos);
+}
