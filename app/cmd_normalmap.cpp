@@ -28,23 +28,6 @@ struct NormalMapArgs {
   bool objectSpace = false;
 };
 
-// A colour input that already decodes to unit vectors pointing out of the surface is almost
-// certainly a normal map: running it through again gives nonsense, so say so.
-bool looksLikeNormalMap(const Image& image) {
-  if (image.channels() < 3) return false;
-  bool colourful = false;
-  for (int y = 0; y < image.height() && !colourful; y += std::max(1, image.height() / 64))
-    for (int x = 0; x < image.width() && !colourful; x += std::max(1, image.width() / 64))
-      colourful = std::abs(image.at(x, y, 0) - image.at(x, y, 2)) > 0.1f;
-  if (!colourful) return false;
-  try {
-    prepareNormalMap(image, "input");
-    return true;
-  } catch (const Error&) {
-    return false;
-  }
-}
-
 // --check: is the input a usable normal map? A report line, or Error(Input) saying why not.
 int checkNormalMap(const NormalMapArgs& args) {
   const Image map = loadImage(args.input);
@@ -60,25 +43,14 @@ int checkNormalMap(const NormalMapArgs& args) {
 // The height map → the normal map, on the CPU or the GPU, written with the input's alpha.
 int makeNormalMap(const NormalMapArgs& args, const GlobalOptions& global) {
   if (args.output.empty()) fail(ErrorKind::Usage, "normalmap needs -o OUTPUT (or --check)");
-  if (!std::isfinite(args.scale)) fail(ErrorKind::Usage, "--scale must be a finite number");
+  const NormalMapOptions options{.scale = args.scale, .wrap = args.wrap, .formula = parseNormalFormula(args.formula)};
   if (!args.format.empty() && args.output != "-") {
     fail(ErrorKind::Usage, "--format is for -o - (stdout); a file's format follows its extension");
   }
   checkDistinctFiles({{args.input, "the height map"}}, {{args.output, "-o"}});
   checkImageOutput(args.output, args.format);  // fail before working, not after
   const Image input = loadImage(args.input);
-  if (input.channels() >= 3) {
-    log::warn("{} has {} channels; using its luminance (0.2126 R + 0.7152 G + 0.0722 B) as the height", args.input,
-              input.channels());
-    if (looksLikeNormalMap(input))
-      log::warn("{} already looks like a normal map (its colours decode to unit vectors pointing out); the result "
-                "will not mean much", args.input);
-  } else if (input.channels() == 2) {
-    log::info("{} has gray + alpha; using the gray channel as the height", args.input);
-  }
-  const NormalMapOptions options{.scale = args.scale,
-                                 .wrap = args.wrap,
-                                 .formula = args.formula == "slide" ? NormalFormula::Slide : NormalFormula::Gradient};
+  checkHeightMap(input, options, args.input);  // the checks glint.normalmap makes too (image/normalmap.h)
   Image normals;
   if (args.gpu) {
     scenes::ContextPool contexts(global.glDebug);

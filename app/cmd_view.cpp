@@ -27,16 +27,22 @@ struct ViewArgs {
 int exportWeb(const std::string& file, const std::string& dir) {
   if (!scenes::isModelFile(file))
     fail(ErrorKind::Usage, "--export-web needs a model file (.glb .gltf .obj .ply .fbx), got '{}'", file);
-  std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) fail(ErrorKind::Output, "--export-web '{}' is a file, not a folder", dir);
+  // Before any work: the folder is new, empty or a page glint wrote, and no file of the page
+  // is the model itself (`--export-web .` beside a model.glb).
+  const fs::path folder = bake::checkPageFolder(dir, "--export-web");
+  std::vector<FileUse> outputs;
+  for (const std::string& f : bake::previewFiles()) outputs.push_back({folder / f, "--export-web"});
+  checkDistinctFiles({{file, "the model"}}, outputs);
   // The page holds only what glint read and wrote again: never the file's own bytes, so
   // a texture glint does not read (an emissive map with an http: uri) is not fetched by a
   // browser opening the page. What is left out is said.
   const scenes::ModelFile model = scenes::loadModelFile(file);
   for (const std::string& what : model.dropped) log::warn("--export-web: {} is left out of the page (glint does not read it)", what);
   const std::vector<unsigned char> glb = scenes::modelGlb(model);
-  bake::savePreviewPage(glb, fs::path(file).filename().string(), dir);
-  log::info("view: {} → {}", file, (fs::path(dir) / "index.html").string());
+  OutputSet outputSet;  // the page's files together, or none (and no folder) when a write fails
+  bake::savePreviewPage(glb, fs::path(file).filename().string(), folder);
+  outputSet.commit();
+  log::info("view: {} → {}", file, (folder / "index.html").string());
   return 0;
 }
 }  // namespace

@@ -22,6 +22,7 @@
 #include "glint/post/effects.h"
 #include "glint/post/job.h"
 #include "glint/render/post/gpu.h"
+#include "glint/scenes/model.h"
 #include "glint/scenes/runner.h"
 #include "glint/video/source.h"
 
@@ -158,8 +159,10 @@ auto runReleased(const py::object& progress, Work work) -> decltype(work(std::de
   return future.get();
 }
 
-ToolSettings settingsFor(const std::atomic<bool>* cancel, int threads) {
-  ToolSettings settings;
+/// The settings of a run from Python: `base` as the job's options set them (--max-memory,
+/// --json: the command's checks), with the call's threads and its Ctrl-C flag.
+ToolSettings settingsFor(const std::atomic<bool>* cancel, int threads, ToolSettings base = {}) {
+  ToolSettings settings = std::move(base);
   settings.threads = threads;
   settings.cancel = cancel;
   return settings;
@@ -324,7 +327,7 @@ py::tuple bakeIntoArrays(bake::BakeJob& job, const py::object& progress, int thr
     maps[{bake::mapInfo(map).reportKey, tile}] = std::move(image);
   };
   const nlohmann::ordered_json report = runReleased(progress, [&](const std::atomic<bool>* cancel) {
-    job.tool = settingsFor(cancel, threads);
+    job.tool = settingsFor(cancel, threads, job.tool);  // keeps max_memory: the command's refusal
     ToolRun run("bake", job.tool);
     bake::runJob(job, run);
     return run.finish();
@@ -459,10 +462,14 @@ scenes::ContextPool& contexts() {
   return pool;
 }
 
-py::array renderVariant(const std::string& variant, int width, int height, std::optional<double> time,
-                 const std::vector<std::string>& options) {
-  const scenes::VariantRef ref = scenes::Registry::builtin().resolve(variant);
-  scenes::RenderRequest request{.size = {width, height}, .time = time, .options = options};
+py::array renderVariant(std::string variant, std::optional<std::pair<int, int>> size, std::optional<double> time,
+                        const std::vector<std::string>& options) {
+  // As `glint render` resolves it: a scene variant, or a model file as its own scene.
+  scenes::Registry model;
+  const scenes::VariantRef ref = scenes::registryFor(variant, model).resolve(variant);
+  // None: the scene's own size; any given size is checked as --size is.
+  const ivec2 chosen = size ? checkSize({size->first, size->second}) : ivec2(0);
+  scenes::RenderRequest request{.size = chosen, .time = time, .options = options};
   Image image;
   {
     py::gil_scoped_release released;  // a GL context is per thread: render on this one
@@ -581,15 +588,14 @@ PYBIND11_MODULE(_glint, m) {
       .def("__next__", &Frames::next)
       .def_property_readonly("info", &Frames::info);
   m.def("normalmap", [](const py::array& height, std::optional<float> given, bool wrap, const std::string& formula) {
-    const float scale = given.value_or(NormalMapOptions{}.scale);  // the command's default
-    if (!std::isfinite(scale)) fail(ErrorKind::Usage, "scale must be a finite number");
-    if (formula != "gradient" && formula != "slide") fail(ErrorKind::Usage, "formula must be gradient or slide, got '{}'", formula);
+    // The command's options, checks and words (image/normalmap.h), then its computation.
+    const NormalMapOptions options{.scale = given.value_or(NormalMapOptions{}.scale), .wrap = wrap,
+                                   .formula = parseNormalFormula(formula)};
     const Image input = imageFrom(height, "the height map");
+    checkHeightMap(input, options, "the height array");
     Image out;
     {
       py::gil_scoped_release released;
-      const NormalMapOptions options{.scale = scale, .wrap = wrap,
-                                     .formula = formula == "slide" ? NormalFormula::Slide : NormalFormula::Gradient};
       out = withHeightAlpha(heightToNormalMap(input, options), input);
     }
     return arrayOf(std::move(out));

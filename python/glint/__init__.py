@@ -280,18 +280,26 @@ def cut(meshes: Union[MeshLike, Sequence[MeshLike]], lights: Sequence[Union[str,
 
 
 # ------------------------------------------------------------------------------------- render
-def render(variant: str, size: Size = (0, 0), time: Optional[float] = None,
+def render(variant: Union[str, "_os.PathLike[str]"], size: Optional[Size] = None, time: Optional[float] = None,
            options: Union[Sequence[str], Mapping[str, Any]] = ()) -> _np.ndarray:
     """Renders a scene variant headless, as `glint render` does: an H×W×4 uint8 array (top row first).
 
-    variant: "scene/variant" from glint.info()["variants"] ("basics/triangle/depth").
-    size: (width, height) or one side; 0: the scene's own size.
+    variant: "scene/variant" from glint.info()["variants"] ("basics/triangle/depth"), or a model
+        file (.glb .gltf .obj .ply .fbx), shown as `glint render FILE` shows it.
+    size: (width, height) or one side, each 1..16384 as `glint render --size` takes them;
+        None: the scene's own size.
     time: the scene time in seconds (None: the scene's default).
     options: the scene's options, ["name=value", ...] or {"name": value} (`glint render --set`).
     """
-    width, height = (size, size) if isinstance(size, int) else (int(size[0]), int(size[1]))
+    if size is None:
+        dims = None
+    elif isinstance(size, str):
+        w, _, h = size.partition("x")
+        dims = (int(w), int(h))
+    else:
+        dims = (int(size), int(size)) if isinstance(size, int) else (int(size[0]), int(size[1]))
     if isinstance(options, Mapping):
         assignments = [f"{k}={v}" for k, v in options.items()]
     else:
         assignments = list(options)
-    return _glint.render(variant, width, height, time, assignments)
+    return _glint.render(_os.fspath(variant), dims, time, assignments)

@@ -35,7 +35,7 @@ std::size_t frameLowPolyInPlace(Mesh& low) {
 
 Mesh frameLowPoly(Mesh low) {
   low.tangents.clear();
-  if (!low.hasNormals()) computeNormals(low);
+  if (!low.hasNormals()) generateSmoothNormals(low);  // as the baker frames it (prepare.cpp)
   frameLowPolyInPlace(low);
   return low;
 }
@@ -137,7 +137,38 @@ constexpr const char* kThreeFiles[] = {"three.min.js", "OrbitControls.js", "GLTF
 std::vector<std::string> previewFiles() {
   std::vector<std::string> files{"index.html", "model.glb", "model.js"};
   for (const char* f : kThreeFiles) files.push_back(std::string("three/") + f);
+  files.push_back(kPageMarker);
   return files;
+}
+
+fs::path checkPageFolder(const std::string& dir, std::string_view option) {
+  fs::path path = fs::path(dir).lexically_normal();
+  if (!path.has_filename() && path.has_parent_path()) path = path.parent_path();  // "prev/" as shell completion types it
+  if (path.empty()) fail(ErrorKind::Usage, "{} needs a folder", option);
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec))
+    fail(ErrorKind::Output, "{} '{}' is a file, not a folder", option, path.string());
+  if (!fs::is_directory(path, ec)) {
+    checkWritable(path);  // a new folder: its parent exists and can be written
+    return path;
+  }
+  if (fs::exists(path / kPageMarker, ec)) {
+    checkWritable(path / "index.html");
+    return path;
+  }
+  // Someone else's folder: glint does not write its page over what is there.
+  std::vector<std::string> held;
+  std::size_t count = 0;
+  for (fs::directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec), ++count)
+    if (held.size() < 3) held.push_back(it->path().filename().string());
+  if (count > 0) {
+    std::string list;
+    for (const std::string& name : held) list += (list.empty() ? "" : ", ") + name;
+    fail(ErrorKind::Output, "{} '{}' holds files glint did not write ({}{}): give a new or empty folder, or one glint "
+         "wrote a page into", option, path.string(), list, count > held.size() ? fmt::format(" and {} more", count - held.size()) : "");
+  }
+  checkWritable(path / "index.html");
+  return path;
 }
 
 void savePreview(const Asset& asset, const fs::path& dir) {
@@ -148,9 +179,8 @@ void savePreviewPage(const std::vector<unsigned char>& glb, const std::string& t
   std::vector<fs::path> three;
   for (const char* f : kThreeFiles)
     three.push_back(findDataFile(fs::path("web/three") / f, "three.js for the preview page (scripts/setup installs it)"));
-  std::error_code ec;
-  fs::create_directories(dir / "three", ec);
-  if (ec) fail(ErrorKind::Output, "cannot make the folder '{}': {}", (dir / "three").string(), ec.message());
+  checkPageFolder(dir.string(), "the page's folder");
+  createOutputDirectories(dir / "three");  // removed again if the run fails (core/file.h)
   writeAtomically(dir / "model.glb", [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     out.write(reinterpret_cast<const char*>(glb.data()), std::streamsize(glb.size()));
@@ -182,6 +212,8 @@ void savePreviewPage(const std::vector<unsigned char>& glb, const std::string& t
     page.replace(at, 9, escaped);
   writeTextAtomically(dir / "index.html", page);
   for (std::size_t i = 0; i < three.size(); ++i) writeTextAtomically(dir / "three" / kThreeFiles[i], readTextFile(three[i]));
+  writeTextAtomically(dir / kPageMarker, "glint wrote the web page in this folder (glint bake --preview, glint view "
+                                         "--export-web), and writes it again over its own files.\n");
 }
 
 }  // namespace glint::bake

@@ -257,8 +257,12 @@ std::vector<FileUse> outputFiles(const BakeJob& a) {
       if (m.map != Map::Normal) files.push_back({a.path(m.map), std::string("--") + m.name});
   }
   files.push_back({a.asset, "--asset"});
-  if (!a.preview.empty())
+  if (!a.preview.empty()) {
+    fs::path folder = fs::path(a.preview).lexically_normal();
+    if (!folder.has_filename() && folder.has_parent_path()) folder = folder.parent_path();
+    files.push_back({folder, "--preview"});  // the folder itself: --asset x.gltf --preview x.gltf is two outputs in one place
     for (const std::string& f : previewFiles()) files.push_back({fs::path(a.preview) / f, "--preview"});
+  }
   files.push_back({a.tool.json, "--json"});
   return files;
 }
@@ -279,13 +283,7 @@ void checkAssetOptions(const BakeJob& a) {
     if (hasUdimToken(a.asset)) fail(ErrorKind::Usage, "--asset '{}': one asset holds every UDIM tile; name it without <UDIM>", a.asset);
     checkWritable(a.asset);
   }
-  if (!a.preview.empty()) {
-    std::error_code ec;
-    const fs::path dir(a.preview);
-    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-      fail(ErrorKind::Output, "--preview '{}' is a file, not a folder", a.preview);
-    checkWritable(fs::is_directory(dir, ec) ? dir / "index.html" : dir);
-  }
+  if (!a.preview.empty()) checkPageFolder(a.preview, "--preview");
 }
 
 /// The bake's maps as an asset holds them: 8-bit as an 8-bit file would, the normal map in
@@ -347,8 +345,9 @@ void writeAsset(const BakeJob& a, Asset& asset, ToolRun& run) {
     report["asset"] = a.asset;
   }
   if (!a.preview.empty()) {
-    savePreview(asset, a.preview);
-    report["preview"] = (fs::path(a.preview) / "index.html").string();
+    const fs::path dir = checkPageFolder(a.preview, "--preview");
+    savePreview(asset, dir);
+    report["preview"] = (dir / "index.html").string();
   }
   std::size_t triangles = 0;
   for (const AssetPart& p : asset.parts) triangles += p.mesh.triangleCount();

@@ -82,13 +82,13 @@ Prepared prepareInputs(const Mesh& low, const Mesh& high, const BakeOptions& opt
   if (!(p.diagonal > 0.0f)) fail(ErrorKind::Input, "low-poly mesh: all vertices are at one point");
   if (!p.low.hasNormals()) {
     warn(warnings, "low-poly mesh has no normals: generated smooth normals");
-    computeNormals(p.low);
+    generateSmoothNormals(p.low);  // as a file without normals gets them (mesh.h)
   }
   p.high = &high;
   if (!high.hasNormals()) {
     warn(warnings, "high-poly mesh has no normals: generated smooth normals");
     p.highWithNormals = high;
-    computeNormals(p.highWithNormals);
+    generateSmoothNormals(p.highWithNormals);
     p.high = &p.highWithNormals;
   }
   if (options.cage) {

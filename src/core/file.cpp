@@ -56,7 +56,17 @@ struct OutputSet::Impl {
   };
   std::mutex mutex;
   std::vector<Staged> staged;
+  std::vector<fs::path> createdDirectories;  ///< by createOutputDirectories, outermost first
   Impl* previous = nullptr;  ///< the set that was open before this one
+
+  /// Removes the folders this run made, innermost first, where they are empty again.
+  void removeCreatedDirectories() {
+    for (auto it = createdDirectories.rbegin(); it != createdDirectories.rend(); ++it) {
+      std::error_code ignored;
+      fs::remove(*it, ignored);  // only an empty directory goes
+    }
+    createdDirectories.clear();
+  }
 };
 
 namespace {
@@ -133,6 +143,26 @@ void OutputSet::discard() {
     fs::remove(s.temporary, ignored);
   }
   m_impl->staged.clear();
+  m_impl->removeCreatedDirectories();
+}
+
+void createOutputDirectories(const fs::path& dir) {
+  // The folders that do not exist yet, outermost first.
+  std::vector<fs::path> missing;
+  std::error_code ec;
+  for (fs::path p = fs::absolute(dir, ec).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    missing.insert(missing.begin(), p);
+    if (p == p.parent_path()) break;
+  }
+  for (const fs::path& p : missing) {
+    if (!fs::create_directory(p, ec) && ec)
+      fail(ErrorKind::Output, "cannot make the folder '{}': {}", p.string(), writeFailure(p / "x", ec.value()));
+    const std::lock_guard lock(g_setsMutex);
+    if (g_openSet) {
+      const std::lock_guard setLock(g_openSet->mutex);
+      g_openSet->createdDirectories.push_back(p);
+    }
+  }
 }
 
 bool OutputSet::staged(const fs::path& destination) const {
@@ -190,11 +220,13 @@ void OutputSet::commit() {
     removeAll(backups);
     const fs::path failed = staged[i].destination;
     staged.clear();
+    m_impl->removeCreatedDirectories();
     fail(ErrorKind::Output, "cannot write '{}': {}; no output of this run was written", failed.string(),
          writeFailure(failed, error));
   }
   removeAll(backups);
   staged.clear();
+  m_impl->createdDirectories.clear();  // kept: they hold the run's outputs
 }
 
 namespace {

@@ -149,10 +149,14 @@ ivec2 parseSize(std::string_view text) {
   if (x == std::string_view::npos || !wholeInt(text.substr(0, x), w) || !wholeInt(text.substr(x + 1), h)) {
     fail(ErrorKind::Usage, "size must be WIDTHxHEIGHT (e.g. 640x360), got '{}'", printable(text));
   }
-  if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide) {
-    fail(ErrorKind::Usage, "size {}x{} is out of range (1..{} per side)", w, h, kMaxImageSide);
+  return checkSize({w, h});
+}
+
+ivec2 checkSize(ivec2 size) {
+  if (size.x < 1 || size.y < 1 || size.x > kMaxImageSide || size.y > kMaxImageSide) {
+    fail(ErrorKind::Usage, "size {}x{} is out of range (1..{} per side)", size.x, size.y, kMaxImageSide);
   }
-  return {w, h};
+  return size;
 }
 
 float parseFloat(std::string_view text, std::string_view what) {

@@ -1,6 +1,8 @@
 #include "glint/image/normalmap.h"
 
 #include "glint/core/error.h"
+#include "glint/core/log.h"
+#include "glint/core/text.h"
 
 #include <fmt/format.h>
 
@@ -29,6 +31,53 @@ Image heightFromImage(const Image& image, bool* usedLuminance) {
   if (usedLuminance) *usedLuminance = colour;
   if (image.channels() == 1) return image;
   return image.withChannels(1);  // 2 channels: gray + alpha → gray; RGB(A) → Rec.709 luminance
+}
+
+NormalFormula parseNormalFormula(std::string_view name) {
+  if (name == "gradient") return NormalFormula::Gradient;
+  if (name == "slide") return NormalFormula::Slide;
+  fail(ErrorKind::Usage, "formula must be gradient or slide, got '{}'", printable(name));
+}
+
+namespace {
+/// A colour input that already decodes to unit vectors pointing out of the surface is almost
+/// certainly a normal map: running it through again gives nonsense.
+bool looksLikeNormalMap(const Image& image) {
+  if (image.channels() < 3) return false;
+  bool colourful = false;
+  for (int y = 0; y < image.height() && !colourful; y += std::max(1, image.height() / 64))
+    for (int x = 0; x < image.width() && !colourful; x += std::max(1, image.width() / 64))
+      colourful = std::abs(image.at(x, y, 0) - image.at(x, y, 2)) > 0.1f;
+  if (!colourful) return false;
+  try {
+    prepareNormalMap(image, "input");
+    return true;
+  } catch (const Error&) {
+    return false;
+  }
+}
+}  // namespace
+
+void checkHeightMap(const Image& input, const NormalMapOptions& options, std::string_view what) {
+  if (!std::isfinite(options.scale)) fail(ErrorKind::Usage, "the normal map's scale must be a finite number");
+  if (input.empty()) fail(ErrorKind::Input, "the height map {} is empty", what);
+  if (input.type() == PixelType::F32) {
+    const auto px = input.pixels<float>();
+    const int c = input.channels();
+    for (std::size_t i = 0; i < px.size(); ++i)
+      if (!std::isfinite(px[i]))
+        fail(ErrorKind::Input, "the height map {} has a value that is not a number at texel ({}, {}) channel {}: {}", what,
+             i / std::size_t(c) % std::size_t(input.width()), i / std::size_t(c) / std::size_t(input.width()), i % std::size_t(c),
+             px[i]);
+  }
+  if (input.channels() >= 3) {
+    log::warn("{} has {} channels; using its luminance (0.2126 R + 0.7152 G + 0.0722 B) as the height", what, input.channels());
+    if (looksLikeNormalMap(input))
+      log::warn("{} already looks like a normal map (its colours decode to unit vectors pointing out); the result "
+                "will not mean much", what);
+  } else if (input.channels() == 2) {
+    log::info("{} has gray + alpha; using the gray channel as the height", what);
+  }
 }
 
 Image heightToNormalMap(const Image& input, const NormalMapOptions& options) {

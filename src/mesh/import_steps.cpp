@@ -482,3 +482,26 @@ void warnMissingNormals(const std::string& name, unsigned missing, unsigned mesh
 }
 
 }  // namespace glint::detail
+
+namespace glint {
+
+void generateSmoothNormals(Mesh& mesh) {
+  // One vertex per corner, as the file readers make them before Assimp's rule runs; every
+  // corner of a vertex then has the same sum, which the vertex takes.
+  const std::size_t corners = mesh.indices.size();
+  std::vector<vec3> expanded(corners);
+  std::vector<std::uint32_t> identity(corners);
+  for (std::size_t c = 0; c < corners; ++c) {
+    expanded[c] = mesh.positions[mesh.indices[c]];
+    identity[c] = std::uint32_t(c);
+  }
+  const std::vector<vec3> sums = detail::smoothNormals(expanded, identity);
+  mesh.normals.assign(mesh.positions.size(), vec3(0.0f));
+  for (std::size_t c = 0; c < corners; ++c) {
+    const vec3& n = sums[c];
+    const float length = glm::length(n);
+    mesh.normals[mesh.indices[c]] = length > 0.0f ? n / length : n;
+  }
+}
+
+}  // namespace glint

@@ -75,10 +75,21 @@ void saveAsset(const Asset& asset, const std::filesystem::path& path);
 
 /// The files `--preview DIR` writes, relative to DIR: the page, its script, the asset as a
 /// .glb and as a script (a page opened from disk, file://, may not fetch a .glb beside it),
-/// and three.js's files.
+/// three.js's files, and the marker kPageMarker.
 std::vector<std::string> previewFiles();
 
-/// A page that shows the asset in a browser, written into `dir` (created): index.html with
+/// The file that marks a folder as a page glint wrote: glint writes a page only into a new
+/// folder, an empty one, or one that holds this marker, never over a user's own files.
+inline constexpr const char* kPageMarker = ".glint-page";
+
+/// A page folder as an option names it (`--preview`, `--export-web`), checked before any
+/// work: "prev/" is "prev"; Error(Output), one line, when it is a file, when its parent is
+/// missing or not writable, or when it is a folder that holds files and no kPageMarker
+/// (naming up to three of them). Returns the folder's path without a trailing separator.
+std::filesystem::path checkPageFolder(const std::string& dir, std::string_view option);
+
+/// A page that shows the asset in a browser, written into `dir` (created, checked with
+/// checkPageFolder; inside a run's OutputSet a folder it made goes again if the run fails): index.html with
 /// orbit controls, a studio light rig and one toggle per map (normal map, AO, each extra map
 /// as a colour, wireframe and UV seams), and three.js (copied from glint's data, where
 /// scripts/setup installs it from npm) beside it, so it opens offline from disk or from any

@@ -115,6 +115,12 @@ private:
   std::unique_ptr<Impl> m_impl;
 };
 
+/// Creates `dir` and the folders above it that are missing (Error(Output), one line, when it
+/// cannot). Inside an open OutputSet the folders it made belong to the run: a run that fails
+/// or is interrupted removes them again with its temporaries (where they are empty), so a
+/// failed run leaves no empty folder behind; a committed run keeps them.
+void createOutputDirectories(const std::filesystem::path& dir);
+
 /// The one-line reason a write to `destination` failed: "no space left on device (12 KiB
 /// free)" when its filesystem is full (or `error` is ENOSPC), else strerror(error).
 std::string writeFailure(const std::filesystem::path& destination, int error);

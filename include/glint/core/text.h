@@ -49,8 +49,12 @@ bool isUtf8(std::string_view text);
 /// Largest width or height parseSize accepts (also GL's usual texture limit).
 constexpr int kMaxImageSide = 16384;
 
-/// "WIDTHxHEIGHT" (or "WIDTHXHEIGHT"), each side 1..kMaxImageSide.
+/// "WIDTHxHEIGHT" (or "WIDTHXHEIGHT"), each side 1..kMaxImageSide (checkSize).
 ivec2 parseSize(std::string_view text);
+
+/// Error(Usage) "size WxH is out of range (1..16384 per side)" unless each side is in
+/// 1..kMaxImageSide: the rule every front end applies to a size (--size, glint.render).
+ivec2 checkSize(ivec2 size);
 
 /// A finite decimal number ("1", "-0.5", "2e-3"; a leading '+' allowed). `what` names the
 /// option in the error ("--light", "option 'i'"); a number a float cannot hold ("1e40") is

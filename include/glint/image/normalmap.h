@@ -80,6 +80,18 @@ inline vec3 decodeNormal(vec3 c, bool directX = false) {
 /// converted, so a front end can say so. Keeps the pixel type.
 Image heightFromImage(const Image& image, bool* usedLuminance = nullptr);
 
+/// `glint normalmap --formula` and glint.normalmap's formula: "gradient" or "slide";
+/// Error(Usage) for another name.
+NormalFormula parseNormalFormula(std::string_view name);
+
+/// The checks and words every front end of `glint normalmap` (the command, glint.normalmap)
+/// gives a height map before it is turned into normals, from this one place: Error(Usage)
+/// for a scale that is not finite; Error(Input), one line, for an empty image or a height that
+/// is not finite (NaN or inf: it would make black texels without a word), naming the first
+/// such texel; a warning when a colour image is turned into its luminance, and another when
+/// that image already looks like a normal map. `what` names the input ("bricks.exr").
+void checkHeightMap(const Image& height, const NormalMapOptions& options, std::string_view what);
+
 /// Normal map of a height map of any size (power of two or not) and type: RGBA8, alpha 255,
 /// rgb = encodeNormal(heightNormal(...)) rounded to 8 bits. A colour image is converted with
 /// heightFromImage first. Rows as in the input (row 0 at the top).

@@ -57,6 +57,13 @@ struct Mesh {
 /// Recomputes smooth normals: area-weighted average of incident face normals.
 void computeNormals(Mesh& mesh);
 
+/// Recomputes the normals loadMesh generates for a file without them: at each position, the
+/// normalized sum of the unit normals of the faces there (positions closer than 1e-4 of the
+/// bounding box's diagonal are one; Assimp's GenSmoothNormals). A mesh made from arrays and
+/// the same mesh read from an OBJ, PLY or glTF file get the same normals, whatever their
+/// vertices' sharing: what `glint bake` and glint.bake give a high or low poly without normals.
+void generateSmoothNormals(Mesh& mesh);
+
 /// Square in the XZ plane centred at the origin, normal +Y, UVs 0..uvScale.
 Mesh makePlane(float size = 2.0f, float uvScale = 1.0f);
 /// Like makePlane with (cellsX × cellsZ) quads; useful for displacement and tessellated grounds.
