@@ -3,6 +3,8 @@
 // Thin: the options, the checks, the bake and the batches are the library's (bake/job.h).
 #include "common.h"
 
+#include "glint/core/json.h"
+
 #include "glint/bake/job.h"
 #include "glint/core/error.h"
 
@@ -21,7 +23,14 @@ Command bakeCommand(CLI::App& app, const GlobalOptions&) {
                          ->type_name("I")->needs(batch);
   CLI::Option* list = cmd->add_flag("--list", request->list, "With --batch: print the jobs as glint bake command "
                                     "lines, run nothing")->needs(batch);
-  return Command{.run = [a, request, cmd, batch, job, list] {
+  auto describe = std::make_shared<bool>(false);
+  cmd->add_flag("--describe", *describe, "Print the options and maps as JSON (names, help, defaults, the sample counts "
+                "--samples takes): what a front end such as the Blender add-on builds its panel from; bake nothing");
+  return Command{.run = [a, request, cmd, batch, job, list, describe] {
+                   if (*describe) {
+                     std::fputs(jsonText(bake::describe()).c_str(), stdout);
+                     return 0;
+                   }
                    if (!request->file.empty() || batch->count() > 0) {
                      if (cmd->get_option("low")->count() > 0 || cmd->get_option("high")->count() > 0)
                        fail(ErrorKind::Usage, "bake: --batch takes the meshes from {}: give no LOW HIGH with it", request->file);

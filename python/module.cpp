@@ -523,6 +523,9 @@ PYBIND11_MODULE(_glint, m) {
     for (const bake::MapInfo& info : bake::mapTable()) names.emplace_back(info.reportKey, info.name);
     return names;
   });
+  // The bake's options and maps as data (bake::describe, `glint bake --describe`): what the
+  // Blender add-on builds its panel from.
+  m.def("bake_options", [] { return pythonJson(bake::describe()); });
   m.def("effect_names", &post::effectNames);
   m.def("variants", [] {
     std::vector<std::string> names;

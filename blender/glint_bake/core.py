@@ -1,32 +1,31 @@
-# The add-on's work, apart from its user interface (__init__.py): Blender meshes to arrays,
-# the bake through glint (the module, or the command where the module cannot load), the maps
+# The add-on's work, apart from its user interface (__init__.py): what glint offers (its
+# options and maps, asked of glint itself), Blender meshes to arrays, the bake through glint
+# (the module, or the command where the module cannot load) on a worker thread, the maps
 # into Blender images, and the wiring of the low poly's material.
+#
+# Nothing here re-implements glint: the maps, their labels and help, the sample counts, the
+# size limits and the defaults come from glint.bake_options() (or `glint bake --describe`);
+# the command's fallback hands it meshes through Blender's own glTF exporter and reads its
+# --json report for the UDIM tiles it wrote.
 import json
 import os
 import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 import bpy
 import numpy as np
 
-# (name, label, description) of the maps the panel offers: glint bake's names.
-MAPS = [
-    ("normal", "Normal", "Tangent-space normal map (OpenGL convention, as Blender's Normal Map node reads it)"),
-    ("ao", "AO", "Ambient occlusion of the high poly"),
-    ("curvature", "Curvature", "Mean curvature of the high poly: 0.5 flat, brighter convex"),
-    ("thickness", "Thickness", "How thin the high poly is behind each texel"),
-    ("height", "Height", "Distance from the low poly to the high poly: 0.5 on the low poly"),
-    ("position", "Position", "Object-space position, scaled into the object's bounds"),
-]
-# Maps that hold data rather than colour: Blender must not decode them as sRGB.
-DATA_MAPS = {"normal", "ao", "curvature", "thickness", "height", "position"}
-
 
 class BakeError(Exception):
     """A failure to show the artist as a one-line report."""
+
+
+class Cancelled(Exception):
+    """The artist stopped the bake (Esc, or the Cancel button)."""
 
 
 def json_text(value):
@@ -36,9 +35,9 @@ def json_text(value):
 # ------------------------------------------------------------------ where glint is
 def load_module(preferences):
     """The glint module, or None where it cannot load (or the command is asked for)."""
-    if preferences.use_command:
+    if preferences is not None and preferences.use_command:
         return None
-    folder = bpy.path.abspath(preferences.module_path) if preferences.module_path else ""
+    folder = bpy.path.abspath(preferences.module_path) if preferences is not None and preferences.module_path else ""
     if folder and folder not in sys.path:
         sys.path.insert(0, folder)
     try:
@@ -49,20 +48,51 @@ def load_module(preferences):
 
 
 def command_path(preferences):
-    command = bpy.path.abspath(preferences.command) if os.sep in preferences.command else preferences.command
-    found = shutil.which(command)
-    if not found:
-        raise BakeError(f"glint: neither the Python module nor the command '{preferences.command}' was found "
-                        "(set them in the add-on's preferences)")
-    return found
+    """The glint command's path, or None."""
+    name = preferences.command if preferences is not None else "glint"
+    command = bpy.path.abspath(name) if os.sep in name else name
+    return shutil.which(command)
 
 
 def backend_description(preferences):
     module = load_module(preferences)
     if module is not None:
         return f"Bakes through the glint module {module.__version__} ({os.path.dirname(module.__file__)})"
-    found = shutil.which(preferences.command)
+    found = command_path(preferences)
     return f"Bakes through the glint command ({found})" if found else "glint not found: set the module or the command"
+
+
+_TABLE = {}
+
+
+def bake_table(preferences):
+    """glint's own description of its bake (glint.bake_options(), or `glint bake --describe`):
+    the maps, each option's help and default, the sample counts, the size range. None when
+    glint is not found. Asked once per backend."""
+    module = load_module(preferences)
+    key = ("module", module.__file__) if module is not None else ("command", command_path(preferences))
+    if key in _TABLE:
+        return _TABLE[key]
+    table = None
+    if module is not None:
+        table = module.bake_options()
+    elif key[1]:
+        result = subprocess.run([key[1], "bake", "--describe"], capture_output=True, text=True)
+        if result.returncode == 0:
+            table = json.loads(result.stdout)
+    _TABLE[key] = table
+    return table
+
+
+def offered_maps(table):
+    """The maps the add-on offers: those a bake from Blender's meshes can make (not the ones
+    read from a high poly's parts, which arrays do not carry)."""
+    return [m for m in table["maps"] if not m["parts"] and m["name"] != "miss_mask"]
+
+
+def default(table, option, fallback):
+    entry = table["options"].get(option, {})
+    return entry.get("default", fallback)
 
 
 # ------------------------------------------------------------------ meshes
@@ -91,28 +121,27 @@ def mesh_arrays(obj, depsgraph, with_uvs):
         mesh.vertices.foreach_get("co", points)
         points = points.reshape(-1, 3)
         uvs, uv_name = None, ""
+        # uint32, Blender's own type: foreach_get then copies the arrays whole (a 262k-triangle
+        # mesh in 5 ms); any other dtype goes item by item (35 ms).
+        corners = np.empty(triangles * 3, np.uint32)
+        mesh.loop_triangles.foreach_get("loops", corners)
+        vertex_of = np.empty(loops, np.uint32)
+        mesh.loops.foreach_get("vertex_index", vertex_of)
         if shared:
             # Shared vertices: Blender's vertex normals are the corners' normals.
-            # uint32, Blender's own type: foreach_get then copies the arrays whole (a
-            # 262k-triangle mesh in 5 ms); any other dtype goes item by item (35 ms).
-            corners = np.empty(triangles * 3, np.uint32)
-            mesh.loop_triangles.foreach_get("loops", corners)
-            vertex_of = np.empty(loops, np.uint32)
-            mesh.loops.foreach_get("vertex_index", vertex_of)
             corners = vertex_of[corners]
             normals = np.empty(vertices * 3, np.float32)
             source = mesh.vertex_normals if hasattr(mesh, "vertex_normals") else mesh.vertices
             source.foreach_get("vector" if hasattr(mesh, "vertex_normals") else "normal", normals)
             positions, normals = points, normals.reshape(-1, 3)
         else:
-            if hasattr(mesh, "calc_normals_split"):
+            if hasattr(mesh, "calc_normals_split"):  # Blender < 4.1; later ones keep them up to date
                 mesh.calc_normals_split()
-            corners = np.empty(triangles * 3, np.uint32)
-            mesh.loop_triangles.foreach_get("loops", corners)
-            vertex_of = np.empty(loops, np.uint32)
-            mesh.loops.foreach_get("vertex_index", vertex_of)
             normals = np.empty(loops * 3, np.float32)
-            mesh.loops.foreach_get("normal", normals)
+            if hasattr(mesh, "corner_normals"):  # Blender 4.1+
+                mesh.corner_normals.foreach_get("vector", normals)
+            else:
+                mesh.loops.foreach_get("normal", normals)
             positions, normals = points[vertex_of], normals.reshape(-1, 3)
             if with_uvs:
                 layer = next((l for l in mesh.uv_layers if l.active_render), mesh.uv_layers.active)
@@ -173,199 +202,261 @@ def bake_pairs(context, settings):
     return [(low, highs)]
 
 
-def chosen_maps(settings):
-    maps = [name for name, _, _ in MAPS if getattr(settings, "bake_" + name)]
+def chosen_maps(settings, table):
+    maps = [m["name"] for m in offered_maps(table) if getattr(settings, "bake_" + m["name"], False)]
     if not maps:
         raise BakeError("glint: choose at least one map to bake")
     return maps
 
 
-# ------------------------------------------------------------------ the bake
-def bake_scene(context, settings, preferences, progress):
-    """Bakes every pair, makes the images and wires them. Returns a report: what was baked,
-    and the seconds of each phase (export, bake, import, wire)."""
-    glint = load_module(preferences)
-    maps = chosen_maps(settings)
-    depsgraph = context.evaluated_depsgraph_get()
-    report = {"backend": "module" if glint is not None else "command", "pairs": [],
-              "seconds": {"export": 0.0, "bake": 0.0, "import": 0.0, "wire": 0.0}}
-    seconds = report["seconds"]
-    for low, highs in bake_pairs(context, settings):
+# ------------------------------------------------------------------ the bake, in two halves
+class Bake:
+    """One press of Bake with glint: prepare() on Blender's thread (the meshes as arrays, or
+    as glTF files for the command), run() anywhere (glint's bake: no Blender data touched, so
+    it may run on a worker thread while Blender stays responsive), apply() on Blender's
+    thread once every pair has baked (images, packing, wiring). A cancel between or during
+    pairs leaves the scene as it was: nothing is applied before every bake has finished."""
+
+    def __init__(self, context, settings, preferences):
+        self.glint = load_module(preferences)
+        self.command = None if self.glint is not None else command_path(preferences)
+        if self.glint is None and self.command is None:
+            raise BakeError(f"glint: neither the Python module nor the command '{preferences.command}' was found "
+                            "(set them in the add-on's preferences)")
+        self.table = bake_table(preferences)
+        if self.table is None:
+            raise BakeError("glint: the glint found does not describe its bake (glint bake --describe): update it")
+        self.maps = chosen_maps(settings, self.table)
+        self.size = settings.size
+        self.float_maps = settings.float_maps
+        self.save_folder = settings.save_folder
+        self.wire = settings.wire
+        self.options = {"samples": int(settings.samples), "max_front": settings.max_front, "max_rear": settings.max_rear}
+        if "ao" in self.maps or "bent_normal" in self.maps or "thickness" in self.maps:
+            self.options["ao_samples"] = settings.ao_samples
+        self.pairs = bake_pairs(context, settings)
+        self.backend = "module" if self.glint is not None else "command"
+        self.seconds = {"export": 0.0, "bake": 0.0, "import": 0.0, "wire": 0.0}
+        self.cancel = threading.Event()
+        self.progress = {"label": "starting", "done": 0, "total": 1, "pair": 0}
+        self.results = []
+        self.folder = None  # the command's files
+
+    # -------------------------------------------------------------- on Blender's thread
+    def prepare(self, context):
+        """The meshes of every pair, read from Blender now (the worker never touches bpy)."""
         start = time.perf_counter()
-        low_arrays = mesh_arrays(low, depsgraph, True)
-        high_arrays = joined([mesh_arrays(h, depsgraph, False) for h in highs])
-        seconds["export"] += time.perf_counter() - start
-        options = {"samples": int(settings.samples), "max_front": settings.max_front, "max_rear": settings.max_rear}
-        extension = ".exr" if settings.float_maps else ".png"
-        if "ao" in maps:
-            options["ao_samples"] = settings.ao_samples
-        start = time.perf_counter()
-        if glint is not None:
-            baked = bake_with_module(glint, low_arrays, high_arrays, settings.size, maps, options, progress,
-                                     32 if settings.float_maps else 8)
+        depsgraph = context.evaluated_depsgraph_get()
+        self.inputs = []
+        if self.glint is not None:
+            for low, highs in self.pairs:
+                low_arrays = mesh_arrays(low, depsgraph, True)
+                self.inputs.append((low_arrays, joined([mesh_arrays(h, depsgraph, False) for h in highs])))
         else:
-            baked = bake_with_command(command_path(preferences), low_arrays, high_arrays, settings.size, maps, options,
-                                      extension)
-        bake_seconds = time.perf_counter() - start
-        seconds["bake"] += bake_seconds
-        start = time.perf_counter()
+            self.folder = tempfile.mkdtemp(prefix="glint-bake-")
+            for index, (low, highs) in enumerate(self.pairs):
+                uv_name = mesh_arrays(low, depsgraph, True)[4]  # checks the UV map, names it for the wiring
+                low_file = export_gltf(context, [low], os.path.join(self.folder, f"low{index}.glb"))
+                high_file = export_gltf(context, highs, os.path.join(self.folder, f"high{index}.glb"))
+                self.inputs.append((low_file, high_file, uv_name))
+        self.seconds["export"] += time.perf_counter() - start
+
+    # -------------------------------------------------------------- anywhere
+    def run(self):
+        """Bakes every pair (glint's work; nothing of Blender's is read or written)."""
+        for index, inputs in enumerate(self.inputs):
+            if self.cancel.is_set():
+                raise Cancelled()
+            self.progress["pair"] = index
+            start = time.perf_counter()
+            if self.glint is not None:
+                baked = self.bake_with_module(*inputs)
+            else:
+                baked = self.bake_with_command(index, *inputs)
+            self.seconds["bake"] += time.perf_counter() - start
+            self.results.append(baked)
+
+    def on_progress(self, label, done, total):
+        self.progress.update(label=label, done=done, total=max(total, 1))
+        if self.cancel.is_set():
+            raise Cancelled()  # glint stops its bake and raises it back
+
+    def bake_with_module(self, low_arrays, high_arrays):
+        glint = self.glint
+        positions, triangles, normals, uvs, _ = low_arrays
+        low = glint.Mesh(positions, triangles, normals, uvs)
+        high = glint.Mesh(*high_arrays)
         try:
-            images = {name: make_image(glint, f"{low.name}_{name}", value, name, settings.save_folder, extension)
-                      for name, value in baked.items()}
-        except (OSError, RuntimeError) as error:  # an unwritable folder (glint.OutputError is both)
+            result = glint.bake(low, high, size=self.size, maps=self.maps, progress=self.on_progress,
+                                bits=32 if self.float_maps else 8, **self.options)
+        except glint.Error as error:
             raise BakeError(f"glint: {error}") from None
-        seconds["import"] += time.perf_counter() - start
+        return dict(result)
+
+    def bake_with_command(self, index, low_file, high_file, uv_name):
+        """`glint bake` on the glTF files Blender exported: a map file each (a file per UDIM
+        tile, as its --json report lists them), read back by Blender."""
+        extension = ".exr" if self.float_maps else ".png"
+        by_option = {m["name"]: m["option"] for m in self.table["maps"]}
+        # Every map named with <UDIM>: glint decides the tiles and its report lists them. Tile
+        # 1001 alone is a bake inside the unit square, a plain image as the module gives it.
+        name = lambda m: os.path.join(self.folder, f"{index}-{m}.<UDIM>{extension}")
+        report_path = os.path.join(self.folder, f"{index}-report.json")
+        arguments = [self.command, "bake", low_file, high_file, "-o", name("normal"), "--size", f"{self.size}x{self.size}",
+                     "-q", "--json", report_path]
+        for m in self.maps:
+            if m != "normal":
+                arguments += ["--" + by_option[m], name(m)]
+        for key, value in self.options.items():
+            arguments += ["--" + key.replace("_", "-"), str(value)]
+        process = subprocess.Popen(arguments, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        self.progress.update(label="bake (command)", done=0, total=1)
+        while process.poll() is None:
+            if self.cancel.is_set():
+                process.terminate()  # glint stops at once, leaving no partial file
+                process.wait()
+                raise Cancelled()
+            time.sleep(0.05)
+        errors = process.stderr.read()
+        if process.returncode != 0:
+            lines = [line for line in errors.splitlines() if line.strip()]
+            raise BakeError(lines[-1] if lines else f"glint: glint bake failed (exit {process.returncode})")
+        with open(report_path) as f:
+            report = json.load(f)
+        tiles = [t["tile"] for t in report.get("udim_tiles", [])]
+        baked = {}
+        for m in self.maps:
+            files = {t: name(m).replace("<UDIM>", str(t)) for t in tiles}
+            baked[m] = files[1001] if tiles == [1001] else files
+        return baked
+
+    # -------------------------------------------------------------- on Blender's thread
+    def apply(self):
+        """The maps as Blender images (packed into the .blend, or saved in the folder), then the
+        low polys' materials wired. Returns the report. Images first, for every pair: if one
+        cannot be made (an unwritable folder), those made are removed and no material changes."""
+        report = {"backend": self.backend, "pairs": [], "seconds": self.seconds}
+        extension = ".exr" if self.float_maps else ".png"
         start = time.perf_counter()
-        if settings.wire:
-            wire_material(low, images, low_arrays[4])
-        seconds["wire"] += time.perf_counter() - start
-        report["pairs"].append({"low": low.name, "high": [h.name for h in highs], "maps": sorted(images),
-                                "images": {k: v.name for k, v in images.items()}, "bake_seconds": bake_seconds})
-    names = ", ".join(p["low"] for p in report["pairs"])
-    report["summary"] = (f"glint baked {', '.join(maps)} at {settings.size}² for {names} in "
-                         f"{sum(seconds.values()):.2f} s (bake {seconds['bake']:.2f} s)")
-    return report
+        made, per_pair = [], []
+        try:
+            for (low, _), baked in zip(self.pairs, self.results):
+                images = {}
+                for m, value in baked.items():
+                    images[m] = make_image(self.glint, f"{low.name}_{m}", value, self.colour(m), self.save_folder, extension)
+                    made.append(images[m])
+                per_pair.append(images)
+        except (OSError, RuntimeError) as error:  # an unwritable folder (glint.OutputError is both)
+            for image in made:
+                bpy.data.images.remove(image)
+            self.cleanup()
+            raise BakeError(f"glint: {error}") from None
+        self.seconds["import"] += time.perf_counter() - start
+        start = time.perf_counter()
+        for (low, highs), inputs, images in zip(self.pairs, self.inputs, per_pair):
+            if self.wire:
+                wire_material(low, images, inputs[0][4] if self.glint is not None else inputs[2])
+            report["pairs"].append({"low": low.name, "high": [h.name for h in highs], "maps": sorted(images),
+                                    "images": {k: v.name for k, v in images.items()}})
+        self.seconds["wire"] += time.perf_counter() - start
+        names = ", ".join(p["low"] for p in report["pairs"])
+        report["summary"] = (f"glint baked {', '.join(self.maps)} at {self.size}² for {names} in "
+                             f"{sum(self.seconds.values()):.2f} s (bake {self.seconds['bake']:.2f} s)")
+        self.cleanup()
+        return report
+
+    def colour(self, map_name):
+        return next((m["colour"] for m in self.table["maps"] if m["name"] == map_name), False)
+
+    def cleanup(self):
+        if self.folder:
+            shutil.rmtree(self.folder, ignore_errors=True)
+            self.folder = None
 
 
-def bake_with_module(glint, low_arrays, high_arrays, size, maps, options, progress, bits):
-    positions, triangles, normals, uvs, _ = low_arrays
-    low = glint.Mesh(positions, triangles, normals, uvs)
-    high = glint.Mesh(*high_arrays)
+def export_gltf(context, objects, path):
+    """The objects as Blender's own glTF exporter writes them (modifiers applied, Blender's
+    triangulation and split normals, the UV maps; Z up kept: glint bakes in Blender's world
+    space), for the command where the module cannot load. Blender writes the mesh format,
+    glint reads it: the add-on writes none itself. The artist's selection is put back."""
+    wanted = {"export_format": "GLB", "use_selection": True, "export_apply": True, "export_yup": False,
+              "export_normals": True, "export_texcoords": True, "export_tangents": False, "export_materials": "NONE",
+              "export_colors": False, "export_vertex_color": "NONE", "export_animations": False, "export_skins": False,
+              "export_morph": False, "export_cameras": False, "export_lights": False, "export_extras": False}
+    known = bpy.ops.export_scene.gltf.get_rna_type().properties.keys()  # the names differ between Blender versions
+    options = {k: v for k, v in wanted.items() if k in known}
+    layer = context.view_layer
+    selected = [o for o in layer.objects if o.select_get()]
+    active = layer.objects.active
     try:
-        result = glint.bake(low, high, size=size, maps=maps, progress=progress, bits=bits, **options)
-    except glint.Error as error:
-        raise BakeError(f"glint: {error}") from None
-    return dict(result)
-
-
-def write_obj(path, positions, triangles, normals, uvs=None):
-    """An OBJ file of one vertex per corner (v, vn and vt alike, so every face is i/i/i)."""
-    with open(path, "w") as out:
-        np.savetxt(out, positions, fmt="v %.9g %.9g %.9g")
-        np.savetxt(out, normals, fmt="vn %.9g %.9g %.9g")
-        if uvs is not None:
-            np.savetxt(out, uvs, fmt="vt %.9g %.9g")
-        f = triangles.astype(np.int64) + 1
-        if uvs is not None:
-            np.savetxt(out, np.repeat(f, 3, axis=1), fmt="f %d/%d/%d %d/%d/%d %d/%d/%d")
-        else:
-            np.savetxt(out, np.repeat(f, 2, axis=1), fmt="f %d//%d %d//%d %d//%d")
-
-
-def bake_with_command(command, low_arrays, high_arrays, size, maps, options, extension):
-    """The same bake through `glint bake`: OBJ files in, PNG (or EXR) files out, read back by Blender."""
-    folder = tempfile.mkdtemp(prefix="glint-bake-")
-    positions, triangles, normals, uvs, _ = low_arrays
-    write_obj(os.path.join(folder, "low.obj"), positions, triangles, normals, uvs)
-    write_obj(os.path.join(folder, "high.obj"), *high_arrays)
-    udim = bool(uvs.size) and (uvs.min() < 0.0 or uvs.max() > 1.0)
-    name = (lambda m: os.path.join(folder, f"{m}.<UDIM>{extension}")) if udim else (lambda m: os.path.join(folder, f"{m}{extension}"))
-    arguments = [command, "bake", os.path.join(folder, "low.obj"), os.path.join(folder, "high.obj"),
-                 "-o", name("normal"), "--size", f"{size}x{size}", "-q"]
-    for m in maps:
-        if m != "normal":
-            arguments += ["--" + m, name(m)]
-    for key, value in options.items():
-        arguments += ["--" + key.replace("_", "-"), str(value)]
-    result = subprocess.run(arguments, capture_output=True, text=True)
-    if result.returncode != 0:
-        lines = [line for line in result.stderr.splitlines() if line.strip()]
-        raise BakeError(f"glint: {lines[-1] if lines else f'glint bake failed (exit {result.returncode})'}")
-    baked = {}
-    for m in maps:
-        if udim:
-            tiles = {}
-            for file in sorted(os.listdir(folder)):
-                number = file[len(m) + 1:-len(extension)]
-                if file.startswith(m + ".") and file.endswith(extension) and number.isdigit():
-                    tiles[int(number)] = os.path.join(folder, file)
-            baked[m] = tiles
-        else:
-            baked[m] = os.path.join(folder, f"{m}{extension}")
-    return baked
+        for o in layer.objects:
+            o.select_set(o in objects)
+        layer.objects.active = objects[0]
+        bpy.ops.export_scene.gltf(filepath=path, **options)
+    finally:
+        for o in layer.objects:
+            o.select_set(o in selected)
+        layer.objects.active = active
+    return path
 
 
 # ------------------------------------------------------------------ images
-def make_image(glint, name, value, map_name, save_folder, extension=".png"):
+def make_image(glint, name, value, colour, save_folder, extension=".png"):
     """A Blender image of one map: from an array (the module), a file (the command), or for
-    UDIM a dict of either by tile. Saved in save_folder when given; otherwise, as Blender's
-    own bake leaves its images, an image made from an array is unsaved (File > Save asks,
-    Image > Pack keeps it in the .blend), and one read from a temporary file is packed."""
+    UDIM a dict of either by tile. Saved in save_folder when given (its path relative to the
+    .blend when the .blend is saved); otherwise packed into the .blend, so saving, closing
+    and reopening the .blend shows the same map. Kept by a fake user either way: a map is
+    not lost because no material uses it yet."""
     folder = bpy.path.abspath(save_folder) if save_folder else ""
     if folder:
         os.makedirs(folder, exist_ok=True)
     # The image keeps the object's name; a file gets it cleaned (no "/", no line break).
     file_stem = bpy.path.clean_name(name)
-    if isinstance(value, dict):  # UDIM: tiles as NAME.<tile>.png, loaded as one tiled image
-        tile_folder = folder or tempfile.mkdtemp(prefix="glint-udim-")
-        for tile, tile_value in value.items():
-            path = os.path.join(tile_folder, f"{file_stem}.{tile}{extension}")
-            if isinstance(tile_value, str):
-                shutil.copyfile(tile_value, path)
-            else:
-                glint.write_image(path, tile_value)
-        first = os.path.join(tile_folder, f"{file_stem}.{min(value)}{extension}")
-        old = bpy.data.images.get(name)
-        if old is not None:
-            bpy.data.images.remove(old)
-        image = bpy.data.images.load(first)
-        image.name = name
-        image.source = "TILED"
-        image.colorspace_settings.name = "Non-Color" if map_name in DATA_MAPS else "sRGB"
-        if not folder:
-            packed(image, tile_folder)
-        return image
-    if isinstance(value, str) or folder:  # a file: the command's, or the module's array saved
-        path = value
-        if folder:
-            path = os.path.join(folder, f"{file_stem}{extension}")
-            if isinstance(value, str):
-                shutil.copyfile(value, path)
-            else:
-                glint.write_image(path, value)
-        old = bpy.data.images.get(name)
-        if old is not None:
-            bpy.data.images.remove(old)
-        image = bpy.data.images.load(path)
-        image.name = name
-        image.colorspace_settings.name = "Non-Color" if map_name in DATA_MAPS else "sRGB"
-        if not folder:
-            packed(image, os.path.dirname(path))
-        return image
-    array = value
-    height, width = array.shape[:2]
-    floats = array.dtype == np.float32
     old = bpy.data.images.get(name)
-    if old is not None and (tuple(old.size) != (width, height) or old.is_float != floats or old.source != "GENERATED"):
+    if old is not None:
         bpy.data.images.remove(old)
-        old = None
-    image = old or bpy.data.images.new(name, width, height, alpha=False, float_buffer=floats)
-    image.colorspace_settings.name = "Non-Color" if map_name in DATA_MAPS else "sRGB"
-    image.pixels.foreach_set(glint.rgba_rows_up(array) if glint is not None else rgba_rows_up(array))
-    image.update()
+    temporary = None  # a folder of files read only to be packed
+    if isinstance(value, dict):  # UDIM: tiles as NAME.<tile>.ext, loaded as one tiled image
+        tile_folder = folder or tempfile.mkdtemp(prefix="glint-udim-")
+        temporary = None if folder else tile_folder
+        for tile, tile_value in value.items():
+            write_file(glint, os.path.join(tile_folder, f"{file_stem}.{tile}{extension}"), tile_value)
+        image = bpy.data.images.load(os.path.join(tile_folder, f"{file_stem}.{min(value)}{extension}"))
+        image.source = "TILED"
+    elif folder:  # saved: the command's file copied, or the module's array written by glint
+        path = os.path.join(folder, f"{file_stem}{extension}")
+        write_file(glint, path, value)
+        image = bpy.data.images.load(path)
+    elif isinstance(value, str):  # the command's file, to be packed
+        image = bpy.data.images.load(value)
+    else:
+        height, width = value.shape[:2]
+        image = bpy.data.images.new(name, width, height, alpha=False, float_buffer=value.dtype == np.float32)
+        # The colour space before the pixels: setting it on a generated image makes it again (black).
+        image.colorspace_settings.name = "sRGB" if colour else "Non-Color"
+        image.pixels.foreach_set(glint.rgba_rows_up(value))
+        image.file_format = "OPEN_EXR" if value.dtype == np.float32 else "PNG"
+        image.update()
+    image.name = name
+    if image.colorspace_settings.name != ("sRGB" if colour else "Non-Color"):
+        image.colorspace_settings.name = "sRGB" if colour else "Non-Color"
+    image.use_fake_user = True
+    if folder:
+        if bpy.data.filepath:  # beside the .blend: a path that moves with it
+            image.filepath = bpy.path.relpath(image.filepath_raw)
+    else:
+        image.pack()  # inside the .blend: nothing to lose when it is saved
+        if temporary:
+            shutil.rmtree(temporary, ignore_errors=True)
     return image
 
 
-def packed(image, temporary_folder):
-    """Packs an image read from a temporary folder into the .blend, then removes the folder."""
-    image.pack()
-    if len(image.packed_files) > 0:
-        shutil.rmtree(temporary_folder, ignore_errors=True)
-
-
-def rgba_rows_up(array):
-    """(numpy's version of glint.rgba_rows_up, for the command's arrays) glint's rows (top first, 1–4 channels, uint8/uint16/float32) as Blender's pixels:
-    RGBA floats, bottom row first."""
-    scale = {np.dtype(np.uint8): 1.0 / 255.0, np.dtype(np.uint16): 1.0 / 65535.0}.get(array.dtype, 1.0)
-    height, width = array.shape[:2]
-    channels = 1 if array.ndim == 2 else array.shape[2]
-    out = np.ones((height, width, 4), np.float32)
-    source = array[::-1].reshape(height, width, channels)
-    if channels == 1:
-        out[..., :3] = source * np.float32(scale)
+def write_file(glint, path, value):
+    """A map into `path`: the command's file copied, or the module's array written by glint."""
+    if isinstance(value, str):
+        shutil.copyfile(value, path)
     else:
-        out[..., : min(channels, 4)] = source[..., :4] * np.float32(scale)
-    return out.ravel()
+        glint.write_image(path, value)
 
 
 # ------------------------------------------------------------------ the material

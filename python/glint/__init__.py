@@ -54,7 +54,7 @@ __version__ = _glint.version()
 
 __all__ = [
     "Error", "UsageError", "InputError", "OutputError", "NoGpuError", "OutOfMemoryError",
-    "Mesh", "BakeResult", "info", "load_mesh", "read_image", "write_image", "rgba_rows_up", "bake", "bake_batch", "normalmap", "post", "frames",
+    "Mesh", "BakeResult", "info", "load_mesh", "bake_options", "read_image", "write_image", "rgba_rows_up", "bake", "bake_batch", "normalmap", "post", "frames",
     "cut", "render",
 ]
 
@@ -128,6 +128,14 @@ def _size_text(size: Size) -> str:
         return size
     width, height = size
     return f"{int(width)}x{int(height)}"
+
+
+def bake_options() -> dict:
+    """The bake's options and maps as data, the same as `glint bake --describe` prints: "maps" (each
+    map's name, option, label, help and whether it is colour or data), "options" (every option's
+    help, default and kind), "samples" (the values samples= takes), "size" and "ao_samples" ranges.
+    Front ends (the Blender add-on) build their controls from it instead of copying them."""
+    return _glint.bake_options()
 
 
 def bake(low: MeshLike, high: MeshLike, size: Size = (1024, 1024), maps: Sequence[str] = ("normal",), *,

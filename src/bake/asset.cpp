@@ -42,9 +42,6 @@ Mesh frameLowPoly(Mesh low) {
 
 namespace {
 
-/// Maps whose 8-bit pixels are colours to look at (sRGB), not data.
-bool isColour(Map m) { return m == Map::VertexColor || m == Map::MaterialId; }
-
 /// One primitive: the part's vertices (glTF's UVs: v flipped) and triangles.
 AssetJson addPrimitive(gltf::Document& doc, const AssetPart& part) {
   const Mesh& m = part.mesh;
@@ -86,7 +83,7 @@ AssetJson addMaterials(gltf::Document& doc, const Asset& asset) {
         at->second = doc.addTexture(doc.addImage(encodePng(u8), fmt::format("{} {}", material.name, info.reportKey)));
       }
       maps[info.reportKey] = {{"texture", at->second},
-                              {"color_space", isColour(info.map) ? "srgb" : "linear"},
+                              {"color_space", isColourMap(info.map) ? "srgb" : "linear"},
                               {"channels", image.channels()},
                               {"order", int(info.map)},  // the table's (JSON objects keep none)
                               {"holds", info.summary}};

@@ -209,6 +209,46 @@ void addOptions(CLI::App& cmd, BakeJob& a, Meshes meshes) {
 }
 
 
+nlohmann::ordered_json describe() {
+  BakeJob job;
+  CLI::App app;
+  addOptions(app, job, Meshes::Optional);
+  Json options = Json::object();
+  for (const CLI::Option* option : app.get_options()) {
+    if (option == app.get_help_ptr()) continue;
+    const std::string& name = option->get_single_name();
+    Json entry = {{"help", option->get_description()}};
+    if (option->get_expected_max() == 0) {
+      entry["kind"] = "flag";
+    } else {
+      entry["kind"] = option->get_type_name() == kFile ? "file" : "value";
+      if (!option->get_default_str().empty()) entry["default"] = option->get_default_str();
+    }
+    options[name] = std::move(entry);
+  }
+  Json maps = Json::array();
+  for (const MapInfo& m : mapTable()) {
+    std::string label = m.reportKey;
+    std::replace(label.begin(), label.end(), '_', ' ');
+    label[0] = char(std::toupper(static_cast<unsigned char>(label[0])));
+    if (m.map == Map::Ao) label = "AO";
+    else if (m.map == Map::MaterialId) label = "Material ID";
+    maps.push_back({{"name", m.reportKey}, {"option", m.name}, {"label", label}, {"help", m.help}, {"summary", m.summary},
+                    {"channels", m.channels}, {"colour", isColourMap(m.map)},
+                    // Read from the hit triangle's part (its material, its vertex colours): a
+                    // mesh made from arrays (glint.Mesh) has no parts to read.
+                    {"parts", (m.work & kHitTriangle) != 0}});
+  }
+  Json samples = Json::array();
+  for (int root = 1; root * root <= kMaxSamples; ++root) samples.push_back(root * root);
+  return {{"version", ToolRun::version()},
+          {"maps", std::move(maps)},
+          {"options", std::move(options)},
+          {"samples", std::move(samples)},
+          {"size", {{"min", 1}, {"max", kMaxImageSide}}},
+          {"ao_samples", {{"min", 1}, {"max", kMaxAoSamples}}}};
+}
+
 std::string helpFooter() {
   // The map list from the table (bake/maps.h): an option, then what a texel holds.
   std::string maps = "Maps (each its own file, baked in the same pass as the normal map; docs/bake.md, \"Maps\"):\n";

@@ -173,13 +173,13 @@ void validateOptions(const BakeOptions& options) {
     fail(ErrorKind::Usage, "bake size must be 1..32768 on each side, got {}x{}", options.width, options.height);
   }
   const int root = int(std::lround(std::sqrt(double(std::max(options.samples, 0)))));
-  if (options.samples < 1 || root * root != options.samples || options.samples > 1024) {
-    fail(ErrorKind::Usage, "samples per texel must be a square (1, 4, 9, 16, 25, 36, 49, 64, ... 1024), got {}",
+  if (options.samples < 1 || root * root != options.samples || options.samples > kMaxSamples) {
+    fail(ErrorKind::Usage, "samples per texel must be a square (1, 4, 9, 16, 25, 36, 49, 64, ... {}), got {}", kMaxSamples,
          options.samples);
   }
   if (options.maps.needs(kHemisphereRays | kInwardRays) &&
-      (options.aoSamples < 1 || options.aoSamples > 4096)) {
-    fail(ErrorKind::Usage, "AO samples must be 1..4096, got {}", options.aoSamples);
+      (options.aoSamples < 1 || options.aoSamples > kMaxAoSamples)) {
+    fail(ErrorKind::Usage, "AO samples must be 1..{}, got {}", kMaxAoSamples, options.aoSamples);
   }
   if (options.maxFront.value < 0.0f || options.maxRear.value < 0.0f || options.aoDistance.value < 0.0f ||
       options.thicknessDistance.value < 0.0f || options.curvatureRadius.value < 0.0f) {

@@ -14,6 +14,7 @@
 import math
 import os
 import re
+import subprocess
 import sys
 
 import bpy
@@ -172,12 +173,76 @@ check(np.abs(command_normal[..., :3] - glint_normal[..., :3]).max() <= 2.4e-7,
       "the command's map equals the module's to two float ulps")
 preferences.use_command = False
 
+# ------------------------------------------------------------------ every map, both ways
+# The panel offers the maps glint's own table lists (glint.bake_options()); each is baked
+# through the module and through the command (on the glTF files Blender's exporter writes),
+# which must agree: within 1e-4 (a 40th of an 8-bit step: the two readings' positions differ
+# in the last float bit, which curvature's many short rays sum up) on all but 1 % of the
+# texels (where a ray's hit moves across an edge of the two readings' triangles).
+import glint as glint_module  # noqa: E402  (MODULE_DIR is on the path: the add-on put it there)
+
+offered = [m["name"] for m in glint_module.bake_options()["maps"] if not m["parts"] and m["name"] != "miss_mask"]
+check({"normal", "ao", "bent_normal", "thickness", "curvature", "height", "position", "opacity"} <= set(offered),
+      f"the panel offers glint's maps: {offered}")
+for name in offered:
+    check(hasattr(settings, "bake_" + name), f"a checkbox for {name}")
+    setattr(settings, "bake_" + name, True)
+check(settings.bl_rna.properties["samples"].enum_items.get("49") is not None, "49 samples, as glint takes them")
+by_backend = {}
+for use_command in (False, True):
+    preferences.use_command = use_command
+    check(bpy.ops.object.glint_bake() == {"FINISHED"}, f"every map through the {'command' if use_command else 'module'}")
+    by_backend[use_command] = {name: pixels(bpy.data.images[f"Ball_low_{name}"]) for name in offered}
+preferences.use_command = False
+for name in offered:
+    a, b = by_backend[False][name][..., :3], by_backend[True][name][..., :3]
+    differ = (np.abs(a - b) > 1e-4).any(axis=-1)
+    print(f"{name}: command vs module: {int(differ.sum())} of {differ.size} texels differ, max {np.abs(a - b).max():.3g}")
+    check(differ.mean() < 0.01, f"{name}: the command's map is the module's")
+for name in offered:
+    setattr(settings, "bake_" + name, name in ("normal", "ao"))
+
+# ------------------------------------------------------------------ kept in the .blend
+# The default: no folder, so the maps are packed into the .blend. Saved, closed and opened
+# in a new Blender process, the images hold the same pixels (an unpacked map made from an
+# array would come back black and GENERATED).
+settings.save_folder = ""
+check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a bake into the .blend finishes")
+kept = {name: pixels(bpy.data.images[f"Ball_low_{name}"]) for name in ("normal", "ao")}
+for name in kept:
+    image = bpy.data.images[f"Ball_low_{name}"]
+    check(image.packed_file is not None and image.use_fake_user, f"{name}: packed into the .blend, kept by a fake user")
+np.savez(os.path.join(OUT, "kept.npz"), **kept)
+blend = os.path.join(OUT, "kept.blend")
+bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
+reopen = subprocess.run(
+    [bpy.app.binary_path, "-b", "--factory-startup", blend, "--python-exit-code", "1", "--python-expr",
+     "import bpy, numpy as np\n"
+     f"kept = np.load({os.path.join(OUT, 'kept.npz')!r})\n"
+     "for name in ('normal', 'ao'):\n"
+     "    image = bpy.data.images['Ball_low_' + name]\n"
+     "    w, h = image.size\n"
+     "    px = np.empty(w * h * 4, np.float32)\n"
+     "    image.pixels.foreach_get(px)\n"
+     "    assert image.source == 'FILE' and image.packed_file is not None, (name, image.source)\n"
+     "    assert np.array_equal(px.reshape(h, w, 4), kept[name]), name + ': other pixels after reopening'\n"
+     "print('reopened: the same maps')\n"],
+    capture_output=True, text=True)
+check(reopen.returncode == 0 and "reopened: the same maps" in reopen.stdout,
+      f"saved, closed and reopened in a new Blender: the same maps ({reopen.stderr.strip()[-300:]})")
+
 # ------------------------------------------------------------------ saved files, 8-bit
 settings.float_maps = False
 settings.save_folder = os.path.join(OUT, "maps")
 check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a bake saved as files finishes")
 saved = os.path.join(OUT, "maps", "Ball_low_normal.png")
-check(os.path.exists(saved) and bpy.data.images["Ball_low_normal"].filepath_raw == saved, "the map is saved as PNG")
+check(os.path.exists(saved) and bpy.path.abspath(bpy.data.images["Ball_low_normal"].filepath_raw) == saved,
+      "the map is saved as PNG")
+# With the .blend saved, the map's path is relative to it (the folder and the .blend move together).
+bpy.ops.wm.save_as_mainfile(filepath=os.path.join(OUT, "beside.blend"))
+check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a bake beside a saved .blend finishes")
+check(bpy.data.images["Ball_low_normal"].filepath.startswith("//"), "its path is relative to the .blend: "
+      + bpy.data.images["Ball_low_normal"].filepath)
 sys.path.insert(0, MODULE_DIR)
 import glint  # noqa: E402
 
@@ -187,7 +252,7 @@ check(glint.read_image(saved).shape == (SIZE, SIZE, 3), "a 128×128 RGB PNG")
 low.name = 'Ball/"$(touch PWNED)"\nlow'
 check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a low poly with an odd name bakes")
 odd = bpy.data.images[low.name + "_normal"]
-check(os.path.dirname(odd.filepath_raw) == os.path.join(OUT, "maps") and "\n" not in odd.filepath_raw,
+check(os.path.dirname(bpy.path.abspath(odd.filepath_raw)) == os.path.join(OUT, "maps") and "\n" not in odd.filepath_raw,
       f"its file is in the folder with a clean name: {os.path.basename(odd.filepath_raw)}")
 check(not os.path.exists(os.path.join(OUT, "PWNED")) and not os.path.exists("PWNED"), "no command ran")
 low.name = "Ball_low"
@@ -214,6 +279,15 @@ check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a UDIM bake finishes")
 tiled = bpy.data.images["Ball_low_normal"]
 print("UDIM image:", tiled.source, [t.number for t in tiled.tiles], tiled.filepath)
 check(tiled.source == "TILED" and sorted(t.number for t in tiled.tiles) == [1001, 1002], "one tiled image, tiles 1001 and 1002")
+check(tiled.packed_file is not None or len(tiled.packed_files) > 0, "its tiles packed into the .blend")
+module_tiles = pixels(tiled)
+preferences.use_command = True  # UDIM through the command: the tiles its --json report lists
+check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a UDIM bake through the command finishes")
+tiled = bpy.data.images["Ball_low_normal"]
+check(tiled.source == "TILED" and sorted(t.number for t in tiled.tiles) == [1001, 1002], "the command's: tiles 1001 and 1002")
+check(np.abs(pixels(tiled) - module_tiles).max() <= 2.4e-7 or (np.abs(pixels(tiled) - module_tiles) > 1e-3).mean() < 0.01,
+      "the command's first tile is the module's")
+preferences.use_command = False
 
 # ------------------------------------------------------------------ errors as reports
 bpy.ops.mesh.primitive_cube_add()

@@ -126,6 +126,10 @@ struct Ray;
 
 namespace glint::bake {
 
+/// The most samples per texel (--samples: a square, 32²) and AO rays per sample (--ao-samples).
+inline constexpr int kMaxSamples = 1024;
+inline constexpr int kMaxAoSamples = 4096;
+
 enum class HitSelection {
   Closest,    ///< the hit with the smallest |t|, in front or behind (default)
   FrontFirst  ///< any hit in front of the low poly wins over hits behind it
@@ -150,7 +154,7 @@ struct HeightDetail {
 struct BakeOptions {
   int width = 1024;   ///< output size in texels (any W × H)
   int height = 1024;
-  int samples = 1;    ///< samples per texel, a perfect square (1, 4, 9, 16, 36, 64, ...)
+  int samples = 1;    ///< samples per texel, a perfect square (1, 4, 9, 16, 36, 64, ... kMaxSamples)
   NormalSpace space = NormalSpace::Tangent;
   bool directX = false;           ///< flip green (DirectX/Unreal convention; OpenGL is +Y up)
   mat4 objectToWorld{1.0f};       ///< for NormalSpace::World (normals use its inverse transpose)

@@ -96,6 +96,15 @@ void addOptions(CLI::App& command, BakeJob& job, Meshes meshes);
 /// table), bake groups, notes.
 std::string helpFooter();
 
+/// The bake's options and maps as data, for a front end that builds its own controls from
+/// them rather than copying them (the Blender add-on: glint.bake_options() in Python,
+/// `glint bake --describe` for the command): {"maps": [{"name", "option", "label", "help",
+/// "summary", "channels", "colour", "parts": it needs the high poly's parts, which a
+/// glint.Mesh has not}, ...] in the table's order, "options": {long name:
+/// {"help", "default", "kind": "flag"|"file"|"value"}}, "samples": the values --samples takes,
+/// "size": {"min", "max"}, "ao_samples": {"min", "max"}, "version"}.
+nlohmann::ordered_json describe();
+
 /// The files a bake reads and writes, as its messages name them ("the low poly", "--ao").
 std::vector<FileUse> inputFiles(const BakeJob& job);
 std::vector<FileUse> outputFiles(const BakeJob& job);

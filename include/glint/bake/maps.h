@@ -74,6 +74,10 @@ struct MapInfo {
 std::span<const MapInfo> mapTable();
 const MapInfo& mapInfo(Map map);
 
+/// Whether a map's 8-bit pixels are colours to look at (sRGB: vertex colour, material ID)
+/// rather than data (linear: normals, occlusion, distances).
+inline bool isColourMap(Map map) { return map == Map::VertexColor || map == Map::MaterialId; }
+
 /// A set of maps (BakeOptions::maps: the extra maps a bake makes besides the normal map).
 class MapSet {
 public:
