@@ -25,7 +25,7 @@ import bpy
 from . import core
 
 # The bake running now (one at a time), read by the panel and the Cancel button.
-RUNNING = {"bake": None, "fraction": 0.0, "text": ""}
+RUNNING = {"bake": None, "fraction": 0.0, "text": "", "label": ""}
 
 
 def _size_default(table):
@@ -169,6 +169,7 @@ class OBJECT_OT_glint_bake(bpy.types.Operator):
         bake = self._start(context)
         if bake is None:
             return {"CANCELLED"}
+        bake.leave_a_core()
         self._bake, self._error = bake, None
 
         def work():
@@ -178,7 +179,7 @@ class OBJECT_OT_glint_bake(bpy.types.Operator):
                 self._error = error
 
         self._thread = threading.Thread(target=work, name="glint bake", daemon=True)
-        RUNNING.update(bake=bake, fraction=0.0, text="glint: starting")
+        RUNNING.update(bake=bake, fraction=0.0, text="glint: starting", label="Starting")
         window_manager = context.window_manager
         window_manager.progress_begin(0, 1000)
         self._timer = window_manager.event_timer_add(0.1, window=context.window)
@@ -196,15 +197,20 @@ class OBJECT_OT_glint_bake(bpy.types.Operator):
         p = bake.progress
         pairs = len(bake.pairs)
         fraction = (p["pair"] + min(p["done"] / p["total"], 1.0)) / pairs
-        text = f"glint: {p['label']} {int(100 * fraction)}%" + (" (stopping)" if bake.cancel.is_set() else " — Esc cancels")
-        RUNNING.update(fraction=fraction, text=text)
-        context.window_manager.glint_bake_progress = fraction
+        names = ", ".join(low.name for low, _ in bake.pairs)
+        text = f"glint: {p['label']} {names} {int(100 * fraction)}%" + (" (stopping)" if bake.cancel.is_set() else " — Esc cancels")
+        RUNNING.update(fraction=fraction, text=text, label=f"{p['label'].capitalize()} {names}")
+        context.window_manager.glint_bake_progress = 100.0 * fraction
         context.window_manager.progress_update(int(1000 * fraction))
         if context.workspace is not None:
             context.workspace.status_text_set(text)
+        # Only the panels' regions: redrawing a whole viewport ten times a second would take
+        # the time from Blender that the bake on its thread leaves it.
         for area in context.screen.areas if context.screen else []:
             if area.type in ("VIEW_3D", "PROPERTIES"):
-                area.tag_redraw()
+                for region in area.regions:
+                    if region.type in ("UI", "WINDOW") and (area.type == "PROPERTIES" or region.type == "UI"):
+                        region.tag_redraw()
         if self._thread.is_alive():
             return {"RUNNING_MODAL"}
         self._end(context)
@@ -230,7 +236,7 @@ class OBJECT_OT_glint_bake(bpy.types.Operator):
         window_manager.glint_bake_progress = 0.0
         if context.workspace is not None:
             context.workspace.status_text_set(None)
-        RUNNING.update(bake=None, fraction=0.0, text="")
+        RUNNING.update(bake=None, fraction=0.0, text="", label="")
         for area in context.screen.areas if context.screen else []:
             area.tag_redraw()
 
@@ -278,11 +284,13 @@ class RENDER_PT_glint_bake(bpy.types.Panel):
 
 def draw_settings(layout, context):
     if RUNNING["bake"] is not None:  # baking: its progress, and the way to stop it
+        layout.label(text=RUNNING.get("label", "Baking"), icon="RENDER_STILL")
         if hasattr(layout, "progress"):  # Blender 4.0+
-            layout.progress(factor=RUNNING["fraction"], text=RUNNING["text"])
+            layout.progress(factor=RUNNING["fraction"], text=f"{int(100 * RUNNING['fraction'])}%")
         else:
-            layout.prop(context.window_manager, "glint_bake_progress", text=RUNNING["text"], slider=True)
+            layout.prop(context.window_manager, "glint_bake_progress", text="Baked", slider=True)
         layout.operator(OBJECT_OT_glint_bake_cancel.bl_idname, icon="CANCEL")
+        layout.label(text="Esc or Cancel: nothing changes")
         return
     settings = context.scene.glint_bake
     table = core.bake_table(_preferences(context))
@@ -320,7 +328,7 @@ def register():
     for cls in classes:
         bpy.utils.register_class(cls)
     bpy.types.WindowManager.glint_bake_progress = bpy.props.FloatProperty(
-        name="glint", subtype="FACTOR", min=0.0, max=1.0, description="How much of the bake is done")
+        name="glint", subtype="PERCENTAGE", min=0.0, max=100.0, precision=0, description="How much of the bake is done")
     reload_settings()
 
 

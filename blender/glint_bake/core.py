@@ -241,6 +241,13 @@ class Bake:
         self.progress = {"label": "starting", "done": 0, "total": 1, "pair": 0}
         self.results = []
         self.folder = None  # the command's files
+        self.threads = 0  # every core; the panel's bake leaves one to Blender (Bake.leave_a_core)
+
+    def leave_a_core(self):
+        """A bake from the panel runs beside Blender's window: one core is left to Blender
+        (its drawing, its timers, the viewport) so the window stays responsive; on 16 cores
+        the bake is 6 % slower, on 2 it takes twice as long."""
+        self.threads = max(1, (os.cpu_count() or 2) - 1)
 
     # -------------------------------------------------------------- on Blender's thread
     def prepare(self, context):
@@ -288,7 +295,7 @@ class Bake:
         high = glint.Mesh(*high_arrays)
         try:
             result = glint.bake(low, high, size=self.size, maps=self.maps, progress=self.on_progress,
-                                bits=32 if self.float_maps else 8, **self.options)
+                                bits=32 if self.float_maps else 8, threads=self.threads, **self.options)
         except glint.Error as error:
             raise BakeError(f"glint: {error}") from None
         return dict(result)
@@ -309,6 +316,8 @@ class Bake:
                 arguments += ["--" + by_option[m], name(m)]
         for key, value in self.options.items():
             arguments += ["--" + key.replace("_", "-"), str(value)]
+        if self.threads:
+            arguments += ["--threads", str(self.threads)]
         process = subprocess.Popen(arguments, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         self.progress.update(label="bake (command)", done=0, total=1)
         while process.poll() is None:
