@@ -327,6 +327,8 @@ classes = (GlintBakePreferences, OBJECT_OT_glint_bake, OBJECT_OT_glint_bake_canc
 def register():
     for cls in classes:
         bpy.utils.register_class(cls)
+    if core.pack_before_save not in bpy.app.handlers.save_pre:
+        bpy.app.handlers.save_pre.append(core.pack_before_save)
     bpy.types.WindowManager.glint_bake_progress = bpy.props.FloatProperty(
         name="glint", subtype="PERCENTAGE", min=0.0, max=100.0, precision=0, description="How much of the bake is done")
     reload_settings()
@@ -335,6 +337,8 @@ def register():
 def unregister():
     if RUNNING["bake"] is not None:
         RUNNING["bake"].cancel.set()
+    if core.pack_before_save in bpy.app.handlers.save_pre:
+        bpy.app.handlers.save_pre.remove(core.pack_before_save)
     del bpy.types.WindowManager.glint_bake_progress
     if hasattr(bpy.types.Scene, "glint_bake"):
         del bpy.types.Scene.glint_bake

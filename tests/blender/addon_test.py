@@ -170,12 +170,13 @@ for name in offered:
 settings.save_folder = ""
 check(bpy.ops.object.glint_bake() == {"FINISHED"}, "a bake into the .blend finishes")
 kept = {name: pixels(bpy.data.images[f"Ball_low_{name}"]) for name in ("normal", "ao")}
-for name in kept:
-    image = bpy.data.images[f"Ball_low_{name}"]
-    check(image.packed_file is not None and image.use_fake_user, f"{name}: packed into the .blend, kept by a fake user")
 np.savez(os.path.join(OUT, "kept.npz"), **kept)
 blend = os.path.join(OUT, "kept.blend")
 bpy.ops.wm.save_as_mainfile(filepath=blend, copy=True)
+for name in kept:
+    image = bpy.data.images[f"Ball_low_{name}"]
+    check(image.packed_file is not None and image.use_fake_user, f"{name}: packed into the .blend as it was saved, kept by a fake user")
+    check(np.array_equal(pixels(image), kept[name]), f"{name}: the same pixels once packed")
 reopen = subprocess.run(
     [bpy.app.binary_path, "-b", "--factory-startup", blend, "--python-exit-code", "1", "--python-expr",
      "import bpy, numpy as np\n"
