@@ -311,6 +311,19 @@ TEST(TrustOutputs, AFullDiskLeavesEveryOutputOfTheRunAsItWas) {
   const auto video = fs::file_size(out / "v.mkv");
   expectRefused(post, {{out / "v.mkv", "old video"}, {out / "r.json", "{}"}}, (video + 4095) / 4096 * 4096);
 
+  // A web page into a new folder that does not fit (three.js alone is over 600 KB): no file
+  // of it, and no folder either, is left behind (issue 45).
+  disk.leave(200 * 1024);
+  const auto page = runGlint("-q view " + q(d / "low.obj") + " --export-web " + q(out / "page"));
+  EXPECT_EQ(page.status, 4) << page.output;
+  EXPECT_TRUE(oneLine(page.output)) << page.output;
+  EXPECT_FALSE(fs::exists(out / "page")) << "an empty folder left behind";
+  const auto preview = runGlint(bakeCmd + " --preview " + q(out / "preview"));
+  EXPECT_EQ(preview.status, 4) << preview.output;
+  EXPECT_FALSE(fs::exists(out / "preview")) << "an empty folder left behind";
+  EXPECT_EQ(temporaries(out), 0);
+  fs::remove(out / "filler");
+
   // render, a clip that does not fit.
   disk.leave(64 * 1024);
   const auto render = runGlint("render rtt/texture/fbo --frames 0:60 --size 320x240 --codec ffv1 -o " + q(out / "r.mkv"));
