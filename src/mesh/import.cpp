@@ -268,6 +268,9 @@ const aiScene& readScene(Assimp::Importer& importer, const std::filesystem::path
   //    only the last face's normal), and we want to know whether to warn.
   if (gltf::isGltf(path))
     fail(ErrorKind::Usage, "'{}': glTF is read by glint's own reader (mesh/gltf.h), not by Assimp", printable(name));
+  // A PLY reaches Assimp only after the fast path's check of its whole layout, on every
+  // path (MeshParser::Assimp too): Assimp 5.2's PLY reader hangs and crashes on damaged files.
+  if (lowerExtension(path) == ".ply") detail::checkPly(path);
   importer.SetIOHandler(new FencedIOSystem(path));  // the importer owns it
   const aiScene* scene = importer.ReadFile(name, aiProcess_ValidateDataStructure);
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
@@ -367,8 +370,6 @@ MeshParts loadMeshParts(const std::filesystem::path& path, const MeshLoadOptions
     result.mesh.validate(fmt::format("mesh '{}'", name));
     return result;
   }
-  // A PLY reaches Assimp only after the fast path's check of its whole layout.
-  if (lowerExtension(path) == ".ply") detail::checkPly(path);
   Assimp::Importer importer;
   const aiScene& scene = readScene(importer, path, options);
   MeshParts result;
