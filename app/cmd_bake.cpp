@@ -8,6 +8,8 @@
 #include "glint/bake/job.h"
 #include "glint/core/error.h"
 
+#include <memory>
+
 namespace glint::app {
 
 Command bakeCommand(CLI::App& app, const GlobalOptions&) {

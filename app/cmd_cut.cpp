@@ -4,6 +4,8 @@
 
 #include "glint/cut/job.h"
 
+#include <memory>
+
 namespace glint::app {
 
 Command cutCommand(CLI::App& app, const GlobalOptions&) {

@@ -14,9 +14,13 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace glint::app {
 namespace fs = std::filesystem;
@@ -142,7 +146,7 @@ void compareWithReference(Entry& e, const fs::path& references, const fs::path& 
                                 expected.height(), e.result.image.width(), e.result.image.height());
     return;
   }
-  e.check = scenes::checkAgainstReference(expected, e.result.image);
+  e.check = scenes::checkAgainstReference(expected, e.result.image, e.ref.desc().implementationDefined);
   if (!e.check->pass) saveImage(e.check->visual, dir / (e.ref.fullName() + ".diff.png"));
 }
 

@@ -6,6 +6,10 @@
 
 #include <fmt/format.h>
 
+#include <memory>
+#include <string>
+#include <vector>
+
 namespace glint::app {
 
 Command listCommand(CLI::App& app, const GlobalOptions&) {

@@ -7,6 +7,9 @@
 
 #include <fmt/format.h>
 
+#include <memory>
+#include <string>
+
 namespace glint::app {
 
 namespace {

@@ -12,6 +12,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <memory>
+#include <string>
 
 namespace glint::app {
 

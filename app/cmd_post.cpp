@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include <memory>
+
 namespace glint::app {
 
 Command postCommand(CLI::App& app, const GlobalOptions& global) {

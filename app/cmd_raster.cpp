@@ -13,6 +13,8 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <memory>
+#include <string>
 
 namespace glint::app {
 

@@ -14,6 +14,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace glint::app {
 namespace fs = std::filesystem;

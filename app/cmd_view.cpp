@@ -12,6 +12,9 @@
 #include "glint/viewer/viewer.h"
 
 #include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace glint::app {
 namespace fs = std::filesystem;

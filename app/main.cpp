@@ -8,6 +8,7 @@
 #include "glint/core/text.h"
 #include "glint/image/image.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <map>

@@ -27,7 +27,7 @@
 #include "glint/core/log.h"
 #include "glint/raytrace/raytracer.h"
 
-#include <embree3/rtcore.h>
+#include "embree.h"  // src/raytrace: Embree 3 or 4, the same seam as glint::raytrace
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <sys/resource.h>
@@ -38,11 +38,14 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <ctime>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 #include <unistd.h>
 
 namespace glint::bench {
@@ -136,7 +139,7 @@ void versusBlender(Recorder& r, const fs::path& dir) {
     bake.push_back(phaseSeconds(seconds, "prepare") + phaseSeconds(seconds, "trace") + phaseSeconds(seconds, "dilate"));
     write.push_back(phaseSeconds(seconds, "write"));
     if (blender && !blenderFailed && i < kPeerRepeats) {
-      blenderRuns.push_back(timeCommand(fmt::format("blender -b --factory-startup --python {} -- {} {} {} 1024 1 0.06 >/dev/null 2>&1",
+      blenderRuns.push_back(timeCommand(fmt::format("blender -b --factory-startup --python-exit-code 1 --python {} -- {} {} {} 1024 1 0.06 >/dev/null 2>&1",
                                                     shellQuote(script), shellQuote(dir / "low.obj"),
                                                     shellQuote(dir / "high.obj"), shellQuote(dir / "blender.png"))));
       blenderFailed = blenderRuns.back() < 0;
@@ -198,7 +201,7 @@ void everyMapVersusBlender(Recorder& r, const fs::path& dir) {
     if (glintRuns.back() < 0) fail(ErrorKind::Internal, "bench bake: `glint bake` with every map failed");
     if (blender && !blenderFailed) {
       blenderRuns.push_back(timeCommand(fmt::format(
-          "blender -b --factory-startup --python {} -- {} {} {} 2048 1 0.06 normal,ao,position 16 0.1 >/dev/null 2>&1",
+          "blender -b --factory-startup --python-exit-code 1 --python {} -- {} {} {} 2048 1 0.06 normal,ao,position 16 0.1 >/dev/null 2>&1",
           shellQuote(script), shellQuote(dir / "low.obj"), shellQuote(dir / "high.obj"), shellQuote(dir / "blender-all.png"))));
       blenderFailed = blenderRuns.back() < 0;
     }
@@ -246,18 +249,22 @@ fs::path buildPath(const char* path) {
 /// (g) the add-on in Blender against Cycles in Blender, the same OBJ files as (a) and (f).
 void addonVersusBlender(Recorder& r, const fs::path& dir) {
   const std::string group = "g: Blender add-on, 2048²";
-  const fs::path zip = buildPath(GLINT_ADDON_ZIP_PATH), module = buildPath(GLINT_PYTHON_DIR);
+  const fs::path zip = buildPath(GLINT_ADDON_ZIP_PATH), extension = buildPath(GLINT_ADDON_EXTENSION_ZIP_PATH),
+                 module = buildPath(GLINT_PYTHON_DIR);
   const auto unavailable = [&](const std::string& why) {
     r.record({.group = group, .name = "add-on vs cycles", .value = std::nan(""), .unit = "×", .note = why});
   };
   if (!blenderAvailable()) return unavailable("peer unavailable: `blender` is not installed (apt install blender)");
-  if (zip.empty() || module.empty()) return unavailable("the add-on or the Python module was not built (GLINT_BUILD_PYTHON)");
+  if (zip.empty() || extension.empty() || module.empty())
+    return unavailable("the add-on or the Python module was not built (GLINT_BUILD_PYTHON)");
   if (!fs::exists(dir / "low.obj")) bake::writeObj(lowPoly(), dir / "low.obj");
   if (!fs::exists(dir / "high.obj")) bake::writeObj(highPoly(262144), dir / "high.obj");
   const auto results = resultLines(fmt::format(
-      "BLENDER_USER_SCRIPTS={} blender -b --factory-startup --python {} -- {} {} {} {} 2048 {} 2>/dev/null",
-      shellQuote(dir / "blender-scripts"), shellQuote(fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "blender_addon_bench.py"),
-      shellQuote(zip), shellQuote(module), shellQuote(dir / "low.obj"), shellQuote(dir / "high.obj"), kPeerRepeats));
+      "BLENDER_USER_SCRIPTS={} BLENDER_USER_EXTENSIONS={} blender -b --factory-startup --python-exit-code 1 --python {} -- "
+      "{} {} {} {} {} 2048 {} 2>/dev/null",
+      shellQuote(dir / "blender-scripts"), shellQuote(dir / "blender-extensions"),
+      shellQuote(fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "blender_addon_bench.py"), shellQuote(zip),
+      shellQuote(extension), shellQuote(module), shellQuote(dir / "low.obj"), shellQuote(dir / "high.obj"), kPeerRepeats));
   if (results.size() != std::size_t(4 * kPeerRepeats)) return unavailable("peer failed (blender_addon_bench.py)");
   for (const char* name : {"normal", "normal+ao"}) {
     std::vector<double> addon, cycles, outside, inside, exported, imported;
@@ -464,22 +471,10 @@ void throughput(Recorder& r, const Mesh& low, const Mesh& high, int size, int sa
   rtcCommitScene(scene);
   const auto plainRun = [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        const raytrace::Ray& ray = rays[i];
-        RTCRayHit rh{};
-        rh.ray.org_x = ray.origin.x;
-        rh.ray.org_y = ray.origin.y;
-        rh.ray.org_z = ray.origin.z;
-        rh.ray.dir_x = ray.direction.x;
-        rh.ray.dir_y = ray.direction.y;
-        rh.ray.dir_z = ray.direction.z;
-        rh.ray.tnear = ray.tnear;
-        rh.ray.tfar = ray.tfar;
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene, &context, &rh);
+        RTCRayHit rh;
+        raytrace::embree::fill(rays[i], rh);  // the Scene's own conversion (src/raytrace/embree.h)
+        raytrace::embree::intersect(scene, rh);
       }
     });
   };

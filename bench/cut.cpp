@@ -26,6 +26,8 @@
 #include <ctime>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace glint::bench {
 namespace {

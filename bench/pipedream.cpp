@@ -27,8 +27,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <utility>
+#include <vector>
 
 namespace glint::bench {
 namespace {

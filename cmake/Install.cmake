@@ -144,8 +144,12 @@ install(TARGETS glint EXPORT glint-glint RUNTIME DESTINATION ${CMAKE_INSTALL_BIN
 install(EXPORT glint-glint FILE glint-glint-targets.cmake NAMESPACE glint:: DESTINATION ${GLINT_INSTALL_CMAKE_DIR}
         COMPONENT glint)
 install(TARGETS glint_oiio LIBRARY DESTINATION ${GLINT_INSTALL_MODULE_DIR} COMPONENT image)
+# The modules again as their own component, for the Python wheel (pyproject.toml), which
+# takes them without the C++ package's libraries and headers.
+install(TARGETS glint_oiio LIBRARY DESTINATION ${GLINT_INSTALL_MODULE_DIR} COMPONENT modules)
 if(GLINT_BUILD_VIDEO)
   install(TARGETS glint_ffmpeg LIBRARY DESTINATION ${GLINT_INSTALL_MODULE_DIR} COMPONENT video)
+  install(TARGETS glint_ffmpeg LIBRARY DESTINATION ${GLINT_INSTALL_MODULE_DIR} COMPONENT modules)
 endif()
 
 configure_package_config_file(cmake/glintConfig.cmake.in "${PROJECT_BINARY_DIR}/glintConfig.cmake"

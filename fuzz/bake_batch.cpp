@@ -5,6 +5,9 @@
 #include "glint/bake/job.h"
 #include "glint/core/log.h"
 
+#include <cstdint>
+#include <vector>
+
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   glint::log::setLevel(glint::log::Level::Error);
   return 0;

@@ -13,6 +13,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace {

@@ -8,6 +8,8 @@
 #include "glint/cut/output.h"
 
 #include <cmath>
+#include <cstdint>
+#include <span>
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   glint::log::setLevel(glint::log::Level::Error);

@@ -9,6 +9,7 @@
 #include "glint/mesh/parts.h"
 
 #include <cmath>
+#include <cstdint>
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   glint::log::setLevel(glint::log::Level::Error);

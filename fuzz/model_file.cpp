@@ -8,7 +8,10 @@
 #include "glint/core/log.h"
 #include "glint/scenes/model.h"
 
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
+#include <vector>
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   glint::log::setLevel(glint::log::Level::Error);

@@ -9,6 +9,7 @@
 #include "glint/post/effects.h"
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>

@@ -8,6 +8,7 @@
 #include "glint/core/log.h"
 #include "glint/gl/shader.h"
 
+#include <cstdint>
 #include <fstream>
 #include <string>
 

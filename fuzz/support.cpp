@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <string>
 #include <system_error>
 #include <unistd.h>
 

@@ -7,6 +7,8 @@
 #include "glint/core/log.h"
 #include "glint/video/source.h"
 
+#include <cstdint>
+
 namespace {
 constexpr const char* kExtensions[] = {"mkv", "mp4", "avi", "nut", "webm", "mov", "ts", "y4m"};
 }

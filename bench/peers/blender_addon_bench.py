@@ -1,8 +1,8 @@
 # `glint bench bake` (g): the glint Bake add-on's whole bake inside Blender against Blender's
 # own Cycles bake of the same maps, in one Blender session, runs alternating (issue 36).
 #
-#   blender -b --factory-startup --python bench/peers/blender_addon_bench.py -- \
-#       ADDON.zip MODULE_DIR LOW.obj HIGH.obj SIZE REPEATS
+#   blender -b --factory-startup --python-exit-code 1 --python bench/peers/blender_addon_bench.py -- \
+#       ADDON.zip EXTENSION.zip MODULE_DIR LOW.obj HIGH.obj SIZE REPEATS
 #
 # For each case (the normal map; the normal map and AO with 16 rays per texel) and each
 # repeat: the add-on's operator, timed whole (meshes out of Blender, glint's bake, images
@@ -10,7 +10,8 @@
 # (selected to active, 1 sample for the normal map, 16 one-ray samples for AO, the same
 # ray distances, the same AO distance: 10 % of the low poly's diagonal, glint's default).
 # Prints one line per run: RESULT {"case":..., "tool":..., "seconds":..., ...}.
-# The caller sets BLENDER_USER_SCRIPTS to a folder of its own (the add-on installs there).
+# The caller sets BLENDER_USER_SCRIPTS and BLENDER_USER_EXTENSIONS to folders of its own (the
+# add-on installs there).
 import json
 import math
 import os
@@ -23,13 +24,15 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from blender_common import bake_target, use_cycles  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:]
-addon_zip, module_dir, low_path, high_path = argv[:4]
-size, repeats = int(argv[4]), int(argv[5])
+addon_zip, extension_zip, module_dir, low_path, high_path = argv[:5]
+size, repeats = int(argv[5]), int(argv[6])
 DISTANCE = 0.06
 
-bpy.ops.preferences.addon_install(filepath=addon_zip, overwrite=True)
-bpy.ops.preferences.addon_enable(module="glint_bake")
-bpy.context.preferences.addons["glint_bake"].preferences.module_path = module_dir
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "blender"))
+from install_addon import install_addon  # noqa: E402
+
+addon = install_addon(addon_zip, extension_zip)
+bpy.context.preferences.addons[addon].preferences.module_path = module_dir
 for obj in list(bpy.data.objects):
     bpy.data.objects.remove(obj)
 
@@ -42,7 +45,8 @@ def load(path):
         polygon.use_smooth = True
     # A mesh made in Blender has no custom split normals; the importer makes them from the
     # OBJ's vn (the same smooth normals): cleared, as an artist's sculpt would be.
-    obj.data.free_normals_split()
+    if hasattr(obj.data, "free_normals_split"):  # Blender < 4.1
+        obj.data.free_normals_split()
     if obj.data.has_custom_normals:
         bpy.context.view_layer.objects.active = obj
         bpy.ops.mesh.customdata_custom_splitnormals_clear()

@@ -1,7 +1,7 @@
 # Blender peer for `glint bench bake` (issue 6, item 10a): Cycles' "selected to active"
 # tangent-space normal bake of the same OBJ files glint bakes, headless.
 #
-#   blender -b --factory-startup --python bench/peers/blender_bake.py -- \
+#   blender -b --factory-startup --python-exit-code 1 --python bench/peers/blender_bake.py -- \
 #       LOW.obj HIGH.obj OUT.png SIZE SAMPLES MAX_DISTANCE [PASSES AO_SAMPLES AO_DISTANCE]
 #
 # SAMPLES is Cycles' sample count (1 = one ray per texel, like `glint bake --samples 1`);

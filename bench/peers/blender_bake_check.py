@@ -2,7 +2,7 @@
 # tests/bake/bake_blender_test.cpp): Cycles' "selected to active" bake of one map that
 # glint bakes too, from the same OBJ files, written so it can be compared texel by texel.
 #
-#   blender -b --factory-startup --python bench/peers/blender_bake_check.py -- \
+#   blender -b --factory-startup --python-exit-code 1 --python bench/peers/blender_bake_check.py -- \
 #       LOW.obj HIGH.obj OUT MAP SIZE SAMPLES DISTANCE [AO_DISTANCE]
 #
 # MAP is one of

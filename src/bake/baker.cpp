@@ -30,6 +30,7 @@
 #include <memory>
 #include <optional>
 #include <ctime>
+#include <span>
 #include <utility>
 
 namespace glint::bake {

@@ -18,6 +18,8 @@
 #include <chrono>
 #include <cstdio>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace glint::bake {
 

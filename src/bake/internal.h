@@ -2,6 +2,7 @@
 // Private pieces of the baker, split out so each file stays readable.
 #include "glint/bake/baker.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 

@@ -7,10 +7,15 @@
 #include "glint/raytrace/raytracer.h"
 #include "internal.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <string>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace glint::bake::detail {
 namespace {

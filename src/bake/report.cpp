@@ -4,7 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <system_error>
+#include <vector>
 
 namespace glint::bake {
 

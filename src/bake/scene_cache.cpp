@@ -3,6 +3,8 @@
 
 #include "scene_cache_internal.h"
 
+#include <mutex>
+
 namespace glint::bake {
 
 SceneCache::SceneCache() : m_impl(std::make_unique<Impl>()) {}

@@ -15,6 +15,7 @@
 #include "glint/core/hash.h"
 
 #include <cmath>
+#include <optional>
 #include <thread>
 #include <unordered_map>
 

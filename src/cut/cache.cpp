@@ -11,8 +11,10 @@
 #include "pieces.h"
 
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <span>
 
 namespace glint::cut {
 namespace fs = std::filesystem;

@@ -7,9 +7,12 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <unordered_map>
+#include <utility>
 
 namespace glint::cut {
 

@@ -14,7 +14,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <limits>
 #include <optional>
+#include <utility>
 
 namespace glint::cut {
 

@@ -16,11 +16,14 @@
 #include <bit>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
+#include <string>
 #include <string_view>
 
 namespace glint::cut {
@@ -124,6 +127,18 @@ nlohmann::json primitiveExtras(LightMask mask, const std::vector<Light>& lights)
   return {{"light_mask", mask}, {"lit_by", litBy}};
 }
 
+/// A node's KHR_lights_punctual reference, as the tinygltf at hand writes it: 2.9 (Debian
+/// 13) keeps it in Node::light and writes the extension from that field alone (dropping one
+/// set by hand while the field is -1); 2.7 (Debian 12) has no field and writes the
+/// extension as given.
+template <class Node>
+void setLight(Node& node, int light) {
+  if constexpr (requires { node.light; }) node.light = light;
+  tinygltf::Value::Object ext;
+  ext["light"] = tinygltf::Value(light);
+  node.extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
+}
+
 /// The lights as KHR_lights_punctual point lights, each on a node of `scene`.
 void addLights(tinygltf::Model& model, tinygltf::Scene& scene, const std::vector<Light>& lights) {
   for (std::size_t l = 0; l < lights.size(); ++l) {
@@ -135,9 +150,7 @@ void addLights(tinygltf::Model& model, tinygltf::Scene& scene, const std::vector
     tinygltf::Node ln;
     ln.name = light.name;
     ln.translation = {lights[l].position.x, lights[l].position.y, lights[l].position.z};
-    tinygltf::Value::Object ext;
-    ext["light"] = tinygltf::Value(int(l));
-    ln.extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
+    setLight(ln, int(l));
     model.nodes.push_back(ln);
     scene.nodes.push_back(int(model.nodes.size() - 1));
   }

@@ -7,7 +7,9 @@
 #include "receiver.h"
 
 #include <chrono>
+#include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace glint::cut {

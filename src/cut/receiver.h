@@ -25,6 +25,7 @@
 #include <atomic>
 #include <span>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace glint::cut {

@@ -10,6 +10,7 @@
 // over the exact kernel decides every orientation, so the result is as exact as the cut.
 #include "exact.h"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>

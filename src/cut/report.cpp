@@ -6,6 +6,8 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <vector>
 
 namespace glint::cut {
 

@@ -1,7 +1,9 @@
 // Cut polygons as triangles, and their areas: what renderers, glTF and the reports need.
 #include "glint/cut/cutter.h"
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 namespace glint::cut {
 

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdint>
 #include <filesystem>
 
 namespace glint::farm {

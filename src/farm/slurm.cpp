@@ -7,7 +7,13 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
 #include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace glint::farm {
 

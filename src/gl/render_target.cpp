@@ -2,6 +2,10 @@
 
 #include "glint/core/error.h"
 
+#include <algorithm>
+#include <string>
+#include <string_view>
+
 namespace glint::gl {
 
 void Target::bind() const {

@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 
 #include <cmath>
+#include <cstdint>
 
 namespace glint {
 namespace {

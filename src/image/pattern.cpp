@@ -2,6 +2,7 @@
 
 #include "glint/core/error.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>

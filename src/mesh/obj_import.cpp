@@ -27,6 +27,8 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <filesystem>
 #include <span>
 #include <charconv>
 #include <chrono>
@@ -35,6 +37,10 @@
 #include <istream>
 #include <set>
 #include <streambuf>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace glint::detail {
 namespace {

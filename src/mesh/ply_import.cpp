@@ -11,9 +11,12 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <unordered_set>

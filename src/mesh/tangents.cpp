@@ -16,6 +16,7 @@
 #include <cstring>
 #include <tuple>
 #include <unordered_map>
+#include <utility>
 
 namespace glint {
 namespace {

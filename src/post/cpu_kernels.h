@@ -5,6 +5,8 @@
 #include "glint/image/fourier.h"
 #include "glint/image/post.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>

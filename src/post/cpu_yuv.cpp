@@ -9,8 +9,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <memory>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 namespace glint::post::cpu {
 

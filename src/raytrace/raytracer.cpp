@@ -1,11 +1,12 @@
-// Embree 3 behind glint::raytrace::Scene: one device and one scene per Scene,
+// Embree (3 or 4: the seam is embree.h) behind glint::raytrace::Scene: one device and one scene per Scene,
 // one triangle geometry per mesh, buffers owned by Embree (copied in) so the
 // Scene never dangles on a caller's Mesh.
 #include "glint/raytrace/raytracer.h"
 
 #include "glint/core/error.h"
 
-#include <embree3/rtcore.h>
+#include "embree.h"
+
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -75,49 +76,7 @@ void checkMesh(const Mesh& mesh, const std::string& what) {
   checkRange(mesh.positions, what);
 }
 
-/// Whether Embree may be given the ray: origin and direction within its range (it
-/// asserts on others, aborting the process), tnear not NaN.
-bool traceable(const Ray& ray) {
-  bool ok = !std::isnan(ray.tnear) && !std::isnan(ray.tfar);
-  for (int k = 0; k < 3; ++k) ok &= std::fabs(ray.origin[k]) <= kMaxCoordinate && std::fabs(ray.direction[k]) <= kMaxCoordinate;
-  return ok;
-}
-
-/// Fills `rh` in place (building a temporary and copying it made the processor wait on
-/// partial stores it could not forward: measurable in the baker's inner loop).
-void toEmbree(const Ray& ray, RTCRayHit& rh) {
-  if (!traceable(ray)) [[unlikely]] {
-    // Outside Embree's range: an empty segment (tnear > tfar) at the origin, which hits nothing.
-    rh.ray.org_x = rh.ray.org_y = rh.ray.org_z = 0.0f;
-    rh.ray.dir_x = rh.ray.dir_y = 0.0f;
-    rh.ray.dir_z = 1.0f;
-    rh.ray.tnear = 1.0f;
-    rh.ray.tfar = 0.0f;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = rh.hit.primID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return;
-  }
-  rh.ray.org_x = ray.origin.x;
-  rh.ray.org_y = ray.origin.y;
-  rh.ray.org_z = ray.origin.z;
-  rh.ray.dir_x = ray.direction.x;
-  rh.ray.dir_y = ray.direction.y;
-  rh.ray.dir_z = ray.direction.z;
-  rh.ray.tnear = ray.tnear;
-  rh.ray.tfar = ray.tfar;
-  rh.ray.time = 0.0f;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-}
-
-/// The hit, written in place (see toEmbree); a miss resets `out`.
+/// The hit, written in place (see embree::fill); a miss resets `out`.
 void toHit(const RTCRayHit& rh, std::optional<Hit>& out) {
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
     out.reset();
@@ -225,26 +184,20 @@ Scene::Scene(Scene&& other) noexcept = default;
 Scene& Scene::operator=(Scene&& other) noexcept = default;
 
 std::optional<Hit> Scene::intersect(const Ray& ray) const {
-  if (!traceable(ray)) [[unlikely]] return std::nullopt;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  if (!embree::traceable(ray)) [[unlikely]] return std::nullopt;
   RTCRayHit rh;
-  toEmbree(ray, rh);
-  rtcIntersect1(m_impl->scene, &context, &rh);
+  embree::fill(ray, rh);
+  embree::intersect(m_impl->scene, rh);
   std::optional<Hit> hit;
   toHit(rh, hit);
   return hit;
 }
 
 bool Scene::occluded(const Ray& ray) const {
-  if (!traceable(ray)) [[unlikely]] return false;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  if (!embree::traceable(ray)) [[unlikely]] return false;
   RTCRayHit rh;
-  toEmbree(ray, rh);
-  rtcOccluded1(m_impl->scene, &context, &rh.ray);
-  // Embree marks an occluded ray by setting tfar to -inf.
-  return rh.ray.tfar < 0.0f;
+  embree::fill(ray, rh);
+  return embree::occluded(m_impl->scene, rh.ray);
 }
 
 void Scene::intersectBatch(std::span<const Ray> rays, std::span<std::optional<Hit>> hits) const {
@@ -261,15 +214,12 @@ void Scene::intersectCoherent(std::span<const Ray> rays, std::span<std::optional
   if (rays.size() != hits.size()) {
     fail(ErrorKind::Usage, "intersectCoherent: {} rays but room for {} hits", rays.size(), hits.size());
   }
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  constexpr std::size_t kGroup = 64;  // Embree packetizes within a call; 64 keeps the copy on the stack
+  constexpr std::size_t kGroup = 64;  // Embree 3 packetizes within a call; 64 keeps the copy on the stack
   RTCRayHit buffer[kGroup];
   for (std::size_t first = 0; first < rays.size(); first += kGroup) {
     const std::size_t count = std::min(kGroup, rays.size() - first);
-    for (std::size_t i = 0; i < count; ++i) toEmbree(rays[first + i], buffer[i]);
-    rtcIntersect1M(m_impl->scene, &context, buffer, unsigned(count), sizeof(RTCRayHit));
+    for (std::size_t i = 0; i < count; ++i) embree::fill(rays[first + i], buffer[i]);
+    embree::intersectGroup(m_impl->scene, buffer, count);
     for (std::size_t i = 0; i < count; ++i) toHit(buffer[i], hits[first + i]);
   }
 }

@@ -1,5 +1,8 @@
 #include "glint/render/depth_view.h"
 
+#include <string>
+#include <vector>
+
 namespace glint::render {
 
 DepthView::DepthView(bool linearize, float nearPlane, float farPlane)

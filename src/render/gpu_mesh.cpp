@@ -3,7 +3,11 @@
 #include "glint/core/error.h"
 #include "glint/render/state.h"
 
+#include <cstdint>
 #include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace glint::render {
 

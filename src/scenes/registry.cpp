@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <limits>
 #include <charconv>
+#include <string>
+#include <vector>
 
 namespace glint::scenes {
 

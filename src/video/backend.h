@@ -16,6 +16,7 @@
 #include "glint/video/sink.h"
 #include "glint/video/source.h"
 
+#include <cstdint>
 #include <deque>
 #include <filesystem>
 #include <span>

@@ -16,8 +16,12 @@ extern "C" {
 #include "glint/core/error.h"
 #include "glint/video/frame.h"
 
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <string>
 
 namespace glint::video {
@@ -54,6 +58,31 @@ private:
   std::string m_pending, m_first;
   std::int64_t m_count = 0;
 };
+
+/// A stream's side data of `type` (a display matrix: a phone clip's rotation) and its size,
+/// or null. FFmpeg 6.1 moved side data into the codec parameters (Debian 13's 7.1 warns of
+/// the stream's, Debian 12's 5.1 has only those): the one place glint asks either.
+inline const std::uint8_t* streamSideData(const AVStream& stream, AVPacketSideDataType type, std::size_t& size) {
+#if LIBAVCODEC_VERSION_INT >= AV_VERSION_INT(60, 31, 102)
+  const AVPacketSideData* data =
+      av_packet_side_data_get(stream.codecpar->coded_side_data, stream.codecpar->nb_coded_side_data, type);
+  size = data ? data->size : 0;
+  return data ? data->data : nullptr;
+#else
+  return av_stream_get_side_data(&stream, type, &size);
+#endif
+}
+
+/// New side data of `size` bytes on a stream being written, or null (out of memory).
+inline std::uint8_t* newStreamSideData(AVStream& stream, AVPacketSideDataType type, std::size_t size) {
+#if LIBAVCODEC_VERSION_INT >= AV_VERSION_INT(60, 31, 102)
+  AVPacketSideData* data =
+      av_packet_side_data_new(&stream.codecpar->coded_side_data, &stream.codecpar->nb_coded_side_data, type, size, 0);
+  return data ? data->data : nullptr;
+#else
+  return av_stream_new_side_data(&stream, type, size);
+#endif
+}
 
 inline Rational toRational(AVRational r) { return {r.num, r.den}; }
 inline AVRational toAv(Rational r) { return {r.num, r.den}; }

@@ -3,6 +3,12 @@
 
 #include "glint/core/log.h"
 
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <span>
+#include <string>
+
 namespace glint::video::backend {
 // Defined in ffmpeg_source.cpp and ffmpeg_sink.cpp.
 SourceHandle* openSource(const std::string& name, const SourceOptions& options, Status& status);

@@ -5,12 +5,45 @@
 #include "glint/core/log.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <iterator>
+#include <memory>
 #include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace glint::video {
 
 namespace {
+/// glint's rule for copying audio into a container, the same on every FFmpeg: an MP4 holds
+/// the codecs its family registers (AAC, MP3, AC-3, E-AC-3, ALAC, Opus, FLAC), not PCM, which
+/// FFmpeg 5.1 refused there and 7.1 writes where players do not expect it; every other
+/// container takes what its muxer takes (Matroska, NUT and MOV take PCM).
+bool audioFits(const AVOutputFormat& format, AVCodecID codec) {
+  if (std::string_view(format.name) == "mp4") {
+    return codec == AV_CODEC_ID_AAC || codec == AV_CODEC_ID_MP3 || codec == AV_CODEC_ID_AC3 ||
+           codec == AV_CODEC_ID_EAC3 || codec == AV_CODEC_ID_ALAC || codec == AV_CODEC_ID_OPUS ||
+           codec == AV_CODEC_ID_FLAC;
+  }
+  return avformat_query_codec(&format, codec, FF_COMPLIANCE_NORMAL) == 1;
+}
+
+/// Whether glint hands a container negative timestamps as they are (AAC's priming packet
+/// before the first frame): the MP4 family stores them in its edit list whatever FFmpeg's
+/// flags say (5.1 flags its muxer AVFMT_TS_NEGATIVE, 7.1 does not, and would shift the audio
+/// by the lead), and every container that flags them; others (Matroska) get the source's lead
+/// as an offset instead.
+bool keepsNegativeTimestamps(const AVOutputFormat& format) {
+  static constexpr std::string_view kMovFamily[] = {"mov", "mp4", "ipod", "3gp", "3g2", "psp", "ismv", "f4v"};
+  const std::string_view name = format.name;
+  return (format.flags & AVFMT_TS_NEGATIVE) ||
+         std::find(std::begin(kMovFamily), std::end(kMovFamily), name) != std::end(kMovFamily);
+}
+
 /// FFmpeg's reason a write failed, or "no space left on device (N KiB free ...)" for a full disk.
 std::string writeError(const std::filesystem::path& destination, int code) {
   if (code == AVERROR(ENOSPC) || code == AVERROR(EDQUOT)) return writeFailure(destination, ENOSPC);
@@ -173,14 +206,14 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const fs::path& target_, co
   s.videoStream->time_base = e.time_base;
   s.videoStream->avg_frame_rate = e.framerate;
   if (options.displayMatrix.size() == 9) {  // a rotated source stays rotated
-    std::uint8_t* m = av_stream_new_side_data(s.videoStream, AV_PKT_DATA_DISPLAYMATRIX, 9 * sizeof(std::int32_t));
+    std::uint8_t* m = newStreamSideData(*s.videoStream, AV_PKT_DATA_DISPLAYMATRIX, 9 * sizeof(std::int32_t));
     if (!m) fail(ErrorKind::Internal, "cannot add the display matrix to '{}'", destination.string());
     std::memcpy(m, options.displayMatrix.data(), 9 * sizeof(std::int32_t));
   }
 
   if (options.audio) {
     const AVCodecParameters& a = options.audio->parameters();
-    if (avformat_query_codec(s.output->oformat, a.codec_id, FF_COMPLIANCE_NORMAL) == 1) {
+    if (audioFits(*s.output->oformat, a.codec_id)) {
       s.audioStream = avformat_new_stream(s.output.get(), nullptr);
       avcodec_parameters_copy(s.audioStream->codecpar, &a);
       s.audioStream->codecpar->codec_tag = 0;
@@ -197,7 +230,7 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const fs::path& target_, co
   // whatever it is given first. Shifting by the source's lead instead gives every part of a
   // split video (`--frames`) the same timeline as the whole, so the parts join with --concat
   // into the very bytes of one run.
-  if (s.audio && s.audio->leadSeconds() > 0 && !(s.output->oformat->flags & AVFMT_TS_NEGATIVE))
+  if (s.audio && s.audio->leadSeconds() > 0 && !keepsNegativeTimestamps(*s.output->oformat))
     s.output->output_ts_offset = std::llround(s.audio->leadSeconds() * AV_TIME_BASE);
 
   s.matroska = std::string_view(s.output->oformat->name).find("matroska") != std::string_view::npos ||
@@ -343,9 +376,9 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
     out->time_base = first.streams[i]->time_base;
     out->avg_frame_rate = first.streams[i]->avg_frame_rate;
     std::size_t matrixSize = 0;  // the parts' rotation, kept
-    if (const std::uint8_t* m = av_stream_get_side_data(first.streams[i], AV_PKT_DATA_DISPLAYMATRIX, &matrixSize);
+    if (const std::uint8_t* m = streamSideData(*first.streams[i], AV_PKT_DATA_DISPLAYMATRIX, matrixSize);
         m && matrixSize > 0) {
-      if (std::uint8_t* copy = av_stream_new_side_data(out, AV_PKT_DATA_DISPLAYMATRIX, matrixSize))
+      if (std::uint8_t* copy = newStreamSideData(*out, AV_PKT_DATA_DISPLAYMATRIX, matrixSize))
         std::memcpy(copy, m, matrixSize);
     }
   }

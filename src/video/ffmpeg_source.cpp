@@ -10,9 +10,15 @@ extern "C" {
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <deque>
 #include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
 #include <thread>
 #include <utility>
+#include <vector>
 
 namespace glint::video {
 
@@ -187,7 +193,7 @@ void FfmpegSource::open(const std::string& name) {
   }
   // A phone's portrait clip is stored sideways with a display matrix that turns it.
   std::size_t matrixSize = 0;
-  if (const std::uint8_t* m = av_stream_get_side_data(stream, AV_PKT_DATA_DISPLAYMATRIX, &matrixSize);
+  if (const std::uint8_t* m = streamSideData(*stream, AV_PKT_DATA_DISPLAYMATRIX, matrixSize);
       m && matrixSize >= 9 * sizeof(std::int32_t)) {
     const auto* values = reinterpret_cast<const std::int32_t*>(m);
     info.displayMatrix.assign(values, values + 9);

@@ -4,13 +4,16 @@
 #include "glint/video/sink.h"
 #include "glint/video/source.h"
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <exception>
 #include <mutex>
 #include <thread>
 #include <variant>
+#include <vector>
 
 namespace glint::video {
 

@@ -13,7 +13,14 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <memory>
 #include <optional>
+#include <span>
+#include <string>
+#include <string_view>
 #include <utility>
 
 #if defined(GLINT_NO_VIDEO_MODULE)

@@ -37,6 +37,7 @@
 #include <cmath>
 #include <deque>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 namespace glint::viewer {

@@ -31,7 +31,7 @@ constexpr auto q = shellQuote;
 
 /// blender -b with the check script, `args` after "--"; its output on failure.
 CliRun blender(const std::string& args) {
-  return runShell("blender -b --factory-startup --python " +
+  return runShell("blender -b --factory-startup --python-exit-code 1 --python " +
                   q(fs::path(GLINT_SOURCE_DIR) / "tests/bake/blender_asset.py") + " -- " + args);
 }
 

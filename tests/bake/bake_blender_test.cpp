@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -126,7 +127,7 @@ bool blenderBake(const fs::path& low, const fs::path& high, const fs::path& out,
   const fs::path script = fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "blender_bake_check.py";
   char args[128];
   std::snprintf(args, sizeof args, " %s %d %d 0.06 %g", map.c_str(), kSize, samples, aoDistance);
-  const auto r = runShell("nice -n 5 blender -b --factory-startup --python " + quoted(script) + " -- " + quoted(low) +
+  const auto r = runShell("nice -n 5 blender -b --factory-startup --python-exit-code 1 --python " + quoted(script) + " -- " + quoted(low) +
                           " " + quoted(high) + " " + quoted(out) + args);
   EXPECT_EQ(r.status, 0) << r.output;
   for (std::size_t at = r.output.find("blender_bake_check:"); at != std::string::npos;

@@ -25,8 +25,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 using namespace glint;
 using glint::testing::GlTest;

@@ -1,10 +1,10 @@
 # Blender's side of tests/bake/asset_blender_test.cpp (issue 35): a low/high pair made in
 # Blender, and what Blender makes of the asset `glint bake --asset` writes.
 #
-#   blender -b --factory-startup --python blender_asset.py -- make DIR
+#   blender -b --factory-startup --python-exit-code 1 --python blender_asset.py -- make DIR
 #       DIR/low.obj: Suzanne, smart-UV-unwrapped, smooth; DIR/high.obj: the same head
 #       subdivided three times and displaced by a procedural texture (the detail to bake).
-#   blender -b --factory-startup --python blender_asset.py -- check ASSET.glb OUT.json
+#   blender -b --factory-startup --python-exit-code 1 --python blender_asset.py -- check ASSET.glb OUT.json
 #       imports the asset with Blender's own glTF importer and writes what a test checks:
 #       the material graph (the normal map node, its space, its UV map and image; what
 #       feeds the occlusion) and, for every face corner, Blender's MikkTSpace tangent
@@ -99,11 +99,18 @@ def check(asset, out):
         uv = mesh.uv_layers.active
         if uv is None:
             fail("the imported mesh has no UV map")
-        mesh.calc_normals_split()  # the corners' normals (the file's, kept as custom normals)
-        mesh.calc_tangents(uvmap=uv.name)
+        if hasattr(mesh, "calc_normals_split"):  # Blender < 4.1; later ones keep the corners' normals up to date
+            mesh.calc_normals_split()  # the corners' normals (the file's, kept as custom normals)
+        uv_name = uv.name
+        mesh.calc_tangents(uvmap=uv_name)
+        # Asked again: computing tangents can move the mesh's corner data (Blender 4.3 did),
+        # which leaves a UV layer fetched before pointing at freed memory.
+        uv = mesh.uv_layers[uv_name]
         world = obj.matrix_world
         result["objects"].append({"name": obj.name, "uv_map": uv.name, "corners": len(mesh.loops),
-                                  "custom_normals": mesh.has_custom_normals, "auto_smooth": mesh.use_auto_smooth})
+                                  "custom_normals": mesh.has_custom_normals,
+                                  # Blender 4.1 dropped auto smooth: corners are split where their normals differ
+                                  "auto_smooth": getattr(mesh, "use_auto_smooth", True)})
         for slot in obj.material_slots:
             if slot.material is not None:
                 result["materials"].append(describe_material(slot.material, uv.name))

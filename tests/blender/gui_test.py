@@ -2,7 +2,7 @@
 # under Xvfb with --enable-event-simulate):
 #
 #   blender --factory-startup --enable-event-simulate START.blend --python tests/blender/gui_test.py -- \
-#       ADDON.zip MODULE_DIR OUT_DIR
+#       ADDON.zip EXTENSION.zip MODULE_DIR OUT_DIR
 #
 # Blender's own timer ticks every 50 ms all along, while the add-on bakes from its panel (the
 # operator invoked as the Bake button invokes it):
@@ -12,6 +12,7 @@
 #      scene is as before (no image, no node, the earlier maps' pixels untouched);
 #   3. the panel's Cancel button does the same.
 # The script writes OUT/result.json and leaves Blender with status 0 when every check held, 1 otherwise.
+import importlib
 import json
 import os
 import sys
@@ -22,10 +23,10 @@ import bpy
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pair import make_pair, pixels  # noqa: E402
+from support import install_addon, make_pair, pixels  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:]
-ADDON_ZIP, MODULE_DIR, OUT = argv[:3]
+ADDON_ZIP, EXTENSION_ZIP, MODULE_DIR, OUT = argv[:4]
 results = {"checks": [], "failed": []}
 
 
@@ -34,11 +35,10 @@ def check(condition, message):
     print(("ok: " if condition else "FAILED: ") + message, flush=True)
 
 
-bpy.ops.preferences.addon_install(filepath=ADDON_ZIP, overwrite=True)
-bpy.ops.preferences.addon_enable(module="glint_bake")
-preferences = bpy.context.preferences.addons["glint_bake"].preferences
+ADDON = install_addon(ADDON_ZIP, EXTENSION_ZIP)
+preferences = bpy.context.preferences.addons[ADDON].preferences
 preferences.module_path = MODULE_DIR
-import glint_bake  # noqa: E402
+glint_bake = importlib.import_module(ADDON)
 
 low, high = make_pair(segments=48, rings=24, subdivisions=6)
 settings = bpy.context.scene.glint_bake

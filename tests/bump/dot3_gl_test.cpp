@@ -12,8 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <memory>
 #include <random>
+#include <string>
+#include <vector>
 
 using namespace glint;
 using namespace glint::render::bump;

@@ -10,8 +10,10 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 namespace fs = std::filesystem;
 using namespace glint;

@@ -144,6 +144,7 @@ TEST(Text, FrameRangeIsFirstColonEndEitherSideOptional) {
 #include "glint/core/locations.h"
 
 #include <cstdlib>
+#include <string>
 
 namespace {
 // Sets GLINT_DATA_DIR for one scope (each ctest test runs in its own process, but the

@@ -8,9 +8,12 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <string>
 #include <thread>
 
 using namespace glint;

@@ -11,11 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <map>
 #include <numeric>
+#include <random>
+#include <string>
+#include <vector>
 
 using namespace glint;
 using namespace glint::cut;

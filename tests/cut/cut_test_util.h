@@ -7,6 +7,7 @@
 #include "glint/raytrace/raytracer.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <random>
 #include <string>
 #include <vector>

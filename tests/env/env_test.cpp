@@ -12,9 +12,13 @@
 #include "glint/render/env/reflection.h"
 #include "glint/render/state.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <string>
+#include <vector>
 
 using namespace glint;
 namespace renv = glint::render::env;

@@ -6,6 +6,9 @@
 #include "glint/image/pattern.h"
 #include "glint/render/filtering/filtering.h"
 
+#include <algorithm>
+#include <string>
+
 using namespace glint;
 namespace flt = glint::render::filtering;
 
@@ -66,4 +69,26 @@ TEST_F(FilteringGl, AnisotropyOutsideTheQueriedRangeIsAOneLineError) {
   }
   // Variants ask for 16 whatever the GPU: they are clamped, not refused.
   EXPECT_LE(flt::clampedToDevice(mode("aniso16")).anisotropy, maximum);
+}
+
+// What GL specifies of anisotropic filtering, which the reference images cannot hold to bytes
+// (the samples' count and placement are the implementation's: Mesa 22 and 25 differ, and
+// VariantDesc::implementationDefined loosens those images' check): each level is no less
+// sharp than the one below it and than trilinear, and no farther from the supersampled
+// truth than trilinear. llvmpipe has one filter for every level above 1: equal there.
+TEST_F(FilteringGl, AnisotropicLevelsAreNoLessSharpAndNoFartherFromTheTruth) {
+  if (flt::maxAnisotropy() < 2.0f) GTEST_SKIP() << "no anisotropic filtering on this GL";
+  for (const Image& texture : {makeCheckerboard(512, 8), makeTestChart(512)}) {
+    const flt::GroundPlane ground(texture);
+    const auto trilinear = flt::measureFiltering(ground, mode("trilinear"));
+    double sharpness = trilinear.sharpness;
+    for (const char* level : {"aniso2", "aniso4", "aniso8", "aniso16"}) {
+      const auto m = flt::measureFiltering(ground, mode(level));
+      SCOPED_TRACE(::testing::Message() << level << ": sharpness " << m.sharpness << ", error " << m.rmsError
+                                        << " (trilinear: " << trilinear.sharpness << ", " << trilinear.rmsError << ")");
+      EXPECT_GE(m.sharpness, 0.99 * sharpness) << "less sharp than the level below";
+      EXPECT_LE(m.rmsError, 1.01 * trilinear.rmsError) << "farther from the truth than trilinear";
+      sharpness = std::max(sharpness, m.sharpness);
+    }
+  }
 }

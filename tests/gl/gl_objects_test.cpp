@@ -7,6 +7,9 @@
 #include "glint/gl/timer.h"
 
 #include <array>
+#include <cstdint>
+#include <span>
+#include <string>
 
 using namespace glint;
 using glint::testing::GlTest;

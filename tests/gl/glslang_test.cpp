@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <regex>
 #include <set>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using namespace glint;

@@ -6,6 +6,8 @@
 #include "glint/gl/shader.h"
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using namespace glint;

@@ -9,6 +9,11 @@
 #include "glint/render/raster_gl.h"
 #include "glint/render/state.h"
 
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
 using namespace glint;
 using glint::testing::GlTest;
 

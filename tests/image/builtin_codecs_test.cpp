@@ -21,8 +21,12 @@
 #include <ImfOutputFile.h>
 #include <spng.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using namespace glint;

@@ -11,13 +11,18 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <string>
 #include <tuple>
 #include <thread>
+#include <vector>
 
 using namespace glint;
 namespace rp = glint::render::pipedream;

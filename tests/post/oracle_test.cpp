@@ -19,10 +19,16 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
 #include <complex>
 #include <cstdio>
+#include <functional>
 #include <random>
+#include <span>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 using namespace glint;
 using namespace glint::render::post;

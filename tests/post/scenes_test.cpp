@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
 #include <variant>
 
 using namespace glint;

@@ -29,8 +29,14 @@
 
 #include "support/gl_test.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <random>
+#include <span>
+#include <string>
+#include <vector>
 
 using namespace glint;
 using glint::testing::GlTest;

@@ -9,7 +9,13 @@
 #include "glint/render/camera.h"
 #include "support/gl_test.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <random>
+#include <span>
+#include <vector>
 
 using namespace glint;
 using glint::testing::GlTest;

@@ -16,7 +16,11 @@
 #include "glint/render/camera.h"
 #include "support/gl_test.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <random>
+#include <string>
+#include <vector>
 
 using namespace glint;
 using glint::testing::GlTest;

@@ -8,9 +8,14 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
 #include <random>
+#include <span>
+#include <string>
 #include <vector>
 
 using namespace glint;

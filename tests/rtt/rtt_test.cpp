@@ -7,6 +7,9 @@
 #include "glint/gl/render_target.h"
 #include "glint/render/rtt/rtt.h"
 
+#include <algorithm>
+#include <string>
+
 using namespace glint;
 namespace rtt = glint::render::rtt;
 

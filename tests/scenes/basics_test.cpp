@@ -5,6 +5,8 @@
 #include "glint/gl/render_target.h"
 #include "glint/scenes/runner.h"
 
+#include <utility>
+
 using namespace glint;
 using glint::testing::GlTest;
 

@@ -10,6 +10,10 @@
 // edge pixels, SIMD width — while any visible change (a moved edge, a wrong colour, a
 // missing object) exceeds it by orders of magnitude.
 //
+// A variant whose picture GL leaves to the implementation (VariantDesc::implementationDefined:
+// anisotropic filtering, whose samples Mesa 22 and Mesa 25 place differently) is held to a
+// looser mean (4/255) and no pixel count; tests/filtering checks what GL specifies of it.
+//
 // On failure the actual image and an amplified difference are written to
 // build/test-output/golden/<scene>/<variant>.{actual,diff}.png. Look at them, then
 // accept with `scripts/accept-golden [filter]`.
@@ -21,6 +25,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using namespace glint;
@@ -75,7 +81,8 @@ TEST_P(Golden, MatchesReference) {
   const Image expected = loadImage(golden);
   ASSERT_EQ(expected.width(), result.image.width());
   ASSERT_EQ(expected.height(), result.image.height());
-  const auto diff = scenes::checkAgainstReference(expected, result.image);
+  const bool implementationDefined = ref.desc().implementationDefined;
+  const auto diff = scenes::checkAgainstReference(expected, result.image, implementationDefined);
   const double differingFraction = diff.differingFraction;
   const bool pass = diff.pass;
   if (!pass) {
@@ -83,6 +90,12 @@ TEST_P(Golden, MatchesReference) {
     saveImage(diff.visual, outBase.string() + ".diff.png");
   } else {
     fs::remove(actualPath);
+  }
+  if (implementationDefined) {  // anisotropic filtering: what GL leaves open (runner.h)
+    EXPECT_TRUE(pass) << ref.fullName() << " (its sampling is the implementation's): mean difference " << diff.meanAbs * 255.0
+                      << "/255 (limit " << scenes::ReferenceCheck::kMaxMeanDifferenceImplementationDefined * 255.0
+                      << "); see " << actualPath;
+    return;
   }
   EXPECT_TRUE(pass) << ref.fullName() << ": mean difference " << diff.meanAbs * 255.0 << "/255 (limit "
                     << kMaxMeanDifference * 255.0 << "), " << differingFraction * 100.0 << "% pixels differ (limit "

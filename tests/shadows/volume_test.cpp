@@ -9,8 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <map>
 #include <random>
+#include <utility>
+#include <vector>
 
 using namespace glint;
 using namespace glint::render::shadows;

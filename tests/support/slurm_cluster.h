@@ -16,7 +16,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -49,46 +51,67 @@ public:
       fs::permissions(m_dir / "munge" / "munge.key", fs::perms::owner_read);
     }
     const std::string socket = (m_dir / "munge" / "socket").string();
-    start({"munged", "--foreground", "--force", "--socket=" + socket,
-           "--key-file=" + (m_dir / "munge" / "munge.key").string(), "--log-file=" + (m_dir / "log" / "munged.log").string(),
-           "--pid-file=" + (m_dir / "munge" / "munged.pid").string(), "--seed-file=" + (m_dir / "munge" / "seed").string()},
-          "munged.out");
-    waitFor([&] { return fs::exists(socket); }, "munged's socket");
+    try {  // a cluster that does not start leaves no daemon behind (the catch below)
+      start({"munged", "--foreground", "--force", "--socket=" + socket,
+             "--key-file=" + (m_dir / "munge" / "munge.key").string(), "--log-file=" + (m_dir / "log" / "munged.log").string(),
+             "--pid-file=" + (m_dir / "munge" / "munged.pid").string(), "--seed-file=" + (m_dir / "munge" / "seed").string()},
+            "munged.out");
+      waitFor([&] { return fs::exists(socket); }, "munged's socket");
 
-    char host[256] = {};
-    gethostname(host, sizeof host - 1);
-    m_node = std::string(host).substr(0, std::string(host).find('.'));
-    const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    const long long memoryMiB = (long long)(sysconf(_SC_PHYS_PAGES)) * sysconf(_SC_PAGE_SIZE) / (1024 * 1024);
-    const std::string conf = (m_dir / "slurm.conf").string();
-    std::ofstream(conf) << "# A one-node cluster for glint's farm tests (tests/support/slurm_cluster.h)\n"
-                        << "ClusterName=glinttest\n"
-                        << "SlurmctldHost=" << m_node << "(127.0.0.1)\n"
-                        << "SlurmUser=root\nSlurmdUser=root\n"
-                        << "SlurmctldPort=" << freePort() << "\nSlurmdPort=" << freePort() << "\n"
-                        << "AuthType=auth/munge\nCredType=cred/munge\nAuthInfo=socket=" << socket << "\n"
-                        << "StateSaveLocation=" << (m_dir / "state").string() << "\n"
-                        << "SlurmdSpoolDir=" << (m_dir / "spool").string() << "\n"
-                        << "SlurmctldPidFile=" << (m_dir / "slurmctld.pid").string() << "\n"
-                        << "SlurmdPidFile=" << (m_dir / "slurmd.pid").string() << "\n"
-                        << "SlurmctldLogFile=" << (m_dir / "log" / "slurmctld.log").string() << "\n"
-                        << "SlurmdLogFile=" << (m_dir / "log" / "slurmd.log").string() << "\n"
-                        << "ProctrackType=proctrack/linuxproc\nTaskPlugin=task/none\nSwitchType=switch/none\n"
-                        << "MpiDefault=none\nReturnToService=2\nSchedulerType=sched/backfill\n"
-                        << "SchedulerParameters=sched_interval=1\n"
-                        << "SelectType=select/cons_tres\nSelectTypeParameters=CR_Core_Memory\n"
-                        << "JobCompType=jobcomp/none\nAccountingStorageType=accounting_storage/none\n"
-                        << "JobAcctGatherType=jobacct_gather/none\nMinJobAge=300\n"
-                        << "NodeName=" << m_node << " NodeAddr=127.0.0.1 CPUs=" << cpus
-                        << " RealMemory=" << std::max(1024LL, memoryMiB - 512) << " State=UNKNOWN\n"
-                        << "PartitionName=glint Nodes=ALL Default=YES MaxTime=INFINITE State=UP\n";
-    setenv("SLURM_CONF", conf.c_str(), 1);
-    start({"slurmctld", "-D", "-i", "-f", conf}, "slurmctld.out");
-    start({"slurmd", "-D", "-N", m_node, "-f", conf}, "slurmd.out");
-    waitFor([&] { return shell("sinfo -h -o %t").find("idle") != std::string::npos; }, "the node to be idle");
+      char host[256] = {};
+      gethostname(host, sizeof host - 1);
+      m_node = std::string(host).substr(0, std::string(host).find('.'));
+      const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+      const long long memoryMiB = (long long)(sysconf(_SC_PHYS_PAGES)) * sysconf(_SC_PAGE_SIZE) / (1024 * 1024);
+      const std::string conf = (m_dir / "slurm.conf").string();
+      std::ofstream(conf) << "# A one-node cluster for glint's farm tests (tests/support/slurm_cluster.h)\n"
+                          << "ClusterName=glinttest\n"
+                          << "SlurmctldHost=" << m_node << "(127.0.0.1)\n"
+                          << "SlurmUser=root\nSlurmdUser=root\n"
+                          << "SlurmctldPort=" << freePort() << "\nSlurmdPort=" << freePort() << "\n"
+                          << "AuthType=auth/munge\nCredType=cred/munge\nAuthInfo=socket=" << socket << "\n"
+                          << "StateSaveLocation=" << (m_dir / "state").string() << "\n"
+                          << "SlurmdSpoolDir=" << (m_dir / "spool").string() << "\n"
+                          << "SlurmctldPidFile=" << (m_dir / "slurmctld.pid").string() << "\n"
+                          << "SlurmdPidFile=" << (m_dir / "slurmd.pid").string() << "\n"
+                          << "SlurmctldLogFile=" << (m_dir / "log" / "slurmctld.log").string() << "\n"
+                          << "SlurmdLogFile=" << (m_dir / "log" / "slurmd.log").string() << "\n"
+                          << "ProctrackType=proctrack/linuxproc\nTaskPlugin=task/none\nSwitchType=switch/none\n"
+                          << "MpiDefault=none\nReturnToService=2\nSchedulerType=sched/backfill\n"
+                          << "SchedulerParameters=sched_interval=1\n"
+                          << "SelectType=select/cons_tres\nSelectTypeParameters=CR_Core_Memory\n"
+                          << "JobCompType=jobcomp/none\nAccountingStorageType=accounting_storage/none\n"
+                          << "JobAcctGatherType=jobacct_gather/none\nMinJobAge=300\n"
+                          << "NodeName=" << m_node << " NodeAddr=127.0.0.1 CPUs=" << cpus
+                          << " RealMemory=" << std::max(1024LL, memoryMiB - 512) << " State=UNKNOWN\n"
+                          << "PartitionName=glint Nodes=ALL Default=YES MaxTime=INFINITE State=UP\n";
+      // Slurm 23.11 and later (Debian 13: 24.11) start slurmd's cgroup plugin even with the
+      // plugins above, and fail where no cgroup filesystem is mounted (a container, a chroot):
+      // a test cluster needs none. Debian 12's 22.05 reads no cgroup.conf for these plugins
+      // and does not know the value.
+      if (slurmVersion() >= 2311) std::ofstream(m_dir / "cgroup.conf") << "CgroupPlugin=disabled\n";
+      setenv("SLURM_CONF", conf.c_str(), 1);
+      start({"slurmctld", "-D", "-i", "-f", conf}, "slurmctld.out");
+      start({"slurmd", "-D", "-N", m_node, "-f", conf}, "slurmd.out");
+      waitFor([&] { return shell("sinfo -h -o %t").find("idle") != std::string::npos; }, "the node to be idle");
+    } catch (...) {
+      stop();
+      throw;
+    }
   }
 
-  ~SlurmCluster() {
+  ~SlurmCluster() { stop(); }
+
+  /// Slurm's version as yymm (24.11.5 → 2411); 0 when slurmd does not say.
+  static int slurmVersion() {
+    const std::string text = shell("slurmd -V");  // "slurm 24.11.5"
+    int major = 0, minor = 0;
+    if (std::sscanf(text.c_str(), "slurm %d.%d", &major, &minor) != 2) return 0;
+    return major * 100 + minor;
+  }
+
+  /// Ends the jobs, then the daemons (slurmd, slurmctld, munged: the reverse of their start).
+  void stop() {
     // Jobs still running (a test that failed half-way) end first, so no job step outlives
     // the daemons.
     shell("scancel --user=$(id -un)");
@@ -103,6 +126,7 @@ public:
         waitpid(pid, &status, 0);
       }
     }
+    m_pids.clear();
     unsetenv("SLURM_CONF");
   }
 

@@ -29,6 +29,7 @@
 #include "glint/cut/cutter.h"
 
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>

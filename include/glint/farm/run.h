@@ -13,6 +13,7 @@
 /// ```
 #include "glint/farm/farm.h"
 
+#include <filesystem>
 #include <memory>
 #include <string>
 

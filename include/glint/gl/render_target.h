@@ -15,6 +15,8 @@
 #include "glint/gl/objects.h"
 #include "glint/image/image.h"
 
+#include <string_view>
+
 namespace glint::gl {
 
 /// A framebuffer to draw into and its size. Scenes receive one per frame; they must

@@ -25,6 +25,7 @@
 #include "glint/mesh/mesh.h"
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 

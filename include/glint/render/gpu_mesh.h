@@ -14,6 +14,9 @@
 #include "glint/mesh/mesh.h"
 
 #include <span>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace glint::render {
 

@@ -42,6 +42,7 @@
 #include "glint/core/math.h"
 #include "glint/video/frame.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <span>

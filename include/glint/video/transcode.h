@@ -43,6 +43,7 @@
 #include "glint/video/frame.h"
 
 #include <atomic>
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <optional>

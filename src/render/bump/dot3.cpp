@@ -8,6 +8,10 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <cstdint>
+#include <span>
+#include <string>
+
 namespace glint::render::bump {
 
 // ---------------------------------------------------------------------------

@@ -5,6 +5,10 @@
 #include "glint/core/error.h"
 #include "glint/render/state.h"
 
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace glint::render::env {

@@ -3,6 +3,8 @@
 #include "glint/core/error.h"
 #include "glint/render/state.h"
 
+#include <string>
+
 namespace glint::render::env {
 
 DynamicCubeMap::DynamicCubeMap(int size, std::string_view label) : m_size(size) {

@@ -8,6 +8,7 @@
 #include "glint/render/state.h"
 
 #include <cmath>
+#include <vector>
 
 namespace glint::render::env {
 namespace fs = std::filesystem;

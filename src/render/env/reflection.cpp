@@ -3,6 +3,9 @@
 #include "glint/core/error.h"
 #include "glint/render/state.h"
 
+#include <string>
+#include <vector>
+
 namespace glint::render::env {
 
 Skybox::Skybox() : m_pass("env/skybox.frag") {}

@@ -7,6 +7,8 @@
 #include "glint/video/transcode.h"
 
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace glint::render::post {
 

@@ -4,6 +4,8 @@
 #include "glint/render/camera.h"
 #include "glint/render/state.h"
 
+#include <string>
+
 namespace glint::render::rtt {
 namespace {
 gl::Texture makeTexture(int size, std::string_view label) {

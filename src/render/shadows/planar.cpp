@@ -6,6 +6,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <string>
+
 namespace glint::render::shadows {
 
 mat4 planarShadowMatrix(vec4 plane, vec3 light) {

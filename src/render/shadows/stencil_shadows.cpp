@@ -5,7 +5,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <span>
+#include <vector>
 
 namespace glint::render::shadows {
 

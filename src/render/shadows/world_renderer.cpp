@@ -1,7 +1,10 @@
 #include "glint/render/shadows/world_renderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <string>
 
 namespace glint::render::shadows {
 

@@ -6,6 +6,7 @@
 #include "glint/render/env/environment.h"
 #include "glint/render/state.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 

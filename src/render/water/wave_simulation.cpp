@@ -4,6 +4,7 @@
 #include "glint/render/state.h"
 
 #include <cmath>
+#include <string>
 
 namespace glint::render::water {
 

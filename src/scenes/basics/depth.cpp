@@ -12,6 +12,8 @@
 #include "glint/render/state.h"
 #include "glint/scenes/scene.h"
 
+#include <memory>
+
 namespace glint::scenes {
 namespace {
 

@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace glint::scenes {
 namespace {

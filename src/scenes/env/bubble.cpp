@@ -13,6 +13,9 @@
 
 #include <cmath>
 #include <memory>
+#include <span>
+#include <string>
+#include <vector>
 
 namespace glint::scenes {
 namespace {

@@ -8,6 +8,8 @@
 #include "glint/scenes/scene.h"
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace glint::scenes {
 namespace {

@@ -10,10 +10,14 @@
 #include "glint/render/state.h"
 #include "glint/scenes/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <span>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace glint::scenes {
 namespace {

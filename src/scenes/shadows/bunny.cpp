@@ -9,7 +9,10 @@
 
 #include <fmt/format.h>
 
+#include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace glint::scenes {
 namespace shadows {

@@ -4,6 +4,9 @@
 #include "glint/render/shadows/world.h"
 #include "glint/scenes/scene.h"
 
+#include <string>
+#include <vector>
+
 namespace glint::scenes::shadows {
 
 namespace sh = glint::render::shadows;

@@ -5,6 +5,10 @@
 #include "glint/render/shadows/planar.h"
 #include "glint/render/shadows/shadow_map.h"
 
+#include <memory>
+#include <string>
+#include <vector>
+
 namespace glint::scenes {
 namespace shadows {
 namespace {

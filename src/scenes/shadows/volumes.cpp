@@ -10,6 +10,10 @@
 #include "glint/render/shadows/stencil_shadows.h"
 #include "glint/render/shadows/world_renderer.h"
 
+#include <memory>
+#include <string>
+#include <vector>
+
 namespace glint::scenes {
 namespace shadows {
 namespace {

@@ -19,6 +19,8 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace glint::scenes {
 namespace {

@@ -33,6 +33,8 @@
 #include "glint/image/dot3.h"
 #include "glint/render/camera.h"
 
+#include <cstdint>
+#include <span>
 #include <vector>
 
 namespace glint::render::bump {

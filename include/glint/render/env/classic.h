@@ -23,6 +23,8 @@
 #include "glint/mesh/mesh.h"
 #include "glint/render/camera.h"
 
+#include <string_view>
+
 namespace glint::render::env {
 
 class ClassicMesh {

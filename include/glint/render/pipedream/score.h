@@ -31,6 +31,7 @@
 #include "glint/core/math.h"
 #include "glint/pipedream/machine_room.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace glint::render::pipedream {

@@ -22,6 +22,8 @@
 #include "glint/render/gpu_mesh.h"
 #include "glint/render/shadows/world_renderer.h"
 
+#include <string>
+
 namespace glint::render::shadows {
 
 /// Projects points onto the plane dot(plane.xyz, p) + plane.w = 0 along rays from the

@@ -30,6 +30,8 @@
 #include "glint/render/depth_view.h"
 #include "glint/render/shadows/world_renderer.h"
 
+#include <string>
+
 namespace glint::render::shadows {
 
 enum class ShadowMapView {

@@ -37,7 +37,9 @@
 #include "glint/render/shadows/volume.h"
 #include "glint/render/shadows/world_renderer.h"
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace glint::render::shadows {
 

@@ -28,6 +28,7 @@
 #include "glint/render/shadows/world.h"
 
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace glint::render::shadows {

@@ -1,6 +1,12 @@
-# A low/high pair made in Blender, shared by the add-on's tests (addon_test.py, gui_test.py).
+# What the add-on's tests share (addon_test.py, gui_test.py): a low/high pair made in Blender,
+# and installing the add-on the way the Blender at hand installs it (blender/install_addon.py).
+import os
+import sys
 import bpy
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "blender"))
+from install_addon import install_addon  # noqa: E402,F401  (re-exported)
 
 
 def make_pair(segments=32, rings=16, subdivisions=6):
