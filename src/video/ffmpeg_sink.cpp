@@ -32,16 +32,54 @@ bool audioFits(const AVOutputFormat& format, AVCodecID codec) {
   return avformat_query_codec(&format, codec, FF_COMPLIANCE_NORMAL) == 1;
 }
 
-/// Whether glint hands a container negative timestamps as they are (AAC's priming packet
-/// before the first frame): the MP4 family stores them in its edit list whatever FFmpeg's
-/// flags say (5.1 flags its muxer AVFMT_TS_NEGATIVE, 7.1 does not, and would shift the audio
-/// by the lead), and every container that flags them; others (Matroska) get the source's lead
-/// as an offset instead.
-bool keepsNegativeTimestamps(const AVOutputFormat& format) {
+/// Whether this FFmpeg's Matroska muxer stores any audio codec's initial padding as the
+/// track's CodecDelay and keeps the packets inside it at negative timestamps (FFmpeg 6.1 and
+/// later; 5.1 does so for Opus only). Asked of the muxer itself, once: a header written to
+/// memory for a PCM track with 48 samples of padding holds CodecDelay's ID (0x56AA) or not.
+bool matroskaKeepsCodecDelay() {
+  static const bool keeps = [] {
+    AVFormatContext* raw = nullptr;
+    if (avformat_alloc_output_context2(&raw, nullptr, "matroska", nullptr) < 0 || !raw) return false;
+    std::unique_ptr<AVFormatContext, void (*)(AVFormatContext*)> output(raw, avformat_free_context);
+    AVStream* stream = avformat_new_stream(raw, nullptr);
+    if (!stream) return false;
+    AVCodecParameters& p = *stream->codecpar;
+    p.codec_type = AVMEDIA_TYPE_AUDIO;
+    p.codec_id = AV_CODEC_ID_PCM_S16LE;
+    p.sample_rate = 48000;
+    p.format = AV_SAMPLE_FMT_S16;
+    av_channel_layout_default(&p.ch_layout, 1);
+    p.initial_padding = 48;
+    stream->time_base = {1, 48000};
+    if (avio_open_dyn_buf(&raw->pb) < 0) return false;
+    const bool written = avformat_write_header(raw, nullptr) >= 0 && av_write_trailer(raw) >= 0;
+    std::uint8_t* bytes = nullptr;
+    const int size = avio_close_dyn_buf(raw->pb, &bytes);
+    raw->pb = nullptr;
+    static constexpr std::uint8_t kCodecDelay[] = {0x56, 0xAA};
+    const bool found = written && bytes && std::search(bytes, bytes + size, std::begin(kCodecDelay), std::end(kCodecDelay)) != bytes + size;
+    av_free(bytes);
+    return found;
+  }();
+  return keeps;
+}
+
+/// Whether glint hands a container the audio's negative timestamps as they are (AAC's
+/// priming packet before the first frame), which then keeps the source's timeline: the MP4
+/// family stores them in its edit list whatever FFmpeg's flags say (5.1 flags its muxer
+/// AVFMT_TS_NEGATIVE, 7.1 does not, and would shift the audio by the lead), every container
+/// that flags them, and Matroska where the lead lies within the audio's initial padding and
+/// this FFmpeg writes that as CodecDelay (7.1's Matroska keeps AAC's -1024 samples so).
+/// Elsewhere the file is offset by the source's lead instead (the caller).
+bool keepsNegativeTimestamps(const AVOutputFormat& format, const AVCodecParameters& audio, double leadSeconds) {
   static constexpr std::string_view kMovFamily[] = {"mov", "mp4", "ipod", "3gp", "3g2", "psp", "ismv", "f4v"};
   const std::string_view name = format.name;
-  return (format.flags & AVFMT_TS_NEGATIVE) ||
-         std::find(std::begin(kMovFamily), std::end(kMovFamily), name) != std::end(kMovFamily);
+  if ((format.flags & AVFMT_TS_NEGATIVE) || std::find(std::begin(kMovFamily), std::end(kMovFamily), name) != std::end(kMovFamily))
+    return true;
+  const bool matroska = name.find("matroska") != std::string_view::npos || name == "webm";
+  // Half a millisecond of slack: the lead was measured in the source's time base.
+  return matroska && audio.sample_rate > 0 && audio.initial_padding > 0 &&
+         leadSeconds <= double(audio.initial_padding) / audio.sample_rate + 0.0005 && matroskaKeepsCodecDelay();
 }
 
 /// FFmpeg's reason a write failed, or "no space left on device (N KiB free ...)" for a full disk.
@@ -230,7 +268,8 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const fs::path& target_, co
   // whatever it is given first. Shifting by the source's lead instead gives every part of a
   // split video (`--frames`) the same timeline as the whole, so the parts join with --concat
   // into the very bytes of one run.
-  if (s.audio && s.audio->leadSeconds() > 0 && !keepsNegativeTimestamps(*s.output->oformat))
+  if (s.audio && s.audio->leadSeconds() > 0 &&
+      !keepsNegativeTimestamps(*s.output->oformat, s.audio->parameters(), s.audio->leadSeconds()))
     s.output->output_ts_offset = std::llround(s.audio->leadSeconds() * AV_TIME_BASE);
 
   s.matroska = std::string_view(s.output->oformat->name).find("matroska") != std::string_view::npos ||

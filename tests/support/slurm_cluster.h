@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -104,9 +105,10 @@ public:
 
   /// Slurm's version as yymm (24.11.5 → 2411); 0 when slurmd does not say.
   static int slurmVersion() {
-    const std::string text = shell("slurmd -V");  // "slurm 24.11.5"
+    const std::string text = shell(daemonPath("slurmd") + " -V");  // "slurm-wlm 24.11.5" (Debian), "slurm 24.11.5"
+    const auto space = text.find(' ');
     int major = 0, minor = 0;
-    if (std::sscanf(text.c_str(), "slurm %d.%d", &major, &minor) != 2) return 0;
+    if (space == std::string::npos || std::sscanf(text.c_str() + space, " %d.%d", &major, &minor) != 2) return 0;
     return major * 100 + minor;
   }
 
@@ -172,6 +174,20 @@ private:
     return port;
   }
 
+  /// The daemons live in sbin, which a user's PATH need not name (Debian's default PATH for a
+  /// user has no /usr/sbin): PATH first, then /usr/sbin and /sbin. Empty if none has it.
+  static std::string daemonPath(const std::string& name) {
+    std::string search = std::getenv("PATH") ? std::getenv("PATH") : "";
+    search += ":/usr/sbin:/sbin";
+    std::stringstream folders(search);
+    for (std::string folder; std::getline(folders, folder, ':');) {
+      if (folder.empty()) continue;
+      const std::string candidate = folder + "/" + name;
+      if (access(candidate.c_str(), X_OK) == 0) return candidate;
+    }
+    return {};
+  }
+
   void start(const std::vector<std::string>& argv, const std::string& log) {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
@@ -182,8 +198,9 @@ private:
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
+    const std::string program = daemonPath(argv[0]);
     pid_t pid = 0;
-    const int e = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+    const int e = program.empty() ? ENOENT : posix_spawn(&pid, program.c_str(), &actions, nullptr, args.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (e != 0) throw std::runtime_error("cannot start " + argv[0] + " (scripts/setup --test installs slurm-wlm and munge)");
     m_pids.push_back(pid);
