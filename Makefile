@@ -62,11 +62,14 @@ TSAN_TESTS := tests/bake/bake_maps_test tests/bake/bake_extra_maps_test tests/cu
 
 all: build
 
+# SETUP=true skips the installer: a system that is not Debian 12 or 13, with the packages
+# README.md lists installed by hand (make SETUP=true test).
+SETUP ?= scripts/setup
 setup:
-	@scripts/setup
+	@$(SETUP)
 
 setup-test:
-	@scripts/setup --test
+	@$(SETUP) --test
 
 # Optimised as RelWithDebInfo (-O2, NDEBUG) but without debug info: a clean build compiles
 # about a third faster (one large unit: 26.5 → 17.8 CPU s), and a new user's first
