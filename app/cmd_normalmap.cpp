@@ -1,4 +1,4 @@
-// glint normalmap — a height map → a tangent-space normal map (seed 002's "Normal Map
+// glint normalmap — a height map → a tangent-space normal map (the VGP353 lecture's "Normal Map
 // Generation"), on the CPU by default or with the GPU pass (--gpu).
 #include "common.h"
 
@@ -72,7 +72,7 @@ int makeNormalMap(const NormalMapArgs& args, const GlobalOptions& global) {
 
 Command normalmapCommand(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<NormalMapArgs>();
-  auto* cmd = app.add_subcommand("normalmap", "Make a tangent-space normal map from a height map (seed 002)");
+  auto* cmd = app.add_subcommand("normalmap", "Make a tangent-space normal map from a height map (the VGP353 lecture)");
   cmd->footer(
       "Each texel's normal comes from its four neighbours n, s, e, w: n = normalize(S·(w−e)/2, S·(s−n)/2, 1), with "
       "north up in the picture (OpenGL-style maps: green = up). The output is 8-bit RGB, (n + 1)/2; RGBA with the "
@@ -90,7 +90,7 @@ Command normalmapCommand(CLI::App& app, const GlobalOptions& global) {
                   "Height of the full 0..1 range in texel widths: larger = bumpier (default 8; negative inverts)");
   cmd->add_flag("--wrap", args->wrap, "Neighbours wrap around the edges (tileable textures); default clamps");
   cmd->add_option("--formula", args->formula,
-                  "gradient (the surface's true normal) or slide (seed 002's formula as written: x mirrored, "
+                  "gradient (the surface's true normal) or slide (the VGP353 lecture's formula as written: x mirrored, "
                   "z = 1 − |d|; --scale 2 reproduces it exactly)")
       ->check(CLI::IsMember({"gradient", "slide"}));
   cmd->add_flag("--gpu", args->gpu, "Use the GPU pass (full-screen quad into a framebuffer) instead of the CPU");

@@ -1,4 +1,4 @@
-// glint post IN -o OUT -e EFFECT... — seed 001's post-processing on an image, every frame of
+// glint post IN -o OUT -e EFFECT... — WWDC 2003 session 212's post-processing on an image, every frame of
 // a video, a camera or an FFmpeg lavfi source. Thin: the options, the job, its run and its
 // report are the library's (post/job.h); the GPU backend is render/post's (render/post/gpu.h).
 #include "common.h"

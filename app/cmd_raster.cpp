@@ -1,5 +1,5 @@
 // glint raster — geometry through glint::raster, the reference CPU pipeline, into pictures
-// of its intermediate results: the lecture's pipeline (seeds/004) made visible. The job is
+// of its intermediate results: the lecture's pipeline (the OpenGL III lecture) made visible. The job is
 // scenes/raster_job.h; this file is its options.
 //
 //   glint raster lecture -o DIR                 the lecture's triangle, with its numbers

@@ -36,7 +36,7 @@ Suites& Suites::builtin() {
          .description = "shadow cutter: 550k-triangle Pipe Dream stand-in, growth 10k → 1M, pairs/s",
          .run = runCutSuite},
         {.name = "pipedream",
-         .description = "the Pipe Dream frame: cut static + dynamic volumes vs full-scene volumes (seed: 15x), "
+         .description = "the Pipe Dream frame: cut static + dynamic volumes vs full-scene volumes (WWDC 2003 session 212: 15x), "
                          "triangles, stencil fill and overdraw per frame",
          .run = runPipeDreamSuite},
         {.name = "rtt",

@@ -1,9 +1,9 @@
-// glint bench pipedream — seed 001's claim for Animusic's "Pipe Dream": full-scene stencil
+// glint bench pipedream — WWDC 2003 session 212's claim for Animusic's "Pipe Dream": full-scene stencil
 // shadow volumes ran at about 2 frames a second, cutting the static shadows in and keeping
 // volumes for the dynamic objects only made it over 30 (issue 14: ≥ 15× faster).
 //
 // The `pipedream` scene at its default size, polygon count and time, from its default
-// camera and from the side (the seed's worst overdraw): the seed's method (Mode::Full) against the naive method (every caster's volumes
+// camera and from the side (WWDC 2003 session 212's worst overdraw): WWDC 2003 session 212's method (Mode::Full) against the naive method (every caster's volumes
 // per light, the uncut scene, multi-pass), each frame waited for (glFinish), medians over
 // rounds that time a few frames of each method in turn, so that the shared machine's load
 // falls on all alike; the ratios are the medians of each round's own ratios.
@@ -102,18 +102,18 @@ void runView(Recorder& recorder, rp::Renderer& renderer, rp::Renderer& floatRend
   const double pixels = double(size.x) * double(size.y);
 
   const double fullMs = median(full), naiveMs = median(naive), staticMs = median(staticOnly);
-  recorder.record({.group = group, .name = "full (seed's method)", .value = fullMs, .unit = "ms",
+  recorder.record({.group = group, .name = "full (the talk's method)", .value = fullMs, .unit = "ms",
                    .note = fmt::format("{:.1f} fps; {}", 1000.0 / fullMs, runsNote(full))});
   recorder.record({.group = group, .name = "naive (all volumes)", .value = naiveMs, .unit = "ms",
-                   .ratioTo = "full (seed's method)",
-                   .note = fmt::format("{:.2f} fps; ratio = how many times faster the seed's method is; {}",
+                   .ratioTo = "full (the talk's method)",
+                   .note = fmt::format("{:.2f} fps; ratio = how many times faster WWDC 2003 session 212's method is; {}",
                                        1000.0 / naiveMs, runsNote(naive))});
   recorder.record({.group = group, .name = "static only (no volumes)", .value = staticMs, .unit = "ms",
-                   .ratioTo = "full (seed's method)",
+                   .ratioTo = "full (the talk's method)",
                    .note = fmt::format("the cut scene alone: what the dynamic shadows cost on top; {}", runsNote(staticOnly))});
   recorder.record({.group = group, .name = "speed-up", .value = median(speedups), .unit = "x",
                    .note = fmt::format("naive / full frame time, median of each round's ratio (ratio of the medians "
-                                       "{:.2f}); seed: 2 fps -> over 30 fps; target >= 15x; on llvmpipe >= 5x",
+                                       "{:.2f}); the talk: 2 fps -> over 30 fps; target >= 15x; on llvmpipe >= 5x",
                                        naiveMs / fullMs)});
   recorder.record({.group = group, .name = "shadows: naive cost / full cost", .value = median(shadowRatios), .unit = "x",
                    .note = fmt::format("(naive - static only) / (full - static only), median of each round's: what the "
@@ -164,7 +164,7 @@ void runView(Recorder& recorder, rp::Renderer& renderer, rp::Renderer& floatRend
                      .note = "fragments the volumes rasterize, every light (GL_SAMPLES_PASSED, depth test off)"});
     recorder.record({.group = group, .name = fmt::format("{}: volume overdraw/pixel", name),
                      .value = double(cost.fill) / pixels, .unit = "x",
-                     .note = "stencil fragments / pixels (seed: \"near a hundred\" for full-scene volumes)"});
+                     .note = "stencil fragments / pixels (the talk: \"near a hundred\" for full-scene volumes)"});
   }
 }
 
@@ -182,7 +182,7 @@ void runPipeDream(Recorder& recorder) {
   gl::RenderTarget target(size, GL_RGBA8, "bench-pipedream");
   const double time = desc.defaultTime;
   const rp::MachinePose pose = rp::poseAt(stage->machine, stage->score, time);
-  // The scene's own camera, and the seed's worst case: "if you look at it from the side
+  // The scene's own camera, and WWDC 2003 session 212's worst case: "if you look at it from the side
   // you get a lot of overdraw".
   for (const int cameraIndex : {0, 3}) {
     const render::Camera camera = pd::namedCamera(cameraIndex, float(size.x) / float(size.y));

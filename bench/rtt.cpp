@@ -1,4 +1,4 @@
-// bench rtt — render to texture: copy from the window vs a framebuffer object (seed 002:
+// bench rtt — render to texture: copy from the window vs a framebuffer object (the VGP353 lecture:
 // copy-to-texture is the "easiest and least efficient form"). Both render the same
 // content and build mipmaps; the copy method pays for the extra copy and clears.
 #include "glint/bench/bench.h"

@@ -1,4 +1,4 @@
-// bench water — seed 002's wave simulation step and height → normal pass on the GPU at
+// bench water — the VGP353 lecture's wave simulation step and height → normal pass on the GPU at
 // 256², 1024² and 4096², each against its CPU reference (sim::WaveField::step and
 // heightToNormalMap) measured in the same run: the peer the ratios are taken to.
 #include "glint/bench/bench.h"

@@ -212,12 +212,12 @@ def bake_batch(path: Union[str, "_os.PathLike[str]"], *, progress: Progress = No
 
 # ---------------------------------------------------------------------------------- normalmap
 def normalmap(height: _np.ndarray, scale: Optional[float] = None, wrap: bool = False, formula: str = "gradient") -> _np.ndarray:
-    """A tangent-space normal map from a height map, as `glint normalmap` makes one (seed 002).
+    """A tangent-space normal map from a height map, as `glint normalmap` makes one (the VGP353 lecture).
 
     height: H×W (or a colour image: its luminance is the height); uint8, uint16 or float32.
     scale: the height of the full 0..1 range in texel widths (bumpiness); None: the command's default (8).
     wrap: neighbours wrap around the edges (tileable textures); else they clamp.
-    formula: "gradient" (the surface's true normal) or "slide" (the seed's formula as written).
+    formula: "gradient" (the surface's true normal) or "slide" (the VGP353 lecture's formula as written).
     Returns H×W×3 uint8, (n + 1) / 2; H×W×4 with the input's alpha when it has one.
     """
     return _glint.normalmap(_np.asarray(height), None if scale is None else float(scale), bool(wrap), formula)
@@ -233,8 +233,8 @@ def post(image_or_frames: Union[_np.ndarray, Iterable[_np.ndarray]], effects: Un
          progress: Progress = None) -> Union[_np.ndarray, Iterator[_np.ndarray]]:
     """Runs post's effects (`glint post -e ...`) on an image array, or lazily on each frame of an iterable of arrays (glint.frames("clip.mp4")).
 
-    effects: "sepia", ["sobel", "kuwahara:radius=4"], ... (glint.info()["effects"]).
-    settings: effect settings as `--set` takes them ("kuwahara.radius=4").
+    effects: "sepia", ["sobel", "kuwahara:size=4"], ... (glint.info()["effects"]; NAME:param=value as `-e` takes it).
+    settings: effect settings as `--set` takes them ("kuwahara.size=4").
     backend: "auto" (the CPU on a software renderer, else the GPU), "cpu" or "gpu".
     channels: 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA; 0 keeps the input's.
     linear_output: a float32 result in linear light, as the command writes an EXR.
@@ -261,7 +261,7 @@ def frames(path: Union[str, "_os.PathLike[str]"], first: int = 0, end: int = -1)
 # ---------------------------------------------------------------------------------------- cut
 def cut(meshes: Union[MeshLike, Sequence[MeshLike]], lights: Sequence[Union[str, Sequence[float]]], *,
         progress: Progress = None, threads: int = 0) -> dict:
-    """Cuts the lights' shadows into the meshes, as `glint cut` does (seed 003's static shadows).
+    """Cuts the lights' shadows into the meshes, as `glint cut` does (WWDC 2003 session 212's static shadows).
 
     meshes: one or more mesh files or glint.Mesh objects, joined in order.
     lights: point lights, "x,y,z" or "x,y,z,name" strings, or (x, y, z) sequences.

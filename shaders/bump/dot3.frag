@@ -10,7 +10,7 @@ smooth in vec3 vLightColor;
 in vec2 vUv;
 layout(location = 0) out vec4 fragColor;
 
-layout(binding = 0) uniform sampler2D uNormalMap;  // texture unit 0, as in the seed
+layout(binding = 0) uniform sampler2D uNormalMap;  // texture unit 0, as in the WWDC 2001 talk
 layout(binding = 1) uniform sampler2D uBase;       // texture unit 1
 
 // GL_DOT3_RGB: 4·Σ(a − ½)(b − ½), clamped to [0, 1] (OpenGL 1.3, table 3.20).

@@ -1,7 +1,7 @@
 #version 450 core
 // DOT3 bump mapping, programmable path: pass the encoded light vector (the vertex colour,
 // unsigned bytes normalized to 0..1 exactly as glColor3ub) and one texture coordinate set
-// (the seed issues the same coordinates for units 0 and 1).
+// (the WWDC 2001 talk issues the same coordinates for units 0 and 1).
 #include "common/attributes.glsl"
 
 uniform mat4 uModelViewProjection;

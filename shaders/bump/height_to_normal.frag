@@ -1,5 +1,5 @@
 #version 450 core
-// Seed 002, "Normal Map Generation": draw one full-screen quad; for every texel read its
+// The VGP353 lecture, "Normal Map Generation": draw one full-screen quad; for every texel read its
 // four neighbours n, s, e, w from the height map and write the normal, encoded (n + 1) / 2.
 // Identical arithmetic to image/normalmap.cpp's heightNormal (the CPU reference).
 

@@ -1,6 +1,6 @@
 #version 450 core
 // Normal mapping, vertex stage: world-space position, and the MikkTSpace frame made unit
-// per vertex and then interpolated WITHOUT renormalizing (render/normal_mapping.h) — the
+// per vertex and then interpolated WITHOUT renormalizing (render/bump/normal_mapping.h) — the
 // frame glint's baker inverts, texel by texel.
 #include "common/attributes.glsl"
 

@@ -1,6 +1,6 @@
 #version 450 core
 // The six faces of a cube map unfolded as a cross, as the viewer inside the cube sees
-// them turning around (seed 000: "a contiguous panorama of the scene as viewed from the
+// them turning around (the WWDC 2001 talk: "a contiguous panorama of the scene as viewed from the
 // rendered object"):
 //              [+Y]
 //   [−X] [−Z] [+X] [+Z]     front (−Z) is second; left, right and back follow around

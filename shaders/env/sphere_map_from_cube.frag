@@ -1,5 +1,5 @@
 #version 450 core
-// Cube map → sphere map (seed 000: "sphere maps are usually generated from cube maps").
+// Cube map → sphere map (the WWDC 2001 talk: "sphere maps are usually generated from cube maps").
 // Each texel shows the reflection off a mirror ball at its position, seen along −Z of
 // the map's frame. Texels whose centre lies outside the ball are wasted: written black
 // with alpha 0 (alpha = 1 marks used texels, so the wasted fraction can be counted).

@@ -1,6 +1,6 @@
 #version 450 core
 // A sphere map shown as an image, centred in the viewport. Wasted texels (alpha 0) are
-// black, as in seed 000's picture. With HEMISPHERES the front half of the environment
+// black, as in the WWDC 2001 talk's picture. With HEMISPHERES the front half of the environment
 // (the disk of radius 1/√2) is tinted green, the back half (the ring) red and the wasted
 // corners hatched, to show the ≈40 / 40 / 20 split.
 #include "env/envmap.glsl"

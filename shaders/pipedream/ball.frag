@@ -1,6 +1,6 @@
 #version 450 core
 // A chrome ball reflecting the room (a cube map rendered from the stage), blurrier and
-// more see-through the faster it moves (seed 001: "we lower the mip level bias ... we also
+// more see-through the faster it moves (WWDC 2003 session 212: "we lower the mip level bias ... we also
 // change the opacity"): uLodBias and uOpacity come from blurOf().
 layout(binding = 0) uniform samplerCube uEnvironment;
 uniform vec3 uEye;

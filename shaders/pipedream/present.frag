@@ -2,7 +2,7 @@
 #include "common/srgb.glsl"
 // The renderer's colour buffer (sRGB: texel fetches decode to linear) into the frame's
 // target, encoded to sRGB by hand (the target is a plain RGBA8 buffer or the window),
-// alpha 1. uView 1: the seed's destination-alpha view — the dim factor for every light,
+// alpha 1. uView 1: WWDC 2003 session 212's destination-alpha view — the dim factor for every light,
 // 1 − Σ w: white where no light reaches, darker where more light would be taken away.
 layout(binding = 0) uniform sampler2D uColor;
 layout(binding = 1) uniform sampler2D uWeights;

@@ -1,7 +1,7 @@
 #version 450 core
-// The scene pass of seed 001's Pipe Dream method, and the naive method's passes.
+// The scene pass of WWDC 2003 session 212's Pipe Dream method, and the naive method's passes.
 //
-// uPass 0  the seed's pass: lit by the lights in uMask (the cut's light mask of this piece;
+// uPass 0  WWDC 2003 session 212's pass: lit by the lights in uMask (the cut's light mask of this piece;
 //          all lights for dynamic parts), colour in linear light (an sRGB framebuffer), and
 //          in alpha the dim factor 1 − w₀; the second target gets w = (light i's term) / (all
 //          light), the share of this pixel's light each light gives.

@@ -1,5 +1,5 @@
 #version 450 core
-// The cheaper shader for pieces no light reaches (seed 001: "those polygons that we know
+// The cheaper shader for pieces no light reaches (WWDC 2003 session 212: "those polygons that we know
 // are in shadow we can draw with a simpler shader"): ambient only, dim factor 1 (a
 // dynamic shadow has nothing left to take away), no weights.
 uniform float uAmbient;

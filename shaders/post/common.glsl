@@ -12,7 +12,7 @@ vec4 fetchClamped(sampler2D image, ivec2 p) {
 
 float lumaAt(sampler2D image, ivec2 p) { return dot(fetchClamped(image, p).rgb, kLuma); }
 
-// (Gx, Gy) of the luma: the seed's eight fetches around p, kernels as in image/post.h
+// (Gx, Gy) of the luma: WWDC 2003 session 212's eight fetches around p, kernels as in image/post.h
 // (x to the right, y DOWN the picture: texel row 0 is the top row).
 vec2 sobel(sampler2D image, ivec2 p) {
   float tl = lumaAt(image, p + ivec2(-1, -1)), t = lumaAt(image, p + ivec2(0, -1)), tr = lumaAt(image, p + ivec2(1, -1));

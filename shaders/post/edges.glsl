@@ -1,5 +1,5 @@
 // Sobel edges composited over the image: strong edges become dark lines, weak ones
-// (below the threshold) leave the pixel alone. After kuwahara this is the seed's posterize.
+// (below the threshold) leave the pixel alone. After kuwahara this is WWDC 2003 session 212's posterize.
 // One texel; edges.comp (the pass) and edges.frag (its fragment version) call it.
 #include "post/common.glsl"
 

@@ -1,5 +1,5 @@
 #version 450 core
-// Kuwahara (seed 001) in one compute pass with shared-memory tiles (issue 37): a 16×16
+// Kuwahara (WWDC 2003 session 212) in one compute pass with shared-memory tiles (issue 37): a 16×16
 // group loads the texels its pixels' quadrants cover once, sums each quadrant-sized block
 // once — rows of s, then columns of s rows — and every pixel keeps the mean of the calmest
 // of its four blocks. Nothing goes through a statistics texture; the fragment version

@@ -1,4 +1,4 @@
-// Kuwahara pass 2 (seed 001): fetch the four overlapping quadrants' statistics — four
+// Kuwahara pass 2 (WWDC 2003 session 212): fetch the four overlapping quadrants' statistics — four
 // texel fetches — and keep the mean of the one with the least variance. Quadrants share
 // the pixel as a corner (image/post.h's numbering: 0 upper-left, 1 upper-right,
 // 2 lower-left, 3 lower-right; "upper" is towards texel row 0, the picture's top). Exact

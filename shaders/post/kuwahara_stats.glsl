@@ -1,4 +1,4 @@
-// Kuwahara pass 1 (seed 001): the mean and variance of every s×s block, into a float
+// Kuwahara pass 1 (WWDC 2003 session 212): the mean and variance of every s×s block, into a float
 // texture. Texel q describes the block whose top-left pixel is q − (s − 1), so blocks
 // hanging over the image's edges are there too (their pixels repeat the edge).
 //

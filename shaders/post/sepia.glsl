@@ -1,6 +1,6 @@
-// Seed 001's sepia without a lookup table: RGB → YIQ keeping only Y, I and Q hard-coded,
+// WWDC 2003 session 212's sepia without a lookup table: RGB → YIQ keeping only Y, I and Q hard-coded,
 // back to RGB. With I and Q constant the round trip is rgb' = Y·(1,1,1) + c, so the pass is
-// the seed's "dot product and an add" (image/post.h derives c = M⁻¹·(0, I, Q)). The offset
+// WWDC 2003 session 212's "dot product and an add" (image/post.h derives c = M⁻¹·(0, I, Q)). The offset
 // is shortened to t·c where Y + c would leave [0, 1], so the luma is kept exactly.
 // One texel; sepia.comp (the pass) and sepia.frag (its fragment version) call it.
 #include "post/common.glsl"

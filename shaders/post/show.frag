@@ -1,7 +1,7 @@
 #version 450 core
 // A processed frame drawn upright (frames are stored with the picture's top row at texel
 // row 0), optionally split: the original left of uSplit, the result right of it, a thin
-// white divider between — seed 001's before/after demo.
+// white divider between — WWDC 2003 session 212's before/after demo.
 in vec2 vUv;
 uniform sampler2D uAfter;
 uniform sampler2D uBefore;

@@ -1,4 +1,4 @@
-// Sobel edge detection (seed 001): the horizontal and vertical kernels on the luma, from
+// Sobel edge detection (WWDC 2003 session 212): the horizontal and vertical kernels on the luma, from
 // the eight texels around the pixel. image/post.h's sobelReference is the same arithmetic.
 // One texel; sobel.comp (the pass) and sobel.frag (its fragment version) call it.
 #include "post/common.glsl"

@@ -1,5 +1,5 @@
 #version 450 core
-// GPU shadow-volume extrusion (seeds/001, ATI's Pipe Dream demo): every face has its
+// GPU shadow-volume extrusion (WWDC 2003 session 212, ATI's Pipe Dream demo): every face has its
 // own three vertices carrying the face normal, and a degenerate quad sits on every
 // edge. A face turned away from the light is shot back to infinity — all three of its
 // vertices agree, because n·(L − p) is the same for every point p of the face's plane

@@ -5,7 +5,7 @@ uniform vec3 uColor;
 uniform float uAmbient;  // fraction of the albedo a fully shadowed pixel keeps
 uniform bool uGround;    // the ground gets a checker pattern so shadows read clearly
 // 0 full, 1 ambient only, 2 direct only (diffuse + specular), 3 visibility as gray,
-// 4 full colour with the destination-alpha dim factor ambient / full (seeds/001)
+// 4 full colour with the destination-alpha dim factor ambient / full (WWDC 2003 session 212)
 uniform int uTerms;
 
 vec3 albedo(vec3 p) {

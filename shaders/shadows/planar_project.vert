@@ -1,5 +1,5 @@
 #version 450 core
-// Planar projected shadows into a texture (seeds/002): the caster is flattened onto
+// Planar projected shadows into a texture (the VGP353 lecture): the caster is flattened onto
 // the ground along the light's rays (uShadowMatrix, render/shadows/planar.h), then
 // mapped into the shadow texture, which sees the ground from straight above
 // (uGroundClip: world x, z → clip x, y).

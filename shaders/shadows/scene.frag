@@ -1,8 +1,8 @@
 #version 450 core
 // Blinn-Phong lighting by one point light, split into the terms shadow techniques
 // need: ambient is what a shadowed pixel keeps; diffuse + specular ("direct") is what
-// a shadow takes away. The seed's multi-pass method draws ambient everywhere, then
-// adds direct only where the stencil says lit (seeds/000).
+// a shadow takes away. The WWDC 2001 talk's multi-pass method draws ambient everywhere, then
+// adds direct only where the stencil says lit (the WWDC 2001 talk).
 //
 // SHADOW_MAP      visibility from a depth map seen from the light (shadows/map)
 // PROJECTED_MAP   with SHADOW_MAP: show the map's depth projected from the light instead

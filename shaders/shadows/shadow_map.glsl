@@ -1,4 +1,4 @@
-// Shadow-map lookup (seeds/004: "shadow maps from the light's view depth").
+// Shadow-map lookup (the OpenGL III lecture: "shadow maps from the light's view depth").
 //
 // The light's depth texture is sampled through a sampler2DShadow: the hardware
 // compares the reference depth with the stored one (GL_TEXTURE_COMPARE_MODE) and,

@@ -1,7 +1,7 @@
 #version 450 core
 // Flat colour for shadow volumes: unseen in the stencil pass (colour writes off),
-// the seed's green/blue faces in the debug view, the shadow tint when the volume is
-// drawn again into colour with alpha (seeds/000's 85% / 50%).
+// the WWDC 2001 talk's green/blue faces in the debug view, the shadow tint when the volume is
+// drawn again into colour with alpha (the WWDC 2001 talk's 85% / 50%).
 uniform vec4 uColor;
 layout(location = 0) out vec4 fragColor;
 

@@ -1,5 +1,5 @@
 #version 450 core
-// One step of seed 002's wave simulation (sim/wave.h documents the model):
+// One step of the VGP353 lecture's wave simulation (sim/water.h documents the model):
 //   F  = k·(n + s + e + w − 4h) + k_rest·(0 − h)
 //   v' = (v + Δt/m · F) · exp(−damping·Δt)
 //   h' = h + Δt · v'

@@ -123,7 +123,7 @@ void saveAsset(const Asset& asset, const fs::path& path) { assetDocument(asset).
 
 // ---------------------------------------------------------------- the preview page
 
-std::string_view previewPage();  // web/bake-preview.html, embedded by the build (preview_page.cpp)
+std::string_view previewPage();  // web/bake-preview.html, embedded by the build (glint_embed_text)
 
 namespace {
 /// three.js's files the page loads (classic scripts, not modules: a page opened from disk

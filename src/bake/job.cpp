@@ -161,8 +161,8 @@ void addOptions(CLI::App& cmd, BakeJob& a, Meshes meshes) {
       for (CLI::Option* option : {low, high, output}) option->required();
   }
   cmd.add_option("--size", a.size, "Map size WIDTHxHEIGHT, any size")->capture_default_str();
-  cmd.add_option("--samples", a.samples, "Rays per texel, a square: 1, 4, 9, 16, 36, 64 (stratified √N×√N grid, "
-                 "averaged; 36 is smooth)")->capture_default_str();
+  cmd.add_option("--samples", a.samples, fmt::format("Rays per texel, a square: 1, 4, 9, 16, ... {} (stratified √N×√N "
+                 "grid, averaged; 36 is smooth)", kMaxSamples))->capture_default_str();
   cmd.add_option("--space", a.space, "tangent (MikkTSpace), object, or world (see --world-matrix)")
       ->check(CLI::IsMember({"tangent", "object", "world"}))->capture_default_str();
   cmd.add_option("--world-matrix", a.worldMatrix, "Object-to-world matrix for --space world: 16 numbers, row by row");
@@ -241,8 +241,7 @@ nlohmann::ordered_json describe() {
                     // mesh made from arrays (glint.Mesh) has no parts to read.
                     {"parts", (m.work & kHitTriangle) != 0}});
   }
-  Json samples = Json::array();
-  for (int root = 1; root * root <= kMaxSamples; ++root) samples.push_back(root * root);
+  Json samples = sampleCounts();
   return {{"version", ToolRun::version()},
           {"maps", std::move(maps)},
           {"options", std::move(options)},
@@ -269,20 +268,48 @@ MapSet mapsOf(const BakeJob& job) {
     if (m.map != Map::Normal && !job.path(m.map).empty()) maps.add(m.map);
   return maps;
 }
+
+/// The job's fields as the baker's options: the one translation, which the bake and its memory
+/// estimate share. Error(Usage) for a value that does not read (a size, a distance).
+BakeOptions optionsOf(const BakeJob& a) {
+  BakeOptions options;
+  const ivec2 size = parseSize(a.size);
+  options.width = size.x;
+  options.height = size.y;
+  options.samples = a.samples;
+  options.space = a.space == "object" ? NormalSpace::Object
+                : a.space == "world"  ? NormalSpace::World
+                                      : NormalSpace::Tangent;
+  if (!a.worldMatrix.empty()) options.objectToWorld = parseMatrix(a.worldMatrix);
+  options.directX = a.directX;
+  options.maxFront = parseDistance(a.maxFront, "--max-front");
+  options.maxRear = parseDistance(a.maxRear, "--max-rear");
+  options.selection = a.frontFirst ? HitSelection::FrontFirst : HitSelection::Closest;
+  options.padding = a.padding;
+  options.fillAll = a.fillAll;
+  options.maps = mapsOf(a);
+  // An asset always carries the miss mask: glint view shows where the rays missed.
+  if (!a.asset.empty() || !a.preview.empty()) options.maps.add(Map::MissMask);
+  options.aoSamples = a.aoSamples;
+  options.aoDistance = parseDistance(a.aoDistance, "--ao-distance");
+  options.thicknessDistance = parseDistance(a.thicknessDistance, "--thickness-distance");
+  options.curvatureRadius = parseDistance(a.curvatureRadius, "--curvature-radius");
+  return options;
+}
+
 }  // namespace
 
 double estimateMemoryMiB(const BakeJob& job) {
   BakeOptions options;
-  ivec2 size(1024);
   try {
-    size = parseSize(job.size);
+    options = optionsOf(job);
   } catch (const Error&) {
+    // A job whose values do not read fails its own checks; until then, its maps and samples
+    // at the default size.
+    options.samples = job.samples;
+    options.maps = mapsOf(job);
+    options.aoSamples = job.aoSamples;
   }
-  options.width = size.x;
-  options.height = size.y;
-  options.samples = job.samples;
-  options.maps = mapsOf(job);
-  options.aoSamples = job.aoSamples;
   return estimatePeakMemoryMiB(options, {job.low, job.high, job.cage});
 }
 
@@ -319,8 +346,7 @@ void checkAssetOptions(const BakeJob& a) {
          "--space tangent, got {}", a.space);
   }
   if (!a.asset.empty()) {
-    std::string ext = fs::path(a.asset).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = lowerExtension(a.asset);
     if (ext != ".glb" && ext != ".gltf") fail(ErrorKind::Usage, "--asset '{}': a glTF asset ends in .glb or .gltf", a.asset);
     if (hasUdimToken(a.asset)) fail(ErrorKind::Usage, "--asset '{}': one asset holds every UDIM tile; name it without <UDIM>", a.asset);
     checkWritable(a.asset);
@@ -410,28 +436,9 @@ struct BakePlan {
 BakePlan prepare(const BakeJob& a, ToolRun& run) {
   checkDistinctFiles(inputFiles(a), outputFiles(a));
   BakePlan plan;
+  plan.options = optionsOf(a);
   BakeOptions& options = plan.options;
-  plan.size = parseSize(a.size);
-  options.width = plan.size.x;
-  options.height = plan.size.y;
-  options.samples = a.samples;
-  options.space = a.space == "object" ? NormalSpace::Object
-                : a.space == "world"  ? NormalSpace::World
-                                      : NormalSpace::Tangent;
-  if (!a.worldMatrix.empty()) options.objectToWorld = parseMatrix(a.worldMatrix);
-  options.directX = a.directX;
-  options.maxFront = parseDistance(a.maxFront, "--max-front");
-  options.maxRear = parseDistance(a.maxRear, "--max-rear");
-  options.selection = a.frontFirst ? HitSelection::FrontFirst : HitSelection::Closest;
-  options.padding = a.padding;
-  options.fillAll = a.fillAll;
-  options.maps = mapsOf(a);
-  // An asset always carries the miss mask: glint view shows where the rays missed.
-  if (!a.asset.empty() || !a.preview.empty()) options.maps.add(Map::MissMask);
-  options.aoSamples = a.aoSamples;
-  options.aoDistance = parseDistance(a.aoDistance, "--ao-distance");
-  options.thicknessDistance = parseDistance(a.thicknessDistance, "--thickness-distance");
-  options.curvatureRadius = parseDistance(a.curvatureRadius, "--curvature-radius");
+  plan.size = {options.width, options.height};
   if (a.lowSuffix.empty() || a.highSuffix.empty() || a.lowSuffix == a.highSuffix)
     fail(ErrorKind::Usage, "--low-suffix and --high-suffix must be non-empty and differ");
   validateOptions(options);
@@ -459,8 +466,7 @@ BakePlan prepare(const BakeJob& a, ToolRun& run) {
   plan.needsImageIo = !a.detail.empty();
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const bool json = !a.tool.json.empty() && a.tool.json != "-" && i + 1 == outputs.size();
-    std::string ext = fs::path(outputs[i]).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = lowerExtension(outputs[i]);
     if (!json && ext != ".png") plan.needsImageIo = true;
   }
   if (plan.needsImageIo) requireImageIo();

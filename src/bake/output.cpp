@@ -1,6 +1,7 @@
 #include "glint/bake/output.h"
 
 #include "glint/core/error.h"
+#include "glint/core/file.h"
 
 #include <algorithm>
 #include <cctype>
@@ -20,8 +21,7 @@ constexpr Format kFormats[] = {
     {".tiff", 16, true, true, false}, {".exr", 32, false, false, true},
 };
 const Format& formatOf(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowerExtension(path);
   for (const Format& f : kFormats)
     if (ext == f.ext) return f;
   fail(ErrorKind::Usage, "'{}': unknown map format '{}' (use .png, .tga, .tif or .exr)", path.string(), ext);

@@ -177,8 +177,7 @@ void validateOptions(const BakeOptions& options) {
   if (options.width < 1 || options.height < 1 || options.width > 32768 || options.height > 32768) {
     fail(ErrorKind::Usage, "bake size must be 1..32768 on each side, got {}x{}", options.width, options.height);
   }
-  const int root = int(std::lround(std::sqrt(double(std::max(options.samples, 0)))));
-  if (options.samples < 1 || root * root != options.samples || options.samples > kMaxSamples) {
+  if (!validSampleCount(options.samples)) {
     fail(ErrorKind::Usage, "samples per texel must be a square (1, 4, 9, 16, 25, 36, 49, 64, ... {}), got {}", kMaxSamples,
          options.samples);
   }

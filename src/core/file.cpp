@@ -20,6 +20,12 @@
 namespace glint {
 namespace fs = std::filesystem;
 
+std::string lowerExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 // ---------------------------------------------------------------------------- output sets
 
 std::string fitFileName(const fs::path& dir, std::string stem, std::string_view tail, std::size_t reserved) {

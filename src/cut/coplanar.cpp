@@ -3,6 +3,8 @@
 
 #include "regions.h"
 
+#include "glint/core/union_find.h"
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -218,12 +220,7 @@ std::vector<std::uint32_t> coplanarPatches(const CoplanarInput& in) {
   const SceneData& scene = *prep.scene;
   const exact::Geometry& g = scene.geometry;
   const std::size_t n = scene.triangles.size();
-  std::vector<std::uint32_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind sets(n);
   exact::PredicateStats stats;
   for (const Edge& e : prep.edges.edges()) {
     if (e.faceCount != 2) continue;
@@ -241,11 +238,10 @@ std::vector<std::uint32_t> coplanarPatches(const CoplanarInput& in) {
     if (d == kNoPiece) continue;
     const exact::PlaneDef p0{{t0[0], t0[1], t0[2]}}, p1{{t1[0], t1[1], t1[2]}};
     if (g.side(d, p0, stats) != 0 || g.normalsDot(p0, p1) <= 0) continue;
-    const std::uint32_t a = find(f0), b = find(f1);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    sets.unite(f0, f1);
   }
   std::vector<std::uint32_t> patch(n);
-  for (std::uint32_t f = 0; f < n; ++f) patch[f] = find(f);
+  for (std::uint32_t f = 0; f < n; ++f) patch[f] = sets.find(f);
   return patch;
 }
 

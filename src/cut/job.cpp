@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kFooter = R"(How it works (ATI's "Pipe Dream" shadow cutting, seed 001):
+constexpr const char* kFooter = R"(How it works (ATI's "Pipe Dream" shadow cutting, WWDC 2003 session 212):
   A beam is "a pyramid-shaped volume": from the light through a polygon, bounded by
   three planes through the light and the polygon's edges, and by the polygon's own
   plane. The part between the light and the polygon is its near beam; the part beyond

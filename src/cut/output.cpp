@@ -30,11 +30,6 @@ namespace glint::cut {
 
 namespace {
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return s;
-}
-
 /// Polygon corner to start from: one whose neighbours both turn (see triangulate()).
 std::size_t apex(const CutMesh& m, std::size_t p) {
   const std::size_t s = m.polygonStart[p], n = m.cornerCount(p);
@@ -240,14 +235,14 @@ void savePly(const CutMesh& mesh, const std::vector<Light>& lights, const std::f
 }  // namespace
 
 void checkOutputFormat(const std::filesystem::path& path) {
-  const std::string ext = lower(path.extension().string());
+  const std::string ext = lowerExtension(path);
   if (ext != ".glb" && ext != ".gltf" && ext != ".ply")
     fail(ErrorKind::Usage, "cannot write '{}': the cut mesh is written as .glb, .gltf or .ply", path.string());
 }
 
 void saveCutMesh(const CutMesh& mesh, const std::vector<Light>& lights, const std::filesystem::path& path) {
   checkOutputFormat(path);
-  const std::string ext = lower(path.extension().string());
+  const std::string ext = lowerExtension(path);
   if (ext == ".ply") savePly(mesh, lights, path);
   else saveGltf(mesh, lights, path, ext == ".glb");
 }

@@ -1,6 +1,7 @@
 // Preparing a scene for cutting, in four steps: the triangles (which can be cut), the
 // connected surfaces, the closed convex solids among them, and warnings about lights in
 // odd places. cutShard runs all four; mergeShards needs only the first two.
+#include "glint/core/union_find.h"
 #include "glint/core/error.h"
 #include "glint/core/hash.h"
 
@@ -83,18 +84,11 @@ void classifyTriangles(Prepared& out, std::vector<dvec3>& lo, std::vector<dvec3>
 /// 2. Connected surfaces (triangles joined by edges), numbered in triangle order.
 void numberSurfaces(const EdgeMap& edges, SceneData& s) {
   const std::size_t n = s.triangles.size();
-  std::vector<std::uint32_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto root = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind sets(n);
+  const auto root = [&](std::uint32_t x) { return sets.find(x); };
   for (const Edge& edge : edges.edges()) {
     const auto faces = edges.faces(edge);
-    for (std::size_t i = 1; i < faces.size(); ++i) {
-      const std::uint32_t a = root(faces[0].face), b = root(faces[i].face);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
+    for (std::size_t i = 1; i < faces.size(); ++i) sets.unite(faces[0].face, faces[i].face);
   }
   std::vector<std::uint32_t> number(n, 0xFFFFFFFFu);
   s.component.resize(n);

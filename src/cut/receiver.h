@@ -1,6 +1,6 @@
 #pragma once
 // One receiver (an input triangle A) cut by the far beams of its occluders, for every
-// light: the seed's inner loop, kept exact.
+// light: WWDC 2003 session 212's inner loop, kept exact.
 //
 // A is held as a planar subdivision (half-edges) of convex faces. Each face edge lies on
 // a *line*: one of A's three edges or a plane met with A's plane. Every vertex is named by
@@ -15,7 +15,7 @@
 // area is split along those of them that cross it; the part inside is shadowed for that
 // light. Faces already shadowed for a light are not cut again by its occluders. Finally
 // adjacent faces with the same light mask are merged while their union stays convex (the
-// seed's "optimization step"), and each region of one mask is triangulated again with
+// talk's "optimization step"), and each region of one mask is triangulated again with
 // only the vertices where its outline turns or meets another outline (regions.h).
 #include "candidates.h"
 #include "exact.h"

@@ -1,5 +1,6 @@
 // A receiver's light-mask regions triangulated with their turning vertices only (regions.h).
 #include "regions.h"
+#include "glint/core/union_find.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_face_base_2.h>
@@ -138,16 +139,10 @@ bool RegionTriangulator::triangulate(std::span<const std::uint32_t> loopVertices
       faces.push_back(f);
     }
   const auto index = [](Cdt::Face_handle f) { return std::uint32_t((f->info() - 1) / 2); };
-  std::vector<std::uint32_t> parent(faces.size());
+  UnionFind sets(faces.size());
   std::vector<std::vector<Cdt::Vertex_handle>> cycle(faces.size());
-  for (std::uint32_t i = 0; i < faces.size(); ++i) {
-    parent[i] = i;
-    cycle[i] = {faces[i]->vertex(0), faces[i]->vertex(1), faces[i]->vertex(2)};
-  }
-  const auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  for (std::uint32_t i = 0; i < faces.size(); ++i) cycle[i] = {faces[i]->vertex(0), faces[i]->vertex(1), faces[i]->vertex(2)};
+  const auto find = [&](std::uint32_t x) { return sets.find(x); };
   // Rotates c so that it starts at v.
   const auto startAt = [](std::vector<Cdt::Vertex_handle>& c, Cdt::Vertex_handle v) {
     std::rotate(c.begin(), std::find(c.begin(), c.end(), v), c.end());
@@ -171,7 +166,7 @@ bool RegionTriangulator::triangulate(std::span<const std::uint32_t> loopVertices
       if (!convex(P[P.size() - 2], a, Q[1]) || !convex(Q[Q.size() - 2], b, P[1])) continue;
       P.insert(P.end(), Q.begin() + 1, Q.end() - 1);
       Q.clear();
-      parent[q] = p;
+      sets.attach(q, p);  // p keeps the merged cycle
     }
   for (std::uint32_t i = 0; i < faces.size(); ++i) {
     if (find(i) != i) continue;

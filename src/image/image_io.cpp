@@ -120,11 +120,6 @@ ModuleLoader& theModule() {
 // ---------------------------------------------------------------------------------
 // Reading and writing
 
-std::string lowerExtension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 // The widest pixel type a file format stores; wider images are converted down.
 PixelType widestTypeFor(const std::string& ext) {

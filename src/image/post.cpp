@@ -76,7 +76,7 @@ dvec3 sepiaOffset(const SepiaOptions& options) {
 }
 
 dvec3 sepiaPixel(dvec3 rgb, const SepiaOptions& options) {
-  // The full round trip, as the seed describes it: RGB → YIQ (only Y is needed), replace I
+  // The full round trip, as WWDC 2003 session 212 describes it: RGB → YIQ (only Y is needed), replace I
   // and Q, YIQ → RGB. Written as matrices, not as the shader's dot-and-add, so the test
   // compares two different evaluations.
   const Matrix3 forward = yiqFromRgb();

@@ -2,6 +2,7 @@
 // faces of each edge are adjacent in one array (no per-edge allocations, which
 // matters for the 1M-triangle meshes the shadow benchmark builds).
 #include "glint/mesh/adjacency.h"
+#include "glint/core/union_find.h"
 
 #include "glint/core/hash.h"
 
@@ -111,20 +112,16 @@ bool EdgeMap::isClosedManifold() const {
 
 std::size_t EdgeMap::borderLoops() const {
   // Union-find over the vertices of open edges: each connected chain is one hole.
-  std::vector<std::uint32_t> parent(m_positions.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto root = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
+  UnionFind sets(m_positions.size());
+  const auto root = [&](std::uint32_t v) { return sets.find(v); };
   std::vector<bool> onBorder(m_positions.size(), false);
   for (const Edge& e : m_edges) {
     if (e.faceCount != 1) continue;
     onBorder[e.a] = onBorder[e.b] = true;
-    parent[root(e.a)] = root(e.b);
+    sets.attach(root(e.a), root(e.b));
   }
   std::size_t loops = 0;
-  for (std::uint32_t v = 0; v < parent.size(); ++v)
+  for (std::uint32_t v = 0; v < sets.size(); ++v)
     if (onBorder[v] && root(v) == v) ++loops;
   return loops;
 }

@@ -133,8 +133,7 @@ std::vector<unsigned char> Document::glb() const {
 }
 
 void Document::save(const std::filesystem::path& path) const {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowerExtension(path);
   if (ext != ".glb" && ext != ".gltf") fail(ErrorKind::Usage, "'{}': a glTF file ends in .glb or .gltf", path.string());
   saveFile(path, json, m_buffer, ext == ".glb");
 }

@@ -4,6 +4,7 @@
 #include "glint/mesh/gltf.h"
 
 #include "glint/core/error.h"
+#include "glint/core/file.h"
 #include "glint/core/json.h"
 #include "glint/core/log.h"
 #include "glint/core/text.h"
@@ -694,8 +695,7 @@ Model Reader::read() {
 }  // namespace
 
 bool isGltf(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowerExtension(path);
   return ext == ".gltf" || ext == ".glb";
 }
 

@@ -1,6 +1,7 @@
 // loadMesh: every triangle mesh in a file, flattened into one Mesh: OBJ and PLY through the
 // fast paths (obj_import.cpp, ply_import.cpp), everything else through Assimp.
 #include "glint/core/error.h"
+#include "glint/core/file.h"
 #include "glint/core/log.h"
 #include "glint/core/text.h"
 #include "glint/mesh/fence.h"
@@ -139,11 +140,6 @@ void flatten(const aiScene& scene, const aiNode& node, const mat4& parent, Mesh&
   for (unsigned i = 0; i < node.mNumChildren; ++i) flatten(scene, *node.mChildren[i], world, result);
 }
 
-std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 /// Assimp's file system, fenced: the model and the files inside its folder open, nothing
 /// else (an OBJ's `mtllib ../../x`, an FBX's or a COLLADA's side files). A refused file is

@@ -95,7 +95,7 @@ Mesh finishPart(PolyMesh&& part, bool join, bool generateNormals, bool& generate
 /// Fast paths: the Mesh, with one warning for missing normals like the Assimp path; throws
 /// Error(Input) for a corrupt file and Declined for one Assimp should read.
 /// `fastLane` false leaves every line to tinyobjloader: the reading the lane is checked
-/// against (tests/mesh/obj_lane_test.cpp, fuzz/mesh.cpp).
+/// against (tests/mesh/import_oracle_test.cpp, ImportOracle.ObjFastLane*; fuzz/mesh.cpp).
 Mesh loadObjFast(const std::filesystem::path& path, const MeshLoadOptions& options, bool fastLane = true);
 Mesh loadPlyFast(const std::filesystem::path& path, const MeshLoadOptions& options);
 /// The fast PLY path's check of a file's whole layout (header grammar, the elements glint

@@ -458,7 +458,7 @@ InstrumentMachine makeInstrumentMachine(const InstrumentMachineOptions& options)
   out.room = {{x0, 0.0f, z0}, {x1, height, z1}};
   out.shellTriangles = out.staticMesh.triangleCount();
 
-  // Long pipes on brackets along the back and left walls: the seed's "horizontal bar" whose
+  // Long pipes on brackets along the back and left walls: WWDC 2003 session 212's "horizontal bar" whose
   // shadow on the wall is cut in, and which the balls' shadows cross.
   const int pipe = 6 + 4 * detail;
   for (const float y : {4.3f, 5.7f}) {

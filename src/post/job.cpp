@@ -22,7 +22,7 @@ namespace glint::post {
 
 namespace {
 
-/// The frame as glint post processes it: RGBA, its values sRGB-encoded (the seed's camera
+/// The frame as glint post processes it: RGBA, its values sRGB-encoded (WWDC 2003 session 212's camera
 /// values). U8 for 8- and 16-bit images (16-bit rounded). A float image (EXR, HDR: linear
 /// light) stays F32 for the GPU's float chain, encoded without clamping so the result
 /// decodes back to linear light (`floatChain`); for the CPU backend (8-bit frames) it is
@@ -41,8 +41,7 @@ Image toFrame(const Image& image, const std::string& name, bool floatChain, Tool
 /// Whether an image written to `output` (or stdout in `format`) holds float values: they are
 /// then linear light, as EXR and Radiance HDR files are read.
 bool floatImageOutput(const std::string& output, const std::string& format) {
-  std::string ext = output == "-" ? "." + format : std::filesystem::path(output).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowerExtension(output == "-" ? "stdout." + format : output);
   return ext == ".exr" || ext == ".hdr";
 }
 
@@ -593,7 +592,7 @@ constexpr const char* kFooter = R"(Examples:
 
 Inputs: an image (.png .jpg .tga .tif .exr .hdr .bmp .webp, through OpenImageIO), any video
 file FFmpeg reads, a V4L2 camera (--camera), or a lavfi filter graph (--input lavfi:GRAPH, or
-as IN). Frames are processed as 8-bit RGB (sRGB-encoded values, like the seed's camera); a
+as IN). Frames are processed as 8-bit RGB (sRGB-encoded values, like WWDC 2003 session 212's camera); a
 float image (EXR, HDR: linear light) is processed in float on the GPU and a float output
 holds linear values again. A video's rotation (a phone's display matrix) is kept on the
 output and named in the report; --apply-rotation turns the frames upright instead.
@@ -629,7 +628,7 @@ void addOptions(CLI::App& cmd, PostArgs& a) {
   cmd.add_option("--set", a.settings, "param=value (every effect that has it) or effect.param=value");
   cmd.add_option("--camera", a.camera, "Read a V4L2 camera, e.g. /dev/video0 (a live source)");
   cmd.add_option("--input", a.lavfi, "An FFmpeg source: lavfi:GRAPH, e.g. lavfi:testsrc2=size=1280x720:duration=5");
-  cmd.add_option("--size", a.size, "Camera: the size to ask for, WIDTHxHEIGHT (the seed's camera: 640x480)");
+  cmd.add_option("--size", a.size, "Camera: the size to ask for, WIDTHxHEIGHT (WWDC 2003 session 212's camera: 640x480)");
   cmd.add_option("--fps", a.rate, "Camera: the frame rate to ask for");
   cmd.add_flag("--realtime", a.realtime, "Pace a file or lavfi source at its frame rate and treat it as live "
                                          "(frames the GPU cannot keep up with are dropped and counted)");

@@ -40,6 +40,18 @@ void PipelineState::apply() const {
   enable(GL_TEXTURE_CUBE_MAP_SEAMLESS, seamlessCubeMap);
 }
 
+SavedTarget::SavedTarget() {
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &m_draw);
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &m_read);
+  glGetIntegerv(GL_VIEWPORT, m_viewport.data());
+}
+
+SavedTarget::~SavedTarget() {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(m_draw));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(m_read));
+  glViewport(m_viewport[0], m_viewport[1], m_viewport[2], m_viewport[3]);
+}
+
 void resetState() {
   PipelineState{}.apply();
   glDisable(GL_SCISSOR_TEST);

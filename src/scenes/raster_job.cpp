@@ -242,12 +242,12 @@ void appendEdges(std::string& out, std::size_t index, const std::array<glm::dvec
     fmt::format_to(std::back_inserter(out), "  z plane: Z(x, y) = {:.7g} x + {:.7g} y + {:.7g}\n", z->a, z->b, z->c);
 }
 
-/// The lecture's own numbers (seeds/004), recomputed with the functions the pipeline uses.
+/// The lecture's own numbers (the OpenGL III lecture), recomputed with the functions the pipeline uses.
 std::string lectureNumbers(const Frame& f) {
   std::string out;
   const Draw& job = f.draws.front();
   const raster::Viewport vp = raster::effectiveViewport(job.state, f.size.x, f.size.y);
-  fmt::format_to(std::back_inserter(out), "The lecture's triangle (seeds/004), glViewport({}, {}, {}, {}), glDepthRange(0, 1)\n\n", vp.x, vp.y,
+  fmt::format_to(std::back_inserter(out), "The lecture's triangle (the OpenGL III lecture), glViewport({}, {}, {}, {}), glDepthRange(0, 1)\n\n", vp.x, vp.y,
              vp.width, vp.height);
   fmt::format_to(std::back_inserter(out), "NDC -> window: w_x = (w/2) x + v_x + w/2, w_y = (h/2) y + v_y + h/2, w_z = z/2 + 1/2\n");
   static const char* const kColors[] = {"red  ", "green", "blue "};

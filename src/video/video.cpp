@@ -66,16 +66,14 @@ std::string unavailableReason() {
 }
 
 bool isImagePath(const std::string& name) {
-  std::string ext = fs::path(name).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowerExtension(name);
   static constexpr std::array<std::string_view, 10> kImages = {".png", ".jpg", ".jpeg", ".tga", ".tif",
                                                                ".tiff", ".exr", ".hdr", ".bmp", ".webp"};
   return std::find(kImages.begin(), kImages.end(), ext) != kImages.end();
 }
 
 bool isVideoPath(const std::string& name) {
-  std::string ext = fs::path(name).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowerExtension(name);
   static constexpr std::array<std::string_view, 5> kVideos = {".mp4", ".mkv", ".mov", ".avi", ".nut"};
   return std::find(kVideos.begin(), kVideos.end(), ext) != kVideos.end();
 }
@@ -179,8 +177,7 @@ struct Sink::Impl {
 };
 
 bool holdsDisplayMatrix(const fs::path& destination, const std::string& format) {
-  std::string ext = destination == "-" ? "." + format : destination.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lowerExtension(destination == "-" ? fs::path("stdout." + format) : destination);
   return ext == ".mp4" || ext == ".mov" || ext == ".m4v";
 }
 

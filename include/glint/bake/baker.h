@@ -130,6 +130,24 @@ namespace glint::bake {
 inline constexpr int kMaxSamples = 1024;
 inline constexpr int kMaxAoSamples = 4096;
 
+/// Whether `samples` per texel can be baked: a square (a stratified √N×√N grid), 1..kMaxSamples.
+/// The one rule: the baker's check, `--samples`' help and `glint bake --describe` (the
+/// add-on's menu) read it.
+constexpr bool validSampleCount(int samples) {
+  if (samples < 1 || samples > kMaxSamples) return false;
+  int root = 1;
+  while (root * root < samples) ++root;
+  return root * root == samples;
+}
+
+/// The valid counts, ascending: 1, 4, 9, ..., kMaxSamples.
+inline std::vector<int> sampleCounts() {
+  std::vector<int> counts;
+  for (int n = 1; n <= kMaxSamples; ++n)
+    if (validSampleCount(n)) counts.push_back(n);
+  return counts;
+}
+
 enum class HitSelection {
   Closest,    ///< the hit with the smallest |t|, in front or behind (default)
   FrontFirst  ///< any hit in front of the low poly wins over hits behind it
@@ -154,7 +172,7 @@ struct HeightDetail {
 struct BakeOptions {
   int width = 1024;   ///< output size in texels (any W × H)
   int height = 1024;
-  int samples = 1;    ///< samples per texel, a perfect square (1, 4, 9, 16, 36, 64, ... kMaxSamples)
+  int samples = 1;    ///< samples per texel: validSampleCount (1, 4, 9, 16, ... kMaxSamples)
   NormalSpace space = NormalSpace::Tangent;
   bool directX = false;           ///< flip green (DirectX/Unreal convention; OpenGL is +Y up)
   mat4 objectToWorld{1.0f};       ///< for NormalSpace::World (normals use its inverse transpose)

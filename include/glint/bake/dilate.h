@@ -4,7 +4,7 @@
 // read baked values instead of the background.
 //
 // Each pass fills every empty texel that has at least one filled 8-neighbour with the
-// average of those neighbours (the seed's "grow out the normals ... a couple of times").
+// average of those neighbours (WWDC 2003 session 212's "grow out the normals ... a couple of times").
 // After k passes every texel within k texels (Chebyshev distance) of an island is filled.
 //
 /// ```cpp run

@@ -132,6 +132,10 @@ std::string writeFailure(const std::filesystem::path& destination, int error);
 /// output name the filesystem accepts can be written.
 std::string fitFileName(const std::filesystem::path& dir, std::string stem, std::string_view tail, std::size_t reserved = 0);
 
+/// A path's extension in ASCII lower case, with its dot: "Model.GLB" → ".glb", "a" → "".
+/// What every format decision by file name compares (image, mesh, video and asset names).
+std::string lowerExtension(const std::filesystem::path& path);
+
 /// Writes `contents` to `destination` atomically.
 void writeTextAtomically(const std::filesystem::path& destination, std::string_view contents);
 

@@ -11,7 +11,7 @@
 //   toJson                the report of a cut or a shard (`glint cut --json`)
 //   triangulate           the polygons as triangles (for renderers and glTF)
 //
-// The method (seed 001, ATI's "Pipe Dream" shadow cutting): for every polygon A and every
+// The method (WWDC 2003 session 212, ATI's "Pipe Dream" shadow cutting): for every polygon A and every
 // light, the polygons B in A's *near beam* (the volume between A and the light) cut A with
 // their *far beam* (the three planes through the light and B's edges, and B's own plane);
 // the pieces inside a far beam are tagged as in shadow for that light. Afterwards pieces
@@ -111,7 +111,7 @@ struct CutOptions {
 
 /// The cut mesh: convex polygons (counter-clockwise), each in the plane of its source: a
 /// piece of one input triangle, or of a *patch* of coplanar neighbours of one surface
-/// merged where they have the same light mask (the seed's optimization step across
+/// merged where they have the same light mask (WWDC 2003 session 212's optimization step across
 /// triangles; docs/cut.md).
 struct CutMesh {
   std::vector<vec3> positions;              ///< output vertices, rounded to float

@@ -7,7 +7,7 @@
 namespace glint::gl {
 
 struct EmbeddedShader {
-  const char* path;    ///< relative to shaders/, e.g. "basics/triangle.vert"
+  const char* path;    ///< relative to shaders/, e.g. "basics/colored.vert"
   const char* source;  ///< file contents
 };
 

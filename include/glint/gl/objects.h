@@ -170,7 +170,7 @@ public:
   /// Sets every texel of level `level` to `value` (glClearTexImage; nullptr: zeros).
   void clear(int level, GLenum format, GLenum type, const void* value) const;
   /// Copies a rectangle of the read framebuffer into level 0 at (0, 0)
-  /// (glCopyTextureSubImage2D: seeds/002's copy-to-texture).
+  /// (glCopyTextureSubImage2D: the VGP353 lecture's copy-to-texture).
   void copyFromReadFramebuffer(int x, int y, int width, int height) const;
 
   GLenum target() const { return m_target; }

@@ -1,5 +1,5 @@
 #pragma once
-// glint/image/dot3.h — the arithmetic of DOT3 bump mapping (seed 000), without GL: the
+// glint/image/dot3.h — the arithmetic of DOT3 bump mapping (the WWDC 2001 talk), without GL: the
 // CPU reference both GPU paths of render/bump/dot3.h are tested against.
 //
 // Contents
@@ -8,7 +8,7 @@
 //   combineDot3Rgb     GL_DOT3_RGB of two colours, exactly as the OpenGL spec defines it
 //   combineModulate    GL_MODULATE
 //
-// Seed 000's recipe: "the dot product operation requires that the light vector be in local
+// The WWDC 2001 talk's recipe: "the dot product operation requires that the light vector be in local
 // coordinate space. So we must rotate this light by the inverse rotation of the polygon."
 // The light vector is then encoded into the vertex colour; texture unit 0 holds the normal
 // map encoded the same way; combiner stage 1 = DOT3_RGB(primary colour, normal map), stage
@@ -33,7 +33,7 @@ using u8vec3 = glm::u8vec3;
 
 /// Unit vector from `localVertex` to the light, in the polygon's local frame. The polygon is
 /// placed in the world by `rotation` then `translation` (world = rotation · local + translation);
-/// the world light vector is rotated back by the inverse (conjugate) quaternion, as the seed does.
+/// the world light vector is rotated back by the inverse (conjugate) quaternion, as the WWDC 2001 talk does.
 /// A light exactly at the vertex gives (0, 0, 1).
 vec3 localLightVector(const quat& rotation, vec3 translation, vec3 localVertex, vec3 lightWorld);
 

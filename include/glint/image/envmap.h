@@ -123,7 +123,7 @@ double equivalentCubeFaceSize(int sphereMapSize, double maxTheta);
 
 /// An equirect image needs 3 or 4 channels, width = 2 × height, and finite values.
 void validateEquirect(const Image& image, const std::string& name);
-/// Six faces (GL order) must be square and all the same size (the seed: "the width and
+/// Six faces (GL order) must be square and all the same size (the WWDC 2001 talk: "the width and
 /// height must be identical"); `names` are used in messages (file names).
 void validateCubeFaces(std::span<const Image> faces, std::span<const std::string> names);
 

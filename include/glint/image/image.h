@@ -10,7 +10,7 @@
 //   compareImages    max / mean difference and a visual diff image
 //
 // Row 0 is the TOP row, as in image files. OpenGL's window origin is the lower
-// left, so GL readback (gl/readback.h) flips rows; do not flip twice.
+// left, so GL readback (readTexture in gl/render_target.h) flips rows; do not flip twice.
 // Channels are interleaved (RGBARGBA...). Integer pixels are normalized: at()
 // returns 0..1 for U8 and U16, the stored value for F32.
 

@@ -8,7 +8,7 @@
 //   heightToNormalMap    a whole height map → RGBA8 normal map (the CPU reference of the
 //                        GPU pass in render/bump/height_to_normal.h; they agree within 1/255)
 //   heightFromImage      any image → one-channel height (luminance when it has colour)
-//   encodeNormal / decodeNormal   n ↔ (n + 1) / 2, the unsigned encoding of seed 000 (and
+//   encodeNormal / decodeNormal   n ↔ (n + 1) / 2, the unsigned encoding of the WWDC 2001 talk (and
 //                        DirectX's green-down variant); the one encoding baker and renderer use
 //   NormalSpace          the frame a map's normals are in: tangent, object or world
 //   prepareNormalMap     validate a normal map read from a file, with a clear message when
@@ -23,7 +23,7 @@
 //     full 0..1 range stands, in texel widths: with scale = 8 a ramp from black to white over
 //     8 texels is a 45° slope.
 //
-// Seed 002's slide, "Normal Map Generation", reads the four texels n, s, e, w and computes
+// The VGP353 lecture's slide, "Normal Map Generation", reads the four texels n, s, e, w and computes
 //     d = vec3(e.x − w.x, s.y − n.y, 0.0);  d.z = 1.0 − sqrt(dot(d, d));  d = normalize(d);
 // Two things about it are worth knowing (tests/bump/normalmap_test.cpp checks both):
 //   1. Signs. The surface z = h(x, y) has the normal (−∂h/∂x, −∂h/∂y, 1): both components
@@ -48,7 +48,7 @@ namespace glint {
 
 enum class NormalFormula {
   Gradient,  ///< n = normalize(scale·(w − e)/2, scale·(s − n)/2, 1): the surface's true normal
-  Slide      ///< seed 002 as written, d = (scale/2)·(e − w, s − n), z = 1 − |d| (scale 2 = the slide)
+  Slide      ///< the VGP353 lecture as written, d = (scale/2)·(e − w, s − n), z = 1 − |d| (scale 2 = the slide)
 };
 
 struct NormalMapOptions {

@@ -1,10 +1,10 @@
 #pragma once
-// glint/image/post.h — seed 001's post-processing effects on the CPU: the references the
+// glint/image/post.h — WWDC 2003 session 212's post-processing effects on the CPU: the references the
 // GPU passes of render/post are tested against, with every convention written down.
 //
 // Contents
 //   postLuma             the luma every effect uses: YIQ's Y (BT.601 weights)
-//   Sepia                the seed's YIQ sepia: keep Y, hard-code I and Q, back to RGB
+//   Sepia                WWDC 2003 session 212's YIQ sepia: keep Y, hard-code I and Q, back to RGB
 //   Sobel                horizontal / vertical edges and the gradient magnitude
 //   Edges                Sobel edges composited over the image (darkening): the NPR lines
 //   Kuwahara             the edge-preserving "posterize" filter, brute force
@@ -12,8 +12,8 @@
 // Conventions (the GPU passes follow them exactly; docs/post.md has pictures)
 //   - Input: 8-bit RGBA (Image U8, 4 channels; 3 channels are read as opaque), row 0 at the
 //     TOP, as video frames and image files store them. Other types: Error(Usage).
-//   - Effects work on the stored values — sRGB-encoded, as a camera, a video file and the
-//     seed's 8-bit textures hold them — not on linear light; alpha passes through.
+//   - Effects work on the stored values — sRGB-encoded, as a camera, a video file and WWDC
+//     2003 session 212's 8-bit textures hold them — not on linear light; alpha passes through.
 //   - Results are F32 RGBA, unrounded. The GPU writes the same values into RGBA8 targets,
 //     rounding to nearest, so round(255 · reference) and the GPU agree within one step.
 //   - Borders: neighbours outside the image repeat the nearest edge pixel (clamp to edge,
@@ -23,7 +23,7 @@
 //
 /// ```cpp
 /// const glint::Image photo = glint::postInput(glint::loadImage("street.png"));  // U8 RGBA
-/// const glint::Image sepia = glint::sepiaReference(photo, {.i = 0.2f, .q = 0.0f});  // the seed's values
+/// const glint::Image sepia = glint::sepiaReference(photo, {.i = 0.2f, .q = 0.0f});  // WWDC 2003 session 212's values
 /// const glint::KuwaharaReference k = glint::kuwaharaReference(photo, {.size = 3});
 /// glint::saveImage(glint::quantizeToU8(k.image), "street-posterized.png");  // what an RGBA8 target holds
 /// ```
@@ -46,7 +46,7 @@ constexpr double kLumaR = 0.299, kLumaG = 0.587, kLumaB = 0.114;
 inline float postLuma(vec3 rgb) { return float(kLumaR) * rgb.r + float(kLumaG) * rgb.g + float(kLumaB) * rgb.b; }
 
 // ---------------------------------------------------------------------------
-// Sepia (the seed: "RGB → YIQ, keep Y, hard-code I and Q, back to RGB")
+// Sepia (WWDC 2003 session 212: "RGB → YIQ, keep Y, hard-code I and Q, back to RGB")
 //
 // YIQ is NTSC's colour space; the FCC matrix (rows Y, I, Q) is
 //     Y = 0.299  R + 0.587  G + 0.114  B
@@ -55,19 +55,19 @@ inline float postLuma(vec3 rgb) { return float(kLumaR) * rgb.r + float(kLumaG) *
 // and its inverse is computed in double. Because the I and Q rows sum to zero, the
 // inverse's first column is (1, 1, 1), so with I and Q fixed the round trip is
 //     rgb' = Y·(1, 1, 1) + c,   c = M⁻¹·(0, I, Q)      — "a dot product and an add"
-// and the Y row times c is zero: the luma is preserved exactly. The seed's values are
+// and the Y row times c is zero: the luma is preserved exactly. WWDC 2003 session 212's values are
 // I = 0.2, Q = 0 (c ≈ (+0.191, −0.054, −0.221): orange-brown).
 //
 // Where Y + c leaves [0, 1] (shadows below Y ≈ 0.22 and highlights above Y ≈ 0.81 for the
-// seed's values) the framebuffer would clip a channel and the luma would change. Instead
+// talk's values) the framebuffer would clip a channel and the luma would change. Instead
 // the offset is shortened to t·c with the largest t ≤ 1 that keeps every channel in
 // [0, 1] — one more multiply and a min; luma stays exact and shadows and highlights fade
 // towards neutral, as they do in toned prints. (The common "sepia matrix" brightens the
 // image instead: its rows sum to 1.351, 1.203 and 0.937.)
 
 struct SepiaOptions {
-  float i = 0.2f;  ///< the hard-coded I (in-phase: orange ↔ blue); the seed: 0.2
-  float q = 0.0f;  ///< the hard-coded Q (quadrature: purple ↔ green); the seed: 0
+  float i = 0.2f;  ///< the hard-coded I (in-phase: orange ↔ blue); WWDC 2003 session 212: 0.2
+  float q = 0.0f;  ///< the hard-coded Q (quadrature: purple ↔ green); WWDC 2003 session 212: 0
 };
 
 /// The forward YIQ matrix above, row-major (rows Y, I, Q).
@@ -82,12 +82,12 @@ dvec3 sepiaPixel(dvec3 rgb, const SepiaOptions& options);
 Image sepiaReference(const Image& rgba, const SepiaOptions& options = {});
 
 // ---------------------------------------------------------------------------
-// Sobel (the seed's two 3×3 kernels, on postLuma)
+// Sobel (WWDC 2003 session 212's two 3×3 kernels, on postLuma)
 //
 //   Gx = [-1 0 +1; -2 0 +2; -1 0 +1]   (∂/∂x: positive where it gets brighter to the right)
 //   Gy = [-1 -2 -1; 0 0 0; +1 +2 +1]   (∂/∂y: positive where it gets brighter downwards)
 // with the kernels' top row on the row above the pixel. Gx finds vertical edges, Gy
-// horizontal ones (the seed's "horizontal edges" use the pixels above and below).
+// horizontal ones (WWDC 2003 session 212's "horizontal edges" use the pixels above and below).
 // |Gx|, |Gy| ≤ 4 and the magnitude ≤ 4√2 for values in [0, 1].
 
 enum class SobelOutput {
@@ -112,7 +112,7 @@ Image sobelReference(const Image& rgba, const SobelOptions& options = {});
 // Edges composited over the image: rgb' = rgb · (1 − e), e = clamp(scale·(|G| − threshold), 0, 1)
 // with |G| the Sobel magnitude of the image's own luma. Black lines on strong edges; weak
 // edges (noise, texture) below `threshold` leave the image as it was. Kuwahara followed by
-// this is the seed's posterize look.
+// this is WWDC 2003 session 212's posterize look.
 
 struct EdgesOptions {
   float scale = 2.0f;      ///< how fast lines darken above the threshold
@@ -123,9 +123,9 @@ struct EdgesOptions {
 Image edgesReference(const Image& rgba, const EdgesOptions& options = {});
 
 // ---------------------------------------------------------------------------
-// Kuwahara (the seed's "posterize": four overlapping quadrants, keep the mean of the calmest)
+// Kuwahara (WWDC 2003 session 212's "posterize": four overlapping quadrants, keep the mean of the calmest)
 //
-// For pixel p and quadrant size s (the seed: 3), the four s×s quadrants share p as a
+// For pixel p and quadrant size s (WWDC 2003 session 212: 3), the four s×s quadrants share p as a
 // corner and overlap along p's row and column:
 //   0 upper-left   x ∈ [px−s+1, px], y ∈ [py−s+1, py]
 //   1 upper-right  x ∈ [px, px+s−1], y ∈ [py−s+1, py]
@@ -143,7 +143,7 @@ Image edgesReference(const Image& rgba, const EdgesOptions& options = {});
 // seven digits without being equal (never on the test images).
 
 struct KuwaharaOptions {
-  int size = 3;  ///< quadrant edge length s, 2..8; the seed: 3 (a 5×5 window)
+  int size = 3;  ///< quadrant edge length s, 2..8; WWDC 2003 session 212: 3 (a 5×5 window)
 };
 
 struct KuwaharaReference {

@@ -1,6 +1,6 @@
 #pragma once
 // glint/pipedream/machine_room.h — a procedural stand-in for the static geometry of Animusic's
-// "Pipe Dream" stage (seed 001): drums, banks of upright pipes, horizontal pipes, struts
+// "Pipe Dream" stage (WWDC 2003 session 212): drums, banks of upright pipes, horizontal pipes, struts
 // and platforms on a floor with two walls.
 //
 // Contents

@@ -87,6 +87,33 @@ void resetState();
 /// cleaned up after itself: the golden tests check it after every variant.
 std::vector<std::string> stateLeftBehind();
 
+/// Saves the draw and read framebuffer bindings and the viewport, and puts them back when it
+/// goes out of scope. A pass that renders into a target of its own (a cube map's faces, a
+/// simulation's state, a post effect's output) holds one, so the caller's target is what it
+/// was afterwards, as Dear ImGui's backends leave what they found:
+///
+/// ```cpp
+/// #include <glint/gl/objects.h>
+/// const auto drawFace = [](const glint::gl::Framebuffer& faceTarget, int size) {
+///   const glint::render::SavedTarget saved;  // the caller's framebuffer and viewport
+///   faceTarget.bind();
+///   glViewport(0, 0, size, size);
+///   // ... draw ...
+/// };                                          // put back here, on every way out
+/// (void)drawFace;
+/// ```
+class SavedTarget {
+public:
+  SavedTarget();
+  ~SavedTarget();
+  SavedTarget(const SavedTarget&) = delete;
+  SavedTarget& operator=(const SavedTarget&) = delete;
+
+private:
+  GLint m_draw = 0, m_read = 0;
+  std::array<GLint, 4> m_viewport{};
+};
+
 /// glClear with every write mask enabled first. glClear honours glColorMask, glDepthMask
 /// and glStencilMask — a classic trap when the previous pass turned depth writes off —
 /// so clear through this. The masks stay enabled afterwards.

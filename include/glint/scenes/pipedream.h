@@ -3,12 +3,12 @@
 // score, and its static shadows cut in (and cached on disk), ready for the renderer.
 //
 // Contents
-//   kDefaultDetail     the tessellation that puts the frame in the seed's 400k–550k range
+//   kDefaultDetail     the tessellation that puts the frame in WWDC 2003 session 212's 400k–550k range
 //   cutLights          the machine's static lights as the cutter takes them
 //   makeStaticGeometry a cut → render::pipedream::StaticGeometry (normals, albedo, mask groups)
 //   cutEdges           the cut polygons' sides, for the wireframe view
 //   StageOptions, Stage, loadStage   everything a frame needs, built once per process
-//   NamedCamera, namedCameras, namedCamera   the seed's camera moves
+//   NamedCamera, namedCameras, namedCamera   WWDC 2003 session 212's camera moves
 //
 // The stage is deterministic: the machine is generated in code (pipedream/machine_room.h), the
 // score is data (render/pipedream/score.h), and the cut is glint::cut's exact output for
@@ -43,7 +43,7 @@ namespace glint::scenes::pipedream {
 
 /// The scene's default tessellation: about 443k input triangles, cut into ~443k triangles
 /// (the cut's optimization step merges as much as the shadows add), ~464k drawn per frame
-/// with the dynamic parts (seed 001: "about 400,000 polygons per frame on average, 550,000
+/// with the dynamic parts (WWDC 2003 session 212: "about 400,000 polygons per frame on average, 550,000
 /// peak"). Detail 5 gave the range while the cut still tripled its input.
 constexpr int kDefaultDetail = 13;
 
@@ -77,7 +77,7 @@ struct Stage {
   double cutSeconds = 0.0;        ///< cutting and writing, or loading
   double buildSeconds = 0.0;      ///< everything: machine, cut, geometry
   int detail = 0;
-  /// Triangles drawn per frame by the seed's method at `pose`: the cut static scene, the
+  /// Triangles drawn per frame by WWDC 2003 session 212's method at `pose`: the cut static scene, the
   /// dynamic parts and the balls.
   std::size_t trianglesPerFrame(const render::pipedream::MachinePose& pose) const;
   /// One line: input triangles, cut polygons, triangles, masks, where the cut came from.
@@ -88,7 +88,7 @@ struct Stage {
 /// (one per detail and cache directory; thread-safe). Errors as cut::cachedCut.
 std::shared_ptr<const Stage> loadStage(const StageOptions& options = {});
 
-/// A camera of the seed's demo.
+/// A camera of WWDC 2003 session 212's demo.
 struct NamedCamera {
   const char* name;
   const char* description;

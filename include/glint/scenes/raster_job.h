@@ -1,7 +1,7 @@
 #pragma once
 // glint/scenes/raster_job.h — `glint raster`'s job: geometry through glint::raster, the
 // reference CPU pipeline (raster/raster.h), into pictures of its intermediate results —
-// the lecture's pipeline (seeds/004) made visible. Three kinds of geometry: the lecture's
+// the lecture's pipeline (the OpenGL III lecture) made visible. Three kinds of geometry: the lecture's
 // triangle, any mesh Assimp reads (Lambert-shaded, seen by an orbit camera), or the draws
 // of a basics/reference scene variant. Every job writes DIR/color.png, depth.png (16-bit),
 // edges.png (the chosen triangle's three edge functions), overdraw.png and stencil.png.

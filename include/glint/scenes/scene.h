@@ -72,7 +72,7 @@ struct Option {
   float min = 0.0f;  ///< slider range for float and int options
   float max = 1.0f;
   /// A key for the viewer (an uppercase letter or a digit, e.g. 'B'): it toggles a bool
-  /// option and steps an int option through min..max (wrapping), as the seed's demos
+  /// option and steps an int option through min..max (wrapping), as the sources' demos
   /// switched effects on keys. 0: none. R is the viewer's (reload).
   char key = 0;
 };
@@ -89,7 +89,7 @@ public:
   /// A key the viewer does not use itself ('A'..'Z' other than C and R, '0'..'9'; GLFW's
   /// key codes for them are these characters): true when the scene used it. The default
   /// toggles or steps the option whose Option::key it is (post/camera's effects); scenes
-  /// with a demo's own keys (pipedream: the seed's toggles) override it and switch views
+  /// with a demo's own keys (pipedream: the talk's toggles) override it and switch views
   /// without a reload, falling back to Scene::keyPressed for their options.
   virtual bool keyPressed(int key);
 };
@@ -107,7 +107,7 @@ struct VariantDesc {
 
 struct SceneDesc {
   std::string name;      ///< e.g. "basics/triangle" (group/name)
-  std::string summary;   ///< one line: the technique and where the seeds describe it
+  std::string summary;   ///< one line: the technique and which source describes it (docs/sources.md)
   std::vector<VariantDesc> variants;
   gl::Profile profile = gl::Profile::Core;  ///< Compatibility: needs a compatibility context
   /// Reads its frames through the video module (FFmpeg): post/camera, whose default input is

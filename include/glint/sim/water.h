@@ -1,5 +1,5 @@
 #pragma once
-// glint/sim/water.h — seed 002's wave simulation as a spring network, on the CPU: the
+// glint/sim/water.h — the VGP353 lecture's wave simulation as a spring network, on the CPU: the
 // reference the GPU simulation (render/water/wave_simulation.h) is tested against, and
 // the place its physics is documented. No GL.
 //

@@ -58,7 +58,7 @@ enum class SourceKind {
 struct SourceOptions {
   bool camera = false;        ///< the name is a V4L2 device (`glint post --camera /dev/video0`)
   bool realtime = false;      ///< pace a file or lavfi source at its frame rate and treat it as live
-  ivec2 size{0};              ///< camera: the size to ask for (0: the device's default; the seed's was 640×480)
+  ivec2 size{0};              ///< camera: the size to ask for (0: the device's default; WWDC 2003 session 212's was 640×480)
   double frameRate = 0.0;     ///< camera: the rate to ask for (0: the device's default)
   std::int64_t firstFrame = 0;   ///< first frame to deliver
   std::int64_t lastFrame = -1;   ///< one past the last frame to deliver; -1: to the end

@@ -1,5 +1,5 @@
-// The fixed-function calls in Dot3Classic are the point of this file: they are what seed
-// 000 shows on its slides (ARB suffixes dropped, as in GL 1.3+).
+// The fixed-function calls in Dot3Classic are the point of this file: they are what the
+// WWDC 2001 talk shows on its slides (ARB suffixes dropped, as in GL 1.3+).
 #include "glint/render/bump/dot3.h"
 
 #include "glint/core/error.h"
@@ -71,7 +71,7 @@ void combinerStage(GLuint unit, const gl::Texture& texture, GLenum combine, GLen
   glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND0_RGB, GL_SRC_COLOR);
   glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE1_RGB, GL_TEXTURE);
   glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND1_RGB, GL_SRC_COLOR);
-  glTexEnvf(GL_TEXTURE_ENV, GL_RGB_SCALE, 1.0f);  // the "scale the output" the seed mentions
+  glTexEnvf(GL_TEXTURE_ENV, GL_RGB_SCALE, 1.0f);  // the "scale the output" the WWDC 2001 talk mentions
   glTexEnvi(GL_TEXTURE_ENV, GL_COMBINE_ALPHA, GL_REPLACE);
   glTexEnvi(GL_TEXTURE_ENV, GL_SOURCE0_ALPHA, source0);
   glTexEnvi(GL_TEXTURE_ENV, GL_OPERAND0_ALPHA, GL_SRC_ALPHA);

@@ -15,6 +15,7 @@ void HeightToNormalPass::run(const gl::Texture& height, const gl::Texture& norma
     fail(ErrorKind::Usage, "height map {}x{} and normal map {}x{} must have the same size", height.width(),
          height.height(), normalMap.width(), normalMap.height());
   }
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
   m_framebuffer.attach(GL_COLOR_ATTACHMENT0, normalMap);
   m_framebuffer.checkComplete();
   m_framebuffer.bind();
@@ -28,7 +29,6 @@ void HeightToNormalPass::run(const gl::Texture& height, const gl::Texture& norma
   program.set("uSlide", options.formula == NormalFormula::Slide);
   PipelineState{.depthTest = false, .depthWrite = false}.apply();
   m_pass.drawWithCurrentState();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
   if (normalMap.levels() > 1) normalMap.generateMipmap();
 }
 

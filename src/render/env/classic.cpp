@@ -1,4 +1,4 @@
-// The fixed-function calls here are the point of this file: they are what seed 000
+// The fixed-function calls here are the point of this file: they are what the WWDC 2001 talk
 // shows on its slides (ARB suffixes dropped, as in GL 1.3+).
 #include "glint/render/env/classic.h"
 
@@ -114,7 +114,7 @@ void ClassicEnvironment::drawCubeMapped(const ClassicMesh& mesh, const mat4& mod
   beginMirror(model, camera, tint, true);
   cube.bindToActiveUnit();
   glEnable(GL_TEXTURE_CUBE_MAP);
-  // Seed 000: "set the texture generation to Reflection Map mode ... three dimensions".
+  // The WWDC 2001 talk: "set the texture generation to Reflection Map mode ... three dimensions".
   for (GLenum coord : {GL_S, GL_T, GL_R}) glTexGeni(coord, GL_TEXTURE_GEN_MODE, GL_REFLECTION_MAP);
   for (GLenum coord : {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R}) glEnable(coord);
   // Texgen's r is in eye space; the cube map is in world space.

@@ -31,6 +31,7 @@ Camera DynamicCubeMap::faceCamera(int face, vec3 centre, float nearPlane, float 
 
 void DynamicCubeMap::render(vec3 centre, const std::function<void(const Camera&)>& draw, vec4 clear,
                             float nearPlane, float farPlane) {
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
   for (int face = 0; face < 6; ++face) {
     m_framebuffer.attachLayer(GL_COLOR_ATTACHMENT0, m_cube, face, 0);
     m_framebuffer.bind();
@@ -39,7 +40,6 @@ void DynamicCubeMap::render(vec3 centre, const std::function<void(const Camera&)
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, clear);
     draw(faceCamera(face, centre, nearPlane, farPlane));
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
   m_cube.generateMipmap();
 }
 

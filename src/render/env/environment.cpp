@@ -50,6 +50,7 @@ gl::Texture cubeFromEquirect(const Image& equirect, const CubeFromEquirectOption
   cube.storage(GL_RGBA8, options.faceSize, options.faceSize, 1, 0);
   cube.filtering(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
 
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
   FullscreenPass pass("env/equirect_to_cube.frag");
   pass.program().set("uSize", options.faceSize);
   pass.program().set("uSamples", options.samples);
@@ -65,7 +66,6 @@ gl::Texture cubeFromEquirect(const Image& equirect, const CubeFromEquirectOption
     pass.program().set("uFace", face);
     pass.draw();
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glBindTextureUnit(0, 0);
   cube.generateMipmap();
   return cube;
@@ -112,6 +112,7 @@ gl::Texture sphereMapFromCube(const gl::Texture& cube, const SphereMapOptions& o
   gl::Texture map(GL_TEXTURE_2D, options.label);
   map.storage(GL_RGBA8, options.size, options.size, 1, 0);
   map.filtering(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
+  const SavedTarget saved;
   FullscreenPass pass("env/sphere_map_from_cube.frag");
   pass.program().set("uFrameToWorld", glm::transpose(options.worldToFrame));
   pass.program().set("uSize", options.size);
@@ -125,7 +126,6 @@ gl::Texture sphereMapFromCube(const gl::Texture& cube, const SphereMapOptions& o
   cube.bind(0);
   pass.drawWithCurrentState();
   glBindTextureUnit(0, 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
   map.generateMipmap();
   return map;
 }

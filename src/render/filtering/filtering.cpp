@@ -34,7 +34,7 @@ const FilterMode kModes[] = {
     {"nearest", GL_NEAREST, GL_NEAREST, 1.0f, 0.0f, "GL_NEAREST, no mipmaps: one texel per pixel, blocky up close, noise far away"},
     {"bilinear", GL_LINEAR, GL_LINEAR, 1.0f, 0.0f, "GL_LINEAR without mipmaps: smooth up close, sparkles far away as the camera moves"},
     {"bilinear-mip-nearest", GL_LINEAR_MIPMAP_NEAREST, GL_LINEAR, 1.0f, 0.0f, "GL_LINEAR_MIPMAP_NEAREST: mipmaps stop the sparkle; visible bands where the level switches"},
-    {"trilinear", GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, 1.0f, 0.0f, "GL_LINEAR_MIPMAP_LINEAR: smooth, but blurred where the plane is oblique (the seed: \"the texture becomes blurred\")"},
+    {"trilinear", GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, 1.0f, 0.0f, "GL_LINEAR_MIPMAP_LINEAR: smooth, but blurred where the plane is oblique (the WWDC 2001 talk: \"the texture becomes blurred\")"},
     {"aniso2", GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, 2.0f, 0.0f, "trilinear + GL_TEXTURE_MAX_ANISOTROPY 2"},
     {"aniso4", GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, 4.0f, 0.0f, "trilinear + anisotropy 4"},
     {"aniso8", GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, 8.0f, 0.0f, "trilinear + anisotropy 8"},
@@ -47,28 +47,6 @@ std::map<std::string, std::vector<Image>>& truthCache() {
   static std::map<std::string, std::vector<Image>> cache;
   return cache;
 }
-
-// Leaves the caller's framebuffer binding and viewport as they were (the viewer calls
-// in between its own passes).
-class SavedTarget {
-public:
-  SavedTarget() {
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &m_draw);
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &m_read);
-    glGetIntegerv(GL_VIEWPORT, m_viewport);
-  }
-  ~SavedTarget() {
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(m_draw));
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(m_read));
-    glViewport(m_viewport[0], m_viewport[1], m_viewport[2], m_viewport[3]);
-  }
-  SavedTarget(const SavedTarget&) = delete;
-  SavedTarget& operator=(const SavedTarget&) = delete;
-
-private:
-  GLint m_draw = 0, m_read = 0;
-  GLint m_viewport[4] = {};
-};
 
 Image renderFrame(const GroundPlane& ground, const FilterMode& mode, ivec2 size, float forward) {
   gl::RenderTarget target(size, GL_RGBA8, "filtering-measure");

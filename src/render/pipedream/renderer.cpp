@@ -654,7 +654,7 @@ void Renderer::compositeLight(int light, std::uint32_t earlier) {
       m_alphaPass.drawWithCurrentState();
     }
   }
-  // The seed's shadow quad: colour × destination alpha where the count is not zero. The
+  // WWDC 2003 session 212's shadow quad: colour × destination alpha where the count is not zero. The
   // same pass zeroes the count (for the next light) and sets this light's marker.
   PipelineState{.depthWrite = false,
                 .stencil = {.enabled = true,

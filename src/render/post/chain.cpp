@@ -86,12 +86,12 @@ const gl::Texture& Chain::run(const gl::Texture& input) {
     fail(ErrorKind::Usage, "a {} frame for a chain of {} targets", input.internalFormat() == GL_RGBA32F ? "float" : "8-bit",
          c.format == GL_RGBA32F ? "float" : "8-bit");
   const gl::Texture* current = &input;
+  // Each stage puts the caller's framebuffer and viewport back (render::SavedTarget).
   for (std::size_t i = 0; i < c.stages.size(); ++i) {
     const gl::Texture& out = c.targets[i % 2];
     c.stages[i].run(*current, out);
     current = &out;
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return *current;
 }
 

@@ -34,7 +34,6 @@ void bindInput(const gl::Texture& texture, GLuint unit) {
   gl::Sampler::unbind(unit);  // texelFetch ignores sampling state; keep the unit predictable
 }
 
-void finish() { glBindFramebuffer(GL_FRAMEBUFFER, 0); }
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -80,9 +79,9 @@ void SepiaPass::run(const gl::Texture& input, const gl::Texture& output, const S
   program.set("uOffset", vec3(c));
   program.set("uLimits", limits);
   if (!m_fragment) return m_compute.dispatch(output);
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
   bindOutput(m_framebuffer, output);
   m_fragment->drawWithCurrentState();
-  finish();
 }
 
 // ---------------------------------------------------------------------------
@@ -99,9 +98,9 @@ void SobelPass::run(const gl::Texture& input, const gl::Texture& output, const S
   program.set("uOutput", int(options.output));
   program.set("uScale", options.scale);
   if (!m_fragment) return m_compute.dispatch(output);
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
   bindOutput(m_framebuffer, output);
   m_fragment->drawWithCurrentState();
-  finish();
 }
 
 // ---------------------------------------------------------------------------
@@ -118,9 +117,9 @@ void EdgesPass::run(const gl::Texture& input, const gl::Texture& output, const E
   program.set("uScale", options.scale);
   program.set("uThreshold", options.threshold);
   if (!m_fragment) return m_compute.dispatch(output);
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
   bindOutput(m_framebuffer, output);
   m_fragment->drawWithCurrentState();
-  finish();
 }
 
 // ---------------------------------------------------------------------------
@@ -152,6 +151,7 @@ void KuwaharaPass::run(const gl::Texture& input, const gl::Texture& output, cons
     m_statistics = gl::Texture(GL_TEXTURE_2D, "post-kuwahara-statistics");
     m_statistics.storage(GL_RGBA32F, statsSize.x, statsSize.y);
   }
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
   // Pass 1: statistics of every block.
   const gl::Program& stats = m_stats->program();
   stats.set("uInput", 0);
@@ -168,7 +168,6 @@ void KuwaharaPass::run(const gl::Texture& input, const gl::Texture& output, cons
   select.set("uShowQuadrant", showQuadrant);
   bindOutput(m_framebuffer, output);
   m_select->drawWithCurrentState();
-  finish();
 }
 
 }  // namespace glint::render::post

@@ -57,11 +57,11 @@ FramebufferTexture::FramebufferTexture(int size, std::string_view label)
 }
 
 void FramebufferTexture::render(const DrawFn& draw, vec4 clear) {
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
   m_framebuffer.bind();
   glViewport(0, 0, m_size, m_size);
   clearBound(clear);
   draw({m_size, m_size});
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
   m_texture.generateMipmap();
 }
 

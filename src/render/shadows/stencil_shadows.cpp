@@ -167,7 +167,7 @@ void StencilShadows::countVolumes(const World& world, const Camera& camera) cons
   };
   switch (m_options.counting) {
     case StencilCounting::InvertZPass:
-      // The seed's order: back faces (cull front), then front faces.
+      // The WWDC 2001 talk's order: back faces (cull front), then front faces.
       twoDraws(GL_FRONT, {.dppass = GL_INVERT}, {.dppass = GL_INVERT});
       break;
     case StencilCounting::ZPass:
@@ -270,7 +270,7 @@ void StencilShadows::drawView(const World& world, const Camera& camera) const {
     p.set("uColor", color);
     drawVolumes(world, camera, usesCaps());
   };
-  // The seed's colours: back faces green, front faces blue; added, both make cyan.
+  // The WWDC 2001 talk's colours: back faces green, front faces blue; added, both make cyan.
   const vec4 green{0.0f, 0.55f, 0.0f, 1.0f}, blue{0.0f, 0.0f, 0.75f, 1.0f};
   switch (m_options.view) {
     case VolumeView::BackFaces: faces(GL_FRONT, green); break;

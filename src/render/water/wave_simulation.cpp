@@ -39,6 +39,7 @@ void WaveSimulation::reset() {
 }
 
 void WaveSimulation::addDrop(const sim::Drop& drop) {
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
   const gl::Framebuffer& fb = m_framebuffers[std::size_t(m_current)];
   fb.bind();
   glViewport(0, 0, m_size.x, m_size.y);
@@ -54,11 +55,11 @@ void WaveSimulation::addDrop(const sim::Drop& drop) {
   glDrawArrays(GL_TRIANGLES, 0, 6);
   glBindVertexArray(0);
   PipelineState{.depthTest = true}.apply();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void WaveSimulation::stepOnce() {
   const int next = 1 - m_current;
+  const SavedTarget saved;
   m_framebuffers[std::size_t(next)].bind();
   glViewport(0, 0, m_size.x, m_size.y);
   const gl::Program& program = m_step.program();
@@ -72,7 +73,6 @@ void WaveSimulation::stepOnce() {
   program.set("uTimeStep", m_params.timeStep);
   program.set("uWrap", m_params.wrap);
   m_step.draw();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
   m_current = next;
 }
 

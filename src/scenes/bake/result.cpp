@@ -1,4 +1,4 @@
-// bake/result — the normal mapper's result (seed 001, ATI's car-paint demo split screen):
+// bake/result — the normal mapper's result (WWDC 2003 session 212, ATI's car-paint demo split screen):
 // a studded torus of 262k triangles baked onto a 1,152-triangle torus. Four panels:
 //   top left      the low poly with its own vertex normals
 //   top right     the low poly with the baked tangent-space map (render::bump::NormalMapping)
@@ -104,7 +104,7 @@ private:
 
 void registerBakeResult(Registry& registry) {
   registry.add({.name = "bake/result",
-                .summary = "The normal mapper (seed 001): a 262k-triangle studded torus baked onto a 1,152-triangle "
+                .summary = "The normal mapper (WWDC 2003 session 212): a 262k-triangle studded torus baked onto a 1,152-triangle "
                            "one. Top: low poly without / with the baked map; bottom: high poly / the map.",
                 .variants = {{"studs", "studs and a groove from the high poly alone: the smooth ray-cast shape"},
                              {"detail", "plus painted micro detail (pores, scratches) combined from a height map"}},

@@ -1,4 +1,4 @@
-// basics/depth — the lecture's depth-buffer example and its API (seeds/004,
+// basics/depth — the lecture's depth-buffer example and its API (the OpenGL III lecture,
 // "Depth Buffer Example", "OpenGL API for Depth Testing").
 //
 // The depth buffer is cleared to 0.8 (glClearDepth), then two primitives are drawn
@@ -87,7 +87,7 @@ void registerBasicsDepth(Registry& registry) {
   SceneDesc desc{
       .name = "basics/depth",
       .summary = "The depth test: depth cleared to 0.8, a red primitive at 0.65, a tilted blue one through 0.72 "
-                 "(seeds/004's depth-buffer example), one variant per glDepthFunc.",
+                 "(the OpenGL III lecture's depth-buffer example), one variant per glDepthFunc.",
       .defaultSize = {500, 500},
   };
   for (const auto& v : kVariants) desc.variants.push_back({v.name, v.description});

@@ -32,7 +32,7 @@ const vec4 kClearColor{0.12f, 0.14f, 0.18f, 1.0f};  // the lecture's tip: not bl
 
 raster::Vertex ndcVertex(float x, float y, float z, const vec4& color) { return {vec4(x, y, z, 1.0f), {color}}; }
 
-/// The lecture's simple triangle with glEnable(GL_DEPTH_TEST) (seeds/004).
+/// The lecture's simple triangle with glEnable(GL_DEPTH_TEST) (the OpenGL III lecture).
 ReferenceSetup lectureTriangle(bool showDepth) {
   ReferenceSetup s;
   s.view = showDepth ? ReferenceView::Depth : ReferenceView::Color;
@@ -117,7 +117,7 @@ struct VariantInfo {
 };
 
 const VariantInfo kVariants[] = {
-    {"triangle", "The lecture's triangle (seeds/004): left OpenGL, right the CPU reference pipeline; the colour "
+    {"triangle", "The lecture's triangle (the OpenGL III lecture): left OpenGL, right the CPU reference pipeline; the colour "
                  "gradients and edges continue across the divider."},
     {"triangle-depth", "The same triangle's depth buffer (white = 1.0, far): the z plane "
                        "Z = -0.000625x + 0.0003125y + 0.540625 from both pipelines."},
@@ -288,7 +288,7 @@ void registerBasicsReference(Registry& registry) {
   SceneDesc desc{
       .name = "basics/reference",
       .summary = "OpenGL (left) and glint::raster, the reference CPU pipeline (right), drawing the same vertices under "
-                 "the same state: coverage, depth and stencil agree across the divider (seeds/004).",
+                 "the same state: coverage, depth and stencil agree across the divider (the OpenGL III lecture).",
       .defaultSize = {500, 500},
   };
   for (const auto& v : kVariants) desc.variants.push_back({v.name, v.description});

@@ -1,4 +1,4 @@
-// basics/triangle — the lecture's simple triangle (seeds/004, "OpenGL API Example").
+// basics/triangle — the lecture's simple triangle (the OpenGL III lecture, "OpenGL API Example").
 //
 // glShadeModel(GL_SMOOTH); glEnable(GL_DEPTH_TEST);
 // red (-0.8, 0.8, 0.3), green (0.8, 0.8, -0.2), blue (0, -0.8, -0.2) in NDC; the
@@ -71,7 +71,7 @@ private:
 void registerBasicsTriangle(Registry& registry) {
   registry.add({
       .name = "basics/triangle",
-      .summary = "The lecture's simple triangle: NDC vertices, smooth colour interpolation, depth test (seeds/004).",
+      .summary = "The lecture's simple triangle: NDC vertices, smooth colour interpolation, depth test (the OpenGL III lecture).",
       .variants = {{"color", "Red, green and blue vertices interpolated across the triangle (glShadeModel(GL_SMOOTH))."},
                    {"depth", "The depth buffer visualized: white = 1.0 (far, the clear value), black = 0.0 (near); "
                              "window z 0.65 at the red corner, 0.4 at the others."}},

@@ -1,5 +1,5 @@
 // bump/dot3-classic, bump/dot3-shader, bump/light-vectors, bump/dot-product, bump/normalize —
-// DOT3 bump mapping with texture combiners as seed 000 demonstrates it: "a positional light
+// DOT3 bump mapping with texture combiners as the WWDC 2001 talk demonstrates it: "a positional light
 // source circling the source texture" over "a simple four-vertex polygon", the encoded light
 // vectors shown as colours, the grayscale dot product, the final modulated image, and the
 // interpolation artifact ("there are issues about keeping the vectors normalized").
@@ -35,12 +35,12 @@ struct Dot3Variant {
   Dot3Stage stage = Dot3Stage::Modulated;
   Relief relief = Relief::Bricks;
   Normalization normalization = Normalization::Interpolated;
-  int subdivisions = 1;       // 1 = the seed's four-vertex polygon
+  int subdivisions = 1;       // 1 = the WWDC 2001 talk's four-vertex polygon
   float lightRadius = 0.8f;  // polygon half-sizes
   float lightHeight = 0.75f;
 };
 
-// The polygon leans back 30°, like the tablet in the seed's demo seen from a little above.
+// The polygon leans back 30°, like the tablet in the WWDC 2001 talk's demo seen from a little above.
 const quat kPolygonRotation = glm::angleAxis(glm::radians(-30.0f), vec3(1.0f, 0.0f, 0.0f));
 constexpr float kLightSpeed = 0.8f;  // radians per second around the polygon
 
@@ -57,7 +57,7 @@ public:
         {"light-radius", "radius of the light's circle, in polygon half-sizes", &m_lightRadius, 0.0f, 3.0f},
         {"light-height", "height of the light above the polygon, in polygon half-sizes", &m_lightHeight, 0.05f, 3.0f},
         {"light-speed", "radians per second around the polygon", &m_lightSpeed, -3.0f, 3.0f},
-        {"subdivisions", "cells per side of the polygon (1 = the seed's four vertices)", &m_subdivisions, 1, 32},
+        {"subdivisions", "cells per side of the polygon (1 = the WWDC 2001 talk's four vertices)", &m_subdivisions, 1, 32},
         {"show-light", "draw a marker where the light is", &m_showLight}};
     if (!m_classicPath && m_variant.normalization != Normalization::SideBySide)
       o.push_back({"normalize", "normalize the interpolated light vector per pixel (the fix)", &m_normalize});
@@ -136,7 +136,7 @@ private:
 
 // The variants. Scenes at t = 3 s: the light has gone 2.4 rad (137°) round, to the upper left.
 const Dot3Variant kFinal[] = {
-    {"bricks", "N·L × base texture on a brick wall: the final image of the seed's demo, one four-vertex polygon"},
+    {"bricks", "N·L × base texture on a brick wall: the final image of the WWDC 2001 talk's demo, one four-vertex polygon"},
     {"bumps", "round bumps and dents (even/odd cells): bumps lit on the light's side, dents on the far side",
      Dot3Stage::Modulated, Relief::Bumps},
 };
@@ -177,22 +177,22 @@ void addScene(Registry& registry, const char* name, const char* summary, const D
 void registerBumpDot3(Registry& registry) {
   addScene(registry, "bump/dot3-classic",
            "DOT3 bump mapping with the 2001 texture combiners (GL_COMBINE, GL_DOT3_RGB then GL_MODULATE) in a "
-           "compatibility-profile context, light circling the polygon (seed 000).",
+           "compatibility-profile context, light circling the polygon (the WWDC 2001 talk).",
            kFinal, true);
   addScene(registry, "bump/dot3-shader",
-           "DOT3 bump mapping in GLSL with the combiners' exact arithmetic; equal to bump/dot3-classic (seed 000).",
+           "DOT3 bump mapping in GLSL with the combiners' exact arithmetic; equal to bump/dot3-classic (the WWDC 2001 talk).",
            kFinal, false);
   addScene(registry, "bump/light-vectors",
            "The per-vertex light vectors in the polygon's local space, encoded as unsigned-byte colours (v + 1)/2·255 "
-           "(seed 000).",
+           "(the WWDC 2001 talk).",
            kLightVectors, false);
   addScene(registry, "bump/dot-product",
            "Combiner stage 1 alone: DOT3_RGB of the light-vector colour and the normal map, a grayscale light map "
-           "(seed 000).",
+           "(the WWDC 2001 talk).",
            kDotProduct, false);
   addScene(registry, "bump/normalize",
            "Interpolating unnormalized light vectors darkens the polygon under a close light; normalizing per pixel "
-           "fixes it (seed 000: \"issues about keeping the vectors normalized\").",
+           "fixes it (the WWDC 2001 talk: \"issues about keeping the vectors normalized\").",
            kNormalize, false);
 }
 

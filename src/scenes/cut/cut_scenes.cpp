@@ -1,13 +1,13 @@
-// cut/* — the shadow cutter's result (seed 001, ATI's "Pipe Dream" static shadows). Each
+// cut/* — the shadow cutter's result (WWDC 2003 session 212, ATI's "Pipe Dream" static shadows). Each
 // scene cuts its geometry with glint_cut when it is created, so what is drawn is exactly
 // what `glint cut` writes for it:
-//   cut/table       the seed's example: a table and a microphone under one light. pieces:
+//   cut/table       WWDC 2003 session 212's example: a table and a microphone under one light. pieces:
 //                   lit pieces warm, shadowed ones blue, the cut wireframe on top; shaded:
 //                   drawn as a renderer would use the cut (N·L where the light reaches,
 //                   ambient where the mask says it does not), no shadow pass at all.
 //   cut/cyclic      three cyclically overlapping triangles ("the root of all evil"): each
 //                   shadows the next, no order sorts them, the cut gets them right.
-//   cut/two-lights  two lights: pieces coloured by their light mask; and the seed's
+//   cut/two-lights  two lights: pieces coloured by their light mask; and WWDC 2003 session 212's
 //                   destination-alpha view, the dim factor as grey (white: no light reaches,
 //                   darker: more lights to dim when a dynamic shadow falls there).
 #include "glint/cut/cutter.h"
@@ -69,7 +69,7 @@ Mesh stripped(Mesh m) {
   return m;
 }
 
-/// The seed's example: a table on a floor, a microphone on a stand beside and above it.
+/// WWDC 2003 session 212's example: a table on a floor, a microphone on a stand beside and above it.
 Mesh tableAndMicrophone() {
   Mesh scene = box({-2.2f, -0.1f, -1.8f}, {2.6f, 0.0f, 1.8f});  // the floor, a closed slab
   scene.append(box({-1.0f, 0.9f, -0.6f}, {1.0f, 1.0f, 0.6f}));  // table top
@@ -211,7 +211,7 @@ private:
     const int reach = std::popcount(mask);
     switch (m_view) {
       case View::DimAlpha: {
-        // The seed's dim factor: 1 (white) where no light reaches, darker the more
+        // WWDC 2003 session 212's dim factor: 1 (white) where no light reaches, darker the more
         // lights a dynamic shadow would have to take away.
         const float dim = 1.0f - 0.4f * float(reach);
         return vec4(vec3(dim), 1.0f);
@@ -260,7 +260,7 @@ Setup twoLightSetup() {
 
 void registerCutScenes(Registry& registry) {
   registry.add({.name = "cut/table",
-                .summary = "The shadow cutter (seed 001, Pipe Dream): a microphone's and a table's shadows cut into "
+                .summary = "The shadow cutter (WWDC 2003 session 212, Pipe Dream): a microphone's and a table's shadows cut into "
                            "the table and the floor by far beams; pieces tagged lit or shadowed",
                 .variants = {{"pieces", "lit pieces warm, shadowed pieces blue, the cut wireframe on top"},
                              {"shaded", "drawn as a renderer uses the cut: N·L where lit, ambient where shadowed, no "
@@ -279,7 +279,7 @@ void registerCutScenes(Registry& registry) {
                   return std::make_unique<CutScene>(cyclicSetup(), variant == 0 ? View::Pieces : View::Shaded);
                 }});
   registry.add({.name = "cut/two-lights",
-                .summary = "Two lights, a light mask per piece: which lights reach it, and the seed's "
+                .summary = "Two lights, a light mask per piece: which lights reach it, and WWDC 2003 session 212's "
                            "destination-alpha dim factor from it",
                 .variants = {{"pieces", "both lights warm, key only red, fill only green, neither blue; the cut wireframe"},
                              {"dim-alpha", "the dim factor as grey: white where no light reaches, darker the more lights "

@@ -1,4 +1,4 @@
-// env/bubble — a dynamic cube map: the bubble with local scenery (seed 000: "the NVIDIA
+// env/bubble — a dynamic cube map: the bubble with local scenery (the WWDC 2001 talk: "the NVIDIA
 // Bubble demo, modified with local scenery"). Every frame the small animated scene around
 // the bubble is rendered into the six faces of a cube map through a framebuffer object,
 // then the bubble reflects it with a Fresnel-weighted blend.
@@ -130,7 +130,7 @@ private:
 void registerEnvBubble(Registry& registry) {
   registry.add({.name = "env/bubble",
                 .summary = "Dynamic cube map: local scenery rendered into a cube map every frame through a "
-                           "framebuffer object and reflected by a bubble (seed 000's bubble demo).",
+                           "framebuffer object and reflected by a bubble (the WWDC 2001 talk's bubble demo).",
                 .variants = {{"fresnel", "a soap bubble: Fresnel-weighted reflection over what lies behind it"},
                              {"mirror", "the same bubble as an opaque mirror, to read the reflection plainly"},
                              {"faces", "this frame's six dynamic cube faces, unfolded as a cross"}},

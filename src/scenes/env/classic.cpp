@@ -1,5 +1,5 @@
 // env/classic — the env/cube and env/sphere pictures drawn with the 2001 fixed-function
-// API that seed 000 shows: glTexGen(GL_REFLECTION_MAP) with GL_TEXTURE_CUBE_MAP, and
+// API that the WWDC 2001 talk shows: glTexGen(GL_REFLECTION_MAP) with GL_TEXTURE_CUBE_MAP, and
 // glTexGen(GL_SPHERE_MAP). Needs a compatibility-profile context.
 #include "env_common.h"
 
@@ -73,7 +73,7 @@ private:
 
 void registerEnvClassic(Registry& registry) {
   SceneDesc desc{.name = "env/classic",
-                 .summary = "Cube and sphere environment maps with the 2001 fixed-function API of seed 000 "
+                 .summary = "Cube and sphere environment maps with the 2001 fixed-function API of the WWDC 2001 talk "
                             "(glTexGen, GL_TEXTURE_CUBE_MAP), in a compatibility-profile context.",
                  .profile = gl::Profile::Compatibility};
   for (const auto& v : kVariants) desc.variants.push_back({v.name, v.description});

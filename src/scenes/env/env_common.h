@@ -20,7 +20,7 @@ constexpr float kDistance = 4.6f;
 constexpr float kElevation = 0.12f;                // radians: a little above the objects
 constexpr float kFovY = 40.0f;
 
-/// The two views of seed 000's demo: the one the sphere map is made for, and behind.
+/// The two views of the WWDC 2001 talk's demo: the one the sphere map is made for, and behind.
 struct View {
   const char* name;
   float azimuth;  ///< radians around the objects; 0 = the sphere map's view
@@ -60,7 +60,7 @@ inline std::string sphereMapFigures() {
   const auto side = glint::sphereMapResolution(kSphereMapSize, kPi / 2);
   const auto rear = glint::sphereMapResolution(kSphereMapSize, kPi * 150.0 / 180.0);
   return fmt::format(
-      "Sphere map {0}²: {1:.1f}% of texels wasted (seed: about 20%), {2:.1f}% show the front half, {3:.1f}% the back "
+      "Sphere map {0}²: {1:.1f}% of texels wasted (the WWDC 2001 talk: about 20%), {2:.1f}% show the front half, {3:.1f}% the back "
       "half. Effective resolution in texels/radian: {4:.0f} head-on, {5:.0f} at 90°, {6:.0f} at 150°, 0 straight back "
       "(the singularity); the {7}² cube map has ≥ {8:.0f} in every direction. Over the front half the sphere map "
       "equals a {9:.0f}² cube map; {10:.0f}k texels against the cube map's {11:.0f}k.",

@@ -1,5 +1,5 @@
 // env/cube, env/sphere, env/compare, env/faces, env/spheremap — cube vs sphere
-// environment maps (seed 000: "cube environment maps", the sphere map "generated from
+// environment maps (the WWDC 2001 talk: "cube environment maps", the sphere map "generated from
 // these six images", its wasted area and its back-side singularity).
 #include "env_common.h"
 
@@ -61,7 +61,7 @@ public:
     const ivec2 size = frame.target.size;
     const render::Camera camera = frame.camera(viewCamera(m_view.azimuth + m_spin * float(frame.time), size));
     if (m_mode == Mode::Compare) {
-      // Split screen like the seed's demo: cube map on the left, sphere map on the right,
+      // Split screen like the WWDC 2001 talk's demo: cube map on the left, sphere map on the right,
       // one camera over the whole frame (each half shows its half of the same view), and
       // a 2-pixel divider.
       const gl::Target left = frame.target.column(0, 2), right = frame.target.column(1, 2);
@@ -211,15 +211,15 @@ void registerEnvScenes(Registry& registry) {
     const char* what;
   } mirrors[] = {
       {"env/cube", Mode::Cube,
-       "Cube-map environment mapping (seed 000): reflection-vector lookup (GL_REFLECTION_MAP's shader "
+       "Cube-map environment mapping (the WWDC 2001 talk): reflection-vector lookup (GL_REFLECTION_MAP's shader "
        "equivalent) on mirror objects, skybox behind.",
        "cube map"},
       {"env/sphere", Mode::Sphere,
-       "Sphere-map environment mapping (seed 000): GL_SPHERE_MAP's lookup into a sphere map generated from the "
+       "Sphere-map environment mapping (the WWDC 2001 talk): GL_SPHERE_MAP's lookup into a sphere map generated from the "
        "cube map for the front view.",
        "sphere map"},
       {"env/compare", Mode::Compare,
-       "Cube map (left) vs sphere map (right), split screen like seed 000's demo.", "split screen"},
+       "Cube map (left) vs sphere map (right), split screen like the WWDC 2001 talk's demo.", "split screen"},
   };
   for (const auto& m : mirrors) {
     SceneDesc desc{.name = m.name, .summary = m.summary};
@@ -237,12 +237,12 @@ void registerEnvScenes(Registry& registry) {
     registry.add(std::move(desc));
   }
   registry.add({.name = "env/faces",
-                .summary = "The cube map's six faces laid out as a cross (seed 000: \"the six texture images\").",
+                .summary = "The cube map's six faces laid out as a cross (the WWDC 2001 talk: \"the six texture images\").",
                 .variants = {{"cross", "the faces as a contiguous panorama seen from the object"}},
                 .defaultSize = {640, 480},
                 .create = [](int) -> std::unique_ptr<Scene> { return std::make_unique<FacesScene>(); }});
   registry.add({.name = "env/spheremap",
-                .summary = "The sphere map generated from the cube map, with its wasted corners (seed 000: \"about "
+                .summary = "The sphere map generated from the cube map, with its wasted corners (the WWDC 2001 talk: \"about "
                            "20% of the spherical map\").",
                 .variants = {{"image", "the sphere map as generated; black corners are wasted"},
                              {"hemispheres", "front half green (disk of radius 1/√2), back half red (the ring), "

@@ -1,5 +1,5 @@
 // filtering/checker, filtering/text — texture filtering on a ground plane receding to the
-// horizon (seed 000: bilinear "sparkling", trilinear "blurred", anisotropic "sharp even
+// horizon (the WWDC 2001 talk: bilinear "sparkling", trilinear "blurred", anisotropic "sharp even
 // when it's viewed at a bleak angle"). Each variant is measured against a 16×16
 // supersampled ground truth; the numbers are in the notes (gallery text).
 #include "glint/gl/context.h"
@@ -90,9 +90,9 @@ void registerPattern(Registry& registry, Pattern pattern) {
   SceneDesc desc{
       .name = pattern == Pattern::Checker ? "filtering/checker" : "filtering/text",
       .summary = pattern == Pattern::Checker
-                     ? "Texture filtering on a checkerboard ground plane receding to the horizon (seed 000: bilinear, "
+                     ? "Texture filtering on a checkerboard ground plane receding to the horizon (the WWDC 2001 talk: bilinear, "
                        "trilinear, anisotropic), measured against a 16×16 supersampled truth."
-                     : "Texture filtering on a test chart with text, receding to the horizon (seed 000's \"test "
+                     : "Texture filtering on a test chart with text, receding to the horizon (the WWDC 2001 talk's \"test "
                        "image\"), measured against a 16×16 supersampled truth.",
   };
   // Anisotropic filtering's samples are the implementation's to place (GL 4.6 §8.14.3.1):

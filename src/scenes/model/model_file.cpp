@@ -1,6 +1,7 @@
 // Model files as the viewer reads them (scenes/model.h): glTF through glint's reader
 // (mesh/gltf.h), the other formats through mesh/parts.h.
 #include "glint/core/error.h"
+#include "glint/core/file.h"
 #include "glint/mesh/gltf.h"
 #include "glint/mesh/parts.h"
 #include "glint/mesh/tangents.h"
@@ -29,11 +30,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string lowerExtension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 /// A material's image, decoded; empty for none or one left out. A texture that does not
 /// decode is the file's error.

@@ -1,8 +1,8 @@
-// pipedream — seed 001's Animusic "Pipe Dream" demo as a glint scene: an instrument machine
+// pipedream — WWDC 2003 session 212's Animusic "Pipe Dream" demo as a glint scene: an instrument machine
 // (pipedream/machine_room.h) playing its score (render/pipedream/score.h), static shadows cut in
 // by glint::cut, dynamic ones from GPU-extruded volumes, joined through the destination-
-// alpha dim factor, motion-blurred balls (render/pipedream/renderer.h). Variants are the
-// seed's demo toggles; `camera` picks one of its camera moves, `detail` the polygon count.
+// alpha dim factor, motion-blurred balls (render/pipedream/renderer.h). Variants are WWDC
+// 2003 session 212's demo toggles; `camera` picks one of its camera moves, `detail` the polygon count.
 #include "glint/scenes/pipedream.h"
 #include "glint/scenes/scene.h"
 
@@ -49,9 +49,9 @@ public:
   explicit PipeDreamScene(int variant) : m_mode(kVariants[variant].mode), m_camera(kVariants[variant].camera) {}
 
   std::vector<Option> options() override {
-    return {{"camera", "the seed's camera moves: 0 stage, 1 drums, 2 wall, 3 side, 4 balls", &m_camera, 0.0f,
+    return {{"camera", "WWDC 2003 session 212's camera moves: 0 stage, 1 drums, 2 wall, 3 side, 4 balls", &m_camera, 0.0f,
              float(pipedream::namedCameras().size() - 1)},
-            {"detail", "tessellation 1..16: polygons per frame (5: ~440k triangles, the seed's range); a new value "
+            {"detail", "tessellation 1..16: polygons per frame (5: ~440k triangles, WWDC 2003 session 212's range); a new value "
                        "is cut once and cached",
              &m_detail, 1.0f, 8.0f},
             {"shutter", "seconds the shutter is open: streak length = speed × shutter", &m_options.shutter, 0.0f, 0.1f},
@@ -62,7 +62,7 @@ public:
 
   std::string notes() const override { return m_notes; }
 
-  // The seed's demo toggles, without a reload: F full, W wireframe, A destination alpha,
+  // WWDC 2003 session 212's demo toggles, without a reload: F full, W wireframe, A destination alpha,
   // V volumes, S static only, B blur on/off, N naive; 1–5 the named cameras.
   bool keyPressed(int key) override {
     const auto toggle = [&](rp::Mode mode) { m_mode = m_mode == mode ? rp::Mode::Full : mode; };
@@ -121,17 +121,17 @@ private:
 void registerPipeDream(Registry& registry) {
   registry.add(
       {.name = "pipedream",
-       .summary = "Seed 001's Animusic \"Pipe Dream\": an instrument machine whose static shadows are cut into the "
+       .summary = "WWDC 2003 session 212's Animusic \"Pipe Dream\": an instrument machine whose static shadows are cut into the "
                   "geometry (glint cut), dynamic ones GPU-extruded stencil volumes culled per light, joined by the "
                   "destination-alpha dim factor and one quad per light; motion-blurred balls",
-       .variants = {{"full", "the seed's method: cut static shadows, dynamic volumes, the dim-factor quad, blurred balls"},
+       .variants = {{"full", "WWDC 2003 session 212's method: cut static shadows, dynamic volumes, the dim-factor quad, blurred balls"},
                     {"wireframe", "the cut polygons' sides over the frame (the back wall: shadow boundaries are edges)"},
-                    {"dest-alpha", "the dim factor as grey (the seed's debug view): white where no light reaches, "
+                    {"dest-alpha", "the dim factor as grey (WWDC 2003 session 212's debug view): white where no light reaches, "
                                    "darker the more light a dynamic shadow would take away"},
                     {"volumes", "the dynamic shadow volumes in blue wireframe, culled per light"},
                     {"static-only", "the cut static shadows alone: no volumes, no quad"},
                     {"no-blur", "balls still, opaque and sharp: without motion blur they read as hard balls"},
-                    {"naive", "full-scene stencil volumes for every caster, static included, per light (the seed's "
+                    {"naive", "full-scene stencil volumes for every caster, static included, per light (WWDC 2003 session 212's "
                               "2 fps baseline)"}},
        .defaultSize = {800, 450},
        .defaultTime = 6.35,

@@ -228,7 +228,7 @@ std::shared_ptr<const Stage> loadStage(const StageOptions& options) {
 }
 
 namespace {
-// Aimed as the seed's demo was. The room has no front wall and no ceiling: 'stage' and
+// Aimed as WWDC 2003 session 212's demo was. The room has no front wall and no ceiling: 'stage' and
 // 'drums' stand in front of its open front (the floor's edge and the clear colour show
 // below and above the picture), the others inside it.
 const NamedCamera kCameras[] = {

@@ -1,4 +1,4 @@
-// post/camera — seed 001's live demo: a camera (640×480, like ATI's) through the post
+// post/camera — WWDC 2003 session 212's live demo: a camera (640×480, like ATI's) through the post
 // effects, switched on a key (E), with a before/after split (B). The input is an option:
 // a V4L2 device (/dev/video0), a video file, or an FFmpeg lavfi graph — the default, a
 // test pattern, so the scene runs (and is tested) without a camera.
@@ -241,7 +241,7 @@ void registerPostCamera(Registry& registry) {
   std::vector<VariantDesc> variants;
   for (const auto& v : kVariants) variants.push_back({v.name, v.description});
   registry.add({.name = "post/camera",
-                .summary = "seeds/001's live demo: a camera (--set input=/dev/video0), a video file or a lavfi "
+                .summary = "WWDC 2003 session 212's live demo: a camera (--set input=/dev/video0), a video file or a lavfi "
                            "source through the post effects; E switches effects, B splits before/after",
                 .variants = variants,
                 .needsVideo = true,

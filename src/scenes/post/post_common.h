@@ -21,7 +21,7 @@ const Image& photograph(ivec2 size);
 /// table's.
 std::vector<Option> effectOptions(std::vector<render::post::Effect>& effects);
 
-/// The seed demo's before/after: the original left of a divider, the result right of it.
+/// WWDC 2003 session 212's before/after demo: the original left of a divider, the result right of it.
 struct BeforeAfter {
   bool on = false;
   float divider = 0.5f;

@@ -1,6 +1,6 @@
-// post/photo, post/scene, post/pattern — seed 001's post-processing effects on a real
+// post/photo, post/scene, post/pattern — WWDC 2003 session 212's post-processing effects on a real
 // photograph, on a frame rendered by another glint scene, and the FFT on the classic test
-// patterns (spatial domain left, frequency domain right, as the seed's slide showed them).
+// patterns (spatial domain left, frequency domain right, as WWDC 2003 session 212's slide showed them).
 #include "post_common.h"
 
 #include "glint/core/locations.h"
@@ -133,12 +133,12 @@ struct EffectVariant {
 const std::vector<EffectVariant>& photoVariants() {
   static const std::vector<EffectVariant> v = {
       {"original", "the photograph, no effect (a view of the courtyard HDR photograph)", {}},
-      {"sepia", "the seed's sepia: Y kept, I = 0.2 and Q = 0 hard-coded, back to RGB — a dot product and an add", {"sepia"}},
+      {"sepia", "WWDC 2003 session 212's sepia: Y kept, I = 0.2 and Q = 0 hard-coded, back to RGB — a dot product and an add", {"sepia"}},
       {"sobel-horizontal", "horizontal edges: the Sobel kernel on the rows above and below (|Gy|)", {"sobel:output=horizontal"}},
       {"sobel-vertical", "vertical edges: the kernel on the columns left and right (|Gx|)", {"sobel:output=vertical"}},
       {"sobel", "both: the gradient magnitude √(Gx² + Gy²)", {"sobel"}},
       {"kuwahara", "the two-pass Kuwahara filter: mean of the calmest of four overlapping 3×3 quadrants", {"kuwahara"}},
-      {"posterize", "the seed's posterize: Kuwahara with the Sobel edges composited on top", {"posterize"}},
+      {"posterize", "WWDC 2003 session 212's posterize: Kuwahara with the Sobel edges composited on top", {"posterize"}},
       {"spectrum", "log magnitude of the luma's 2D DFT (GPU FFT, mixed radix), DC in the middle", {"spectrum"}},
       {"lowpass", "a Butterworth low-pass in the frequency domain (cutoff 0.05 cycles/pixel)", {"lowpass"}},
       {"highpass", "the matching high-pass, around mid-gray: what the low-pass removed", {"highpass"}},
@@ -291,7 +291,7 @@ const std::vector<EffectVariant>& renderedVariants() {
 
 void registerPostScenes(Registry& registry) {
   registry.add({.name = "post/photo",
-                .summary = "seeds/001's post-processing on a real photograph: sepia via YIQ, Sobel, Kuwahara "
+                .summary = "WWDC 2003 session 212's post-processing on a real photograph: sepia via YIQ, Sobel, Kuwahara "
                            "posterize, GPU FFT filters (docs/post.md)",
                 .variants = describe(photoVariants()),
                 .defaultSize = {640, 360},

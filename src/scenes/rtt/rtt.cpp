@@ -1,4 +1,4 @@
-// rtt/texture — render to texture, both ways of seed 002: (a) draw into the window and
+// rtt/texture — render to texture, both ways of the VGP353 lecture: (a) draw into the window and
 // copy to a texture, (b) draw straight into the texture through a framebuffer object.
 // The texture then covers a spinning cube; both variants show the same picture.
 #include "glint/render/camera.h"
@@ -87,7 +87,7 @@ private:
 
 void registerRttScenes(Registry& registry) {
   registry.add({.name = "rtt/texture",
-                .summary = "Render to texture (seed 002): copy from the window vs a framebuffer object with a texture "
+                .summary = "Render to texture (the VGP353 lecture): copy from the window vs a framebuffer object with a texture "
                            "colour attachment and a depth-stencil renderbuffer; the result textures a spinning cube.",
                 .variants = {{"copy", "draw into the window, glCopyTextureSubImage2D, glGenerateMipmap"},
                              {"fbo", "draw into the texture through a framebuffer object, glGenerateMipmap"}},

@@ -1,5 +1,5 @@
 // shadows/map, shadows/map-pcf, shadows/planar — the two image-space shadow methods
-// of seeds/002 and seeds/004 on seeds/000's demo world.
+// of the VGP353 lecture and the OpenGL III lecture on the WWDC 2001 talk's demo world.
 #include "common.h"
 
 #include "glint/render/shadows/planar.h"
@@ -94,7 +94,7 @@ private:
 void registerShadowMaps(Registry& registry) {
   using namespace shadows;
   addMaps(registry, "shadows/map",
-          "Shadow maps (seeds/004, \"Depth buffers also useful for shadow generation\"): the scene's depth seen "
+          "Shadow maps (the OpenGL III lecture, \"Depth buffers also useful for shadow generation\"): the scene's depth seen "
           "from the light, in a depth texture through an FBO, compared per pixel — the lecture's five pictures.",
           {
               {"without", "Without shadows: the scene lit by the point light, no visibility term.",
@@ -134,7 +134,7 @@ void registerShadowMaps(Registry& registry) {
           });
   SceneDesc planar{
       .name = "shadows/planar",
-      .summary = "Planar projected shadows rendered into a texture (seeds/002's first method): casters flattened "
+      .summary = "Planar projected shadows rendered into a texture (the VGP353 lecture's first method): casters flattened "
                  "onto the ground from the light into an FBO texture, which the ground looks up.",
       .variants = {{"applied", "The ground darkened through the shadow texture; casters do not shadow each other "
                                "(the sphere is lit under the slab)."},

@@ -1,8 +1,8 @@
 // shadows/zpass-invert, zpass, zfail, two-sided, gpu-extrude, volumes-debug, inside-volume —
-// stencil shadow volumes as seeds/000 (WWDC 2001) and seeds/001 (ATI, WWDC 2003)
+// stencil shadow volumes as the WWDC 2001 talk and WWDC 2003 session 212 (ATI)
 // describe them, and the counting methods that made them robust.
 //
-// Every variant is one StencilShadowOptions over seeds/000's demo world: a slab
+// Every variant is one StencilShadowOptions over the WWDC 2001 talk's demo world: a slab
 // under a positional light casts a volume onto the ground, and a sphere rolls in
 // and out of it with --time.
 #include "common.h"
@@ -55,7 +55,7 @@ public:
     m_light.add(out);
     auto& o = m_shadows.options();
     out.push_back({"quad-alpha", "opacity of the shadow quad (composite quad)", &o.quadAlpha, 0.0f, 1.0f});
-    out.push_back({"volume-opacity", "opacity of the black re-drawn volume (composite volume; seed: 0.85, 0.5)",
+    out.push_back({"volume-opacity", "opacity of the black re-drawn volume (composite volume; the WWDC 2001 talk: 0.85, 0.5)",
                    &o.volumeOpacity, 0.0f, 1.0f});
     out.push_back({"offset-factor", "polygon offset slope factor of the volume passes", &o.offsetFactor, 0.0f, 8.0f});
     out.push_back({"offset-units", "polygon offset units of the volume passes", &o.offsetUnits, 0.0f, 64.0f});
@@ -89,7 +89,7 @@ constexpr StencilShadowOptions invert(ShadowComposite composite, float opacity =
 void registerShadowVolumes(Registry& registry) {
   using namespace shadows;
   add(registry, "shadows/zpass-invert",
-      "Stencil shadow volumes the seed's way (seeds/000): scene, then the volume's back faces and front faces "
+      "Stencil shadow volumes the WWDC 2001 talk's way: scene, then the volume's back faces and front faces "
       "with colour and depth writes off and GL_INVERT where depth passes; the sphere moves in and out of the "
       "slab's volume with --time.",
       {
@@ -101,7 +101,7 @@ void registerShadowVolumes(Registry& registry) {
            invert(ShadowComposite::ShadowQuad), SceneView::Demo, false},
           {"volume-85", "(ii) the volume drawn again into colour under the stencil test, black and 85% opaque: "
                         "shadows keep 15% of the lit colour, a trace of diffuse and specular still shows (the "
-                        "seed's choice, \"not too bad\").",
+                        "talk's choice, \"not too bad\").",
            invert(ShadowComposite::VolumeAlpha, 0.85f), SceneView::Demo, false},
           {"volume-50", "(ii) the same at 50% opacity: shadows keep half the lit colour, and the diffuse and "
                         "specular light through them is much more noticeable.",
@@ -120,7 +120,7 @@ void registerShadowVolumes(Registry& registry) {
           {"count", "The stencil counts as colours: 1 yellow, 2 orange, 3 red; the sphere inside the slab's volume "
                     "shows 2 where both shadows fall.",
            {.counting = StencilCounting::ZPass, .composite = ShadowComposite::CountColors}, SceneView::Demo, true, 6.0},
-          {"dim-alpha", "seeds/001's composite: the scene writes a dim factor (ambient/full) into destination alpha "
+          {"dim-alpha", "WWDC 2003 session 212's composite: the scene writes a dim factor (ambient/full) into destination alpha "
                         "and one quad blended (ZERO, DST_ALPHA) under the stencil test multiplies it in.",
            {.counting = StencilCounting::ZPass, .composite = ShadowComposite::DimAlpha}},
       });
@@ -144,20 +144,20 @@ void registerShadowVolumes(Registry& registry) {
            {.counting = StencilCounting::TwoSidedZFail}},
       });
   add(registry, "shadows/gpu-extrude",
-      "GPU extrusion (seeds/001, ATI): a degenerate quad on every edge, the face normal in each vertex; the "
+      "GPU extrusion (WWDC 2003 session 212, ATI): a degenerate quad on every edge, the face normal in each vertex; the "
       "vertex shader sends faces turned from the light to infinity (w = 0), stretching the quads into sides.",
       {
           {"zfail", "GPU-extruded volumes counted with z-fail: the same shadows as CPU silhouettes, no CPU work.",
            {.counting = StencilCounting::TwoSidedZFail, .construction = VolumeConstruction::Gpu}},
           {"wireframe", "The GPU-extruded volumes as wireframe: every face and quad, stretched ones forming the "
-                        "pill-shaped volume of seeds/001.",
+                        "pill-shaped volume of WWDC 2003 session 212.",
            {.counting = StencilCounting::TwoSidedZFail, .construction = VolumeConstruction::Gpu,
             .view = VolumeView::Wireframe}},
           {"cpu-wireframe", "For comparison, CPU silhouette volumes as wireframe: only silhouette quads and caps.",
            {.counting = StencilCounting::TwoSidedZFail, .view = VolumeView::Wireframe}},
       });
   add(registry, "shadows/volumes-debug",
-      "The seed's debug view of the two-pass method (seeds/000): volume faces drawn depth-tested and added "
+      "The WWDC 2001 talk's debug view of the two-pass method: volume faces drawn depth-tested and added "
       "over the scene, no stencil.",
       {
           {"back", "Back faces of the volume in green: they pass the depth test only in front of the ground.",

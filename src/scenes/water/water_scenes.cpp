@@ -1,4 +1,4 @@
-// water/height, water/normals, water/shaded — seed 002's wave simulation: a spring network
+// water/height, water/normals, water/shaded — the VGP353 lecture's wave simulation: a spring network
 // stepped on the GPU between two framebuffer textures, drops drawn in periodically, the
 // height field turned into a normal map every frame, and water shaded with that normal map
 // and a cube-map reflection.
@@ -185,12 +185,12 @@ void addScene(Registry& registry, const char* name, const char* summary, const W
 void registerWaterScenes(Registry& registry) {
   addScene(registry, "water/height",
            "Wave simulation as a spring network on the GPU: height and velocity in a float texture, stepped by a "
-           "fragment shader between two framebuffers (seed 002).",
+           "fragment shader between two framebuffers (the VGP353 lecture).",
            kHeight);
   addScene(registry, "water/normals",
-           "The wave heights turned into a normal map every frame by the height → normal pass (seed 002).", kNormals);
+           "The wave heights turned into a normal map every frame by the height → normal pass (the VGP353 lecture).", kNormals);
   addScene(registry, "water/shaded",
-           "Water shaded with the simulated normal map: cube-map reflection, refraction, Fresnel (seed 002).", kShaded);
+           "Water shaded with the simulated normal map: cube-map reflection, refraction, Fresnel (the VGP353 lecture).", kShaded);
 }
 
 }  // namespace glint::scenes

@@ -1,12 +1,12 @@
 #pragma once
-// glint/render/bump/dot3.h — DOT3 bump mapping as seed 000 shows it (WWDC 2001): the
+// glint/render/bump/dot3.h — DOT3 bump mapping as the WWDC 2001 talk shows it: the
 // light vector per vertex in the polygon's local space, encoded in the vertex colour; the
 // normal map in texture unit 0; combiner stage 1 = GL_DOT3_RGB(primary colour, normal map);
 // stage 2 = GL_MODULATE(previous, base texture in unit 1).
 //
 // Contents
 //   Dot3Stage       how far down the combiner chain to go (what the demo toggled between)
-//   Dot3Polygon     the flat polygon, its placement (a quaternion, as in the seed) and the
+//   Dot3Polygon     the flat polygon, its placement (a quaternion, as in the WWDC 2001 talk) and the
 //                   per-vertex light colours
 //   Dot3Classic     the 2001 path: glTexEnv(GL_COMBINE), glBegin/glColor3ub/glMultiTexCoord2f
 //                   in a compatibility-profile context
@@ -26,7 +26,7 @@
 // cube map in 2001) removes it.
 //
 // Texture units: the normal map must be in unit 0 and the base texture in unit 1 (the
-// seed's layout); both classes bind them and reset sampler objects on those units.
+// 2001 talk's layout); both classes bind them and reset sampler objects on those units.
 
 #include "glint/gl/objects.h"
 #include "glint/gl/shader.h"
@@ -47,7 +47,7 @@ enum class Dot3Stage {
 
 struct Dot3PolygonOptions {
   float halfSize = 1.0f;      ///< the polygon spans [−halfSize, halfSize]² in its local XY plane
-  int subdivisions = 1;       ///< cells per side: 1 = the seed's single four-vertex polygon
+  int subdivisions = 1;       ///< cells per side: 1 = the WWDC 2001 talk's single four-vertex polygon
   float uvScale = 1.0f;       ///< texture repeats across the polygon
 };
 
@@ -69,7 +69,7 @@ public:
   const std::vector<vec3>& positions() const { return m_positions; }  ///< local space
   const std::vector<vec2>& uvs() const { return m_uvs; }
   const std::vector<std::uint32_t>& indices() const { return m_indices; }  ///< triangles, CCW
-  /// Seed 000's per-vertex step: the light vector from each vertex, rotated by the inverse of
+  /// The WWDC 2001 talk's per-vertex step: the light vector from each vertex, rotated by the inverse of
   /// the polygon's rotation, encoded (v + 1)/2 · 255 (image/dot3.h).
   std::vector<u8vec3> lightColors(vec3 lightWorld) const;
 
@@ -87,7 +87,7 @@ private:
 class Dot3Classic {
 public:
   Dot3Classic();
-  /// Immediate mode, one vertex at a time, as on the seed's slide: glColor3ub(light vector),
+  /// Immediate mode, one vertex at a time, as on the WWDC 2001 talk's slide: glColor3ub(light vector),
   /// glMultiTexCoord2f for units 0 and 1, glVertex3f. `colors` from polygon.lightColors().
   void draw(const Dot3Polygon& polygon, std::span<const u8vec3> colors, const Camera& camera,
             const gl::Texture& normalMap, const gl::Texture& base, Dot3Stage stage) const;

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/bump/height_to_normal.h — seed 002's "Normal Map Generation" on the GPU: a
+// glint/render/bump/height_to_normal.h — the VGP353 lecture's "Normal Map Generation" on the GPU: a
 // fragment shader on a full-screen quad reads the four texels around each texel (n, s, e,
 // w) of a height texture and writes the encoded normal into a framebuffer object.
 //
@@ -33,7 +33,8 @@ public:
   /// Renders the normal map of `height` (level 0) into level 0 of `normalMap`, which must be a
   /// 2D texture of the same size in a colour-renderable format (GL_RGBA8 for the (n + 1)/2
   /// encoding; float formats store the same encoded values unrounded). Regenerates
-  /// normalMap's mipmaps when it has more than one level. Leaves framebuffer 0 bound.
+  /// normalMap's mipmaps when it has more than one level. The caller's framebuffer binding and
+  /// viewport are put back (render::SavedTarget).
   /// Error(Usage) when the sizes differ.
   void run(const gl::Texture& height, const gl::Texture& normalMap, const NormalMapOptions& options = {});
 

@@ -74,7 +74,7 @@ struct DirectionalLight {
   vec3 color{1.0f};
 };
 
-/// A point light: the direction to it is computed per pixel (seed 000's "positional light").
+/// A point light: the direction to it is computed per pixel (the WWDC 2001 talk's "positional light").
 struct PointLight {
   vec3 position{0.0f, 2.0f, 0.0f};  ///< world space
   vec3 color{1.0f};

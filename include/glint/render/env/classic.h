@@ -1,6 +1,6 @@
 #pragma once
 // glint/render/env/classic.h — environment mapping with the 2001 fixed-function API, as
-// seed 000 shows it: glTexGen(GL_REFLECTION_MAP) + glEnable(GL_TEXTURE_CUBE_MAP), and
+// the WWDC 2001 talk shows it: glTexGen(GL_REFLECTION_MAP) + glEnable(GL_TEXTURE_CUBE_MAP), and
 // glTexGen(GL_SPHERE_MAP) + GL_TEXTURE_2D. Needs a compatibility-profile context
 // (SceneDesc::profile = gl::Profile::Compatibility); constructing on a core context
 // throws Error(NoGpu), and scenes using it are skipped where no such context exists.

@@ -1,6 +1,6 @@
 #pragma once
 // glint/render/env/dynamic_cube.h — a cube map re-rendered every frame from a point:
-// the bubble demo's "local scenery" (seed 000).
+// the bubble demo's "local scenery" (the WWDC 2001 talk).
 //
 // The six faces are drawn one after another through one framebuffer object: each face
 // of the cube texture in turn is the colour attachment (glNamedFramebufferTextureLayer),
@@ -46,8 +46,8 @@ public:
   static Camera faceCamera(int face, vec3 centre, float nearPlane = 0.05f, float farPlane = 100.0f);
 
   /// Renders all six faces: binds the framebuffer, sets the viewport, clears colour to
-  /// `clear` and depth, calls draw(faceCamera) per face, then generates mipmaps. Leaves
-  /// the framebuffer binding at 0: rebind your target afterwards.
+  /// `clear` and depth, calls draw(faceCamera) per face, then generates mipmaps. The
+  /// caller's framebuffer binding and viewport are put back (render::SavedTarget).
   void render(vec3 centre, const std::function<void(const Camera&)>& draw, vec4 clear = vec4(0.0f, 0.0f, 0.0f, 1.0f),
               float nearPlane = 0.05f, float farPlane = 100.0f);
 

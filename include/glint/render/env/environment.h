@@ -7,7 +7,7 @@
 //   loadEquirect         read + validate an equirectangular HDR/EXR
 //   cubeFromEquirect     render the six faces through a framebuffer object, then mipmaps
 //   cubeFromFaces        six face images (square, equal) → cube map with mipmaps
-//   sphereMapFromCube    render a sphere map from a cube map (seed 000: sphere maps are
+//   sphereMapFromCube    render a sphere map from a cube map (the WWDC 2001 talk: sphere maps are
 //                        "generated from these six images")
 //
 // Every texture made here is RGBA8 holding display-encoded colour (image/envmap.h's

@@ -1,6 +1,6 @@
 #pragma once
 // glint/render/filtering/filtering.h — texture filtering on a ground plane receding to the
-// horizon, and how far each filter is from the truth (seed 000: "anisotropic filtering").
+// horizon, and how far each filter is from the truth (the WWDC 2001 talk: "anisotropic filtering").
 //
 // Contents
 //   FilterMode        min/mag filter, anisotropy, LOD bias — one per variant of filtering/*
@@ -9,7 +9,7 @@
 //   GroundPlane       a textured plane from eye height to the horizon, drawn with a FilterMode
 //   measureFiltering  error against a heavily supersampled ground truth, sharpness, flicker
 //
-// What the seed says, and what measureFiltering shows: bilinear filtering without mipmaps
+// What the WWDC 2001 talk says, and what measureFiltering shows: bilinear filtering without mipmaps
 // sparkles when the plane moves (flicker); trilinear removes the sparkle but blurs where
 // the plane is oblique; anisotropic filtering keeps it sharp there and is closest to the
 // truth. Anisotropy costs fill rate; query the maximum and stay within it.
@@ -50,7 +50,7 @@ std::span<const FilterMode> standardModes();
 float maxAnisotropy();
 
 /// Sets min/mag filter, anisotropy and LOD bias on `sampler`. Error(Usage), one line,
-/// when mode.anisotropy is below 1 or above maxAnisotropy() (the seed: "the value set must
+/// when mode.anisotropy is below 1 or above maxAnisotropy() (the WWDC 2001 talk: "the value set must
 /// range from one up to the maximum available value").
 void applyFilterMode(const gl::Sampler& sampler, const FilterMode& mode);
 

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/pipedream/motion_blur.h — the seed's motion-blurred balls (seed 001, the
+// glint/render/pipedream/motion_blur.h — WWDC 2003 session 212's motion-blurred balls (WWDC 2003 session 212, the
 // end of the "Pipe Dream" talk): a ball split at a seam, stretched in the vertex shader.
 //
 // Contents
@@ -15,7 +15,7 @@
 // is its velocity (ballFrame); the vertex shader (shaders/pipedream/ball.vert) moves the
 // rear half (rear = 1) back along the velocity by the distance the ball travels while the
 // shutter is open, and the quads on the seam, of zero area at rest, stretch into the
-// pill's sides — the mesh stays closed at any speed. Then, as the seed says, the faster the
+// pill's sides — the mesh stays closed at any speed. Then, as WWDC 2003 session 212 says, the faster the
 // ball the blurrier its environment map (a higher LOD bias) and the lower its opacity, so
 // that fast balls read as see-through streaks and not as "hot dogs":
 //

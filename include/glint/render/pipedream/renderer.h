@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/pipedream/renderer.h — the `pipedream` scene's frame: seed 001's "Pipe
+// glint/render/pipedream/renderer.h — the `pipedream` scene's frame: WWDC 2003 session 212's "Pipe
 // Dream" shadows, static and dynamic, combined through destination alpha.
 //
 // Contents
@@ -11,7 +11,7 @@
 //   StencilLayout     how one 8-bit stencil holds a volume count and the lights already done
 //   Renderer          the passes, as one frame or step by step (tests, benchmarks)
 //
-// The frame (Mode::Full), in the order of the seed's talk:
+// The frame (Mode::Full), in the order of WWDC 2003 session 212's talk:
 //   1. Scene pass, into an 8-bit sRGB colour buffer (blended and dimmed in linear light)
 //      plus a second buffer of per-light weights, one 8-bit channel per light: 6 bytes a
 //      pixel for the two lights where RGBA16F and four half-float weights took 16
@@ -106,9 +106,9 @@ struct StaticGeometry {
 };
 
 enum class Mode {
-  Full,        ///< the seed's method: cut static shadows, dynamic volumes, the dim-factor quad, blurred balls
+  Full,        ///< WWDC 2003 session 212's method: cut static shadows, dynamic volumes, the dim-factor quad, blurred balls
   Wireframe,   ///< Full with the cut polygons' sides drawn over it
-  DestAlpha,   ///< the dim factor as grey: what a pixel keeps when every light is blocked (seed: "dest alpha view")
+  DestAlpha,   ///< the dim factor as grey: what a pixel keeps when every light is blocked (the talk: "dest alpha view")
   Volumes,     ///< Full with the dynamic volumes drawn as blue wireframe (culled per light)
   StaticOnly,  ///< the cut static shadows alone: no volumes, no quad
   NoBlur,      ///< Full with the balls still, opaque and sharp

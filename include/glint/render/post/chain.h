@@ -61,7 +61,8 @@ public:
 
   /// Runs every effect on `input` (an RGBA8, or RGBA32F for an F32 chain, texture of the chain's size) and returns the
   /// texture holding the result — one of the chain's own, valid until the next run(); the
-  /// input itself when the chain is empty. Leaves framebuffer 0 bound.
+  /// input itself when the chain is empty. The caller's framebuffer binding and viewport are
+  /// put back (render::SavedTarget).
   const gl::Texture& run(const gl::Texture& input);
   /// The same with an Image in and out (uploads, runs, reads back): U8 RGB(A) in and U8 RGBA
   /// out, or F32 RGB(A) in and F32 RGBA out for an F32 chain.
@@ -123,7 +124,7 @@ private:
 
 /// Draws a frame texture (image orientation) upright, letterboxed into `target`; with
 /// `split` in (0, 1), `before` fills the left `split` of the picture and `after` the rest,
-/// with a thin divider — the seed's before/after demo.
+/// with a thin divider — WWDC 2003 session 212's before/after demo.
 class FrameView {
 public:
   FrameView();

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/post/fft.h — a 2D FFT in OpenGL compute shaders (seed 001's "real-time FFT"
+// glint/render/post/fft.h — a 2D FFT in OpenGL compute shaders (WWDC 2003 session 212's "real-time FFT"
 // on float render targets), the spectrum view and frequency-domain filters built on it.
 //
 // Contents

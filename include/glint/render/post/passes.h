@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/post/passes.h — seed 001's image-space effects as GPU passes, texture in,
+// glint/render/post/passes.h — WWDC 2003 session 212's image-space effects as GPU passes, texture in,
 // texture out: compute shaders (shaders/post/*.comp, one invocation a texel), or the
 // fragment shaders on a full-screen triangle they replace (*.frag, PassStage::Fragment).
 //
@@ -15,7 +15,7 @@
 //   EdgesPass      Sobel lines composited over the image (edges.glsl)
 //   KuwaharaPass   the calmest of four quadrants' means. Compute: one pass of 16×16
 //                  shared-memory tiles, each block's sums taken once per tile
-//                  (kuwahara.comp). Fragment: the seed's two passes, statistics of every
+//                  (kuwahara.comp). Fragment: WWDC 2003 session 212's two passes, statistics of every
 //                  s×s block into a float texture (kuwahara_stats.glsl), then four fetches
 //                  and the calmest mean (kuwahara_select.glsl)
 //
@@ -38,8 +38,9 @@
 //
 // A compute run() binds the output as image unit 0 and ends with the memory barrier that
 // lets the next pass sample it; a fragment run() sets the state it draws with (depth, blend
-// and culling off; the viewport to the output) and leaves framebuffer 0 bound. Cost: one
-// pass (Kuwahara two) per pixel, independent of what the frame shows — the seed's point
+// and culling off; the viewport to the output) and puts the caller's framebuffer binding and
+// viewport back (render::SavedTarget). Cost: one
+// pass (Kuwahara two) per pixel, independent of what the frame shows — WWDC 2003 session 212's point
 // about post effects.
 
 #include "glint/gl/objects.h"

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/rtt/rtt.h — render to texture, both ways of seed 002.
+// glint/render/rtt/rtt.h — render to texture, both ways of the VGP353 lecture.
 //
 // Contents
 //   CopyToTexture        (a) draw into the window's framebuffer, then glCopyTextureSubImage2D
@@ -11,7 +11,7 @@
 // FBO-rendered textures ... use glGenerateMipmap"), so a texture made either way is
 // complete and can be minified. Given the same drawing they produce the same texels.
 //
-// The copy method's costs are the seed's list: an extra copy, extra clears (the window
+// The copy method's costs are the VGP353 lecture's list: an extra copy, extra clears (the window
 // is cleared for the texture's content and again for the frame), and "the window must be
 // at least as large as the desired texture" — CopyToTexture::render throws Error(Usage)
 // saying so instead of copying garbage. A headless context has no window: "the window" is
@@ -63,7 +63,8 @@ public:
   /// An RGBA8 texture (full mip chain) as GL_COLOR_ATTACHMENT0 and a GL_DEPTH24_STENCIL8
   /// renderbuffer (never sampled, so not a texture) of the same size; completeness checked.
   explicit FramebufferTexture(int size, std::string_view label = "fbo-texture");
-  /// Binds the framebuffer object, clears, draws, unbinds (framebuffer 0), glGenerateMipmap.
+  /// Binds the framebuffer object, clears, draws, glGenerateMipmap; the caller's framebuffer
+  /// binding and viewport are put back (render::SavedTarget).
   void render(const DrawFn& draw, vec4 clear = vec4(0.0f, 0.0f, 0.0f, 1.0f));
   const gl::Texture& texture() const { return m_texture; }
   int size() const { return m_size; }

@@ -1,6 +1,6 @@
 #pragma once
 // glint/render/shadows/planar.h — planar projected shadows rendered into a texture
-// (seeds/002's first method: "render planar shadows to a texture").
+// (the VGP353 lecture's first method: "render planar shadows to a texture").
 //
 // Contents
 //   planarShadowMatrix   the 4×4 matrix that flattens geometry onto a plane from a point light

@@ -1,6 +1,6 @@
 #pragma once
-// glint/render/shadows/shadow_map.h — shadow maps: the light's view depth (seeds/004,
-// seeds/002's second method).
+// glint/render/shadows/shadow_map.h — shadow maps: the light's view depth (the OpenGL III lecture,
+// the VGP353 lecture's second method).
 //
 // Contents
 //   ShadowMapView      the lecture's set of pictures: without/with shadows, light's view,

@@ -2,10 +2,10 @@
 // glint/render/shadows/stencil_shadows.h — stencil shadow volumes, every variant.
 //
 // Contents
-//   StencilCounting     how volume faces change the stencil (the seed's INVERT, z-pass, z-fail, one-pass)
-//   VolumeConstruction  CPU silhouettes or GPU extrusion (seeds/001)
-//   ShadowComposite     how the stencil becomes a shadow (the seed's three ways, seeds/001's dim alpha)
-//   VolumeView          debug views: the seed's green back / blue front faces, wireframe
+//   StencilCounting     how volume faces change the stencil (the WWDC 2001 talk's INVERT, z-pass, z-fail, one-pass)
+//   VolumeConstruction  CPU silhouettes or GPU extrusion (WWDC 2003 session 212)
+//   ShadowComposite     how the stencil becomes a shadow (the WWDC 2001 talk's three ways, WWDC 2003 session 212's dim alpha)
+//   VolumeView          debug views: the WWDC 2001 talk's green back / blue front faces, wireframe
 //   StencilShadowOptions, StencilShadows   the technique
 //
 // A frame (render()):
@@ -44,7 +44,7 @@
 namespace glint::render::shadows {
 
 enum class StencilCounting {
-  InvertZPass,    ///< seeds/000: back faces, then front faces, GL_INVERT where depth passes (parity)
+  InvertZPass,    ///< the WWDC 2001 talk: back faces, then front faces, GL_INVERT where depth passes (parity)
   ZPass,          ///< front faces INCR_WRAP, back faces DECR_WRAP where depth passes; two draws
   ZFail,          ///< Carmack's reverse: back INCR_WRAP, front DECR_WRAP where depth fails; caps
   TwoSidedZPass,  ///< z-pass in one draw, culling off: glStencilOpSeparate per face
@@ -60,14 +60,14 @@ enum class ShadowComposite {
   MultiPass,    ///< (iii) the correct one: ambient everywhere, diffuse + specular only where stencil = 0
   ShadowQuad,   ///< (i) a full-screen quad of the shadow colour, alpha-blended where stencil ≠ 0
   VolumeAlpha,  ///< (ii) the volume drawn again into colour, black at volumeOpacity, where stencil ≠ 0
-  DimAlpha,     ///< seeds/001: a quad blended (ZERO, DST_ALPHA) where stencil ≠ 0; alpha holds the dim factor
+  DimAlpha,     ///< WWDC 2003 session 212: a quad blended (ZERO, DST_ALPHA) where stencil ≠ 0; alpha holds the dim factor
   CountColors,  ///< the stencil count itself: 1 yellow, 2 orange, 3 red, ≥ 4 magenta, "negative" violet
   None          ///< the lit scene only (debug views draw their volumes over it)
 };
 
 enum class VolumeView {
   None,       ///< no debug drawing
-  BackFaces,  ///< the seed's debug view: back faces green (additive, depth-tested)
+  BackFaces,  ///< the WWDC 2001 talk's debug view: back faces green (additive, depth-tested)
   FrontFaces, ///< front faces blue
   BothFaces,  ///< both: cyan where both pass, blue where only the front passes — the shadow
   Wireframe   ///< volume edges as lines over the scene
@@ -82,7 +82,7 @@ struct StencilShadowOptions {
   bool depthClamp = false;      ///< z-fail: GL_DEPTH_CLAMP instead of an infinite-far camera
   float quadAlpha = 0.55f;      ///< ShadowQuad: opacity of the black overlay
   float volumeOpacity = 0.85f;  ///< VolumeAlpha: opacity of the black volume; a shadow keeps 1 − this of
-                                ///< the lit colour (seeds/000: "an 85% opaque alpha blend", or 50%)
+                                ///< the lit colour (the WWDC 2001 talk: "an 85% opaque alpha blend", or 50%)
   /// Polygon offset of the volume passes (pushes volumes away from the camera): slope
   /// factor for near caps seen at grazing angles, units for the rest.
   float offsetFactor = 1.0f;

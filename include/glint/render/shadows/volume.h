@@ -5,7 +5,7 @@
 //   CasterMode          how a caster's triangles bound its volume (closed, two-sided, naive)
 //   ShadowVolume        CPU-built volume: side quads and caps as homogeneous triangles
 //   buildShadowVolume   silhouette extraction by edge multiplicity, extrusion to infinity
-//   ExtrusionMesh       the static mesh a vertex shader extrudes (seeds/001, ATI's method)
+//   ExtrusionMesh       the static mesh a vertex shader extrudes (WWDC 2003 session 212, ATI's method)
 //   buildExtrusionMesh  every face with its own vertices and face normal, a degenerate
 //                       quad on every edge
 //

@@ -6,7 +6,7 @@
 // Contents
 //   WorldObject        a mesh in object space, its placement, colour, caster/ground flags
 //   World              objects + a positional light + ambient level
-//   makeDemoWorld      seeds/000's demo: a slab casting a volume, a sphere moving in and out
+//   makeDemoWorld      the WWDC 2001 talk's demo: a slab casting a volume, a sphere moving in and out
 //   makeBunnyWorld     the Stanford bunny (closed, or with its base cut open) on a ground
 //   makeBenchWorld     a field of spheres with about N triangles in total
 //   SceneView, sceneCamera  where the shadow scenes look at these worlds from
@@ -51,10 +51,10 @@ struct World {
   std::size_t triangleCount() const;
 };
 
-/// The seed demo (seeds/000): a square slab hovering under the light casts a shadow
+/// The WWDC 2001 talk's demo: a square slab hovering under the light casts a shadow
 /// volume onto the ground; a sphere rolls along x through it, in and out of the volume,
 /// with `time` (period 8 s; at t = 0 it is half inside). `sphereCasts` = false keeps the
-/// sphere a receiver only, as in the seed, where only the slab's volume is drawn.
+/// sphere a receiver only, as in the WWDC 2001 talk, where only the slab's volume is drawn.
 World makeDemoWorld(double time = 0.0, bool sphereCasts = true);
 /// Moves the demo sphere to where it is at `time` (only World::objects[2] changes).
 void animateDemoWorld(World& world, double time);

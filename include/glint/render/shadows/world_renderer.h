@@ -38,7 +38,7 @@ enum class LightTerms {
   Ambient,     ///< ambient only: what a shadowed pixel keeps (first pass of the multi-pass method)
   Direct,      ///< diffuse + specular only, to be added on top where lit
   Visibility,  ///< the technique's visibility as gray (1 lit, 0 shadowed): masks for tests
-  DimAlpha     ///< Full colour, and in alpha the factor ambient/full a shadow multiplies by (seeds/001)
+  DimAlpha     ///< Full colour, and in alpha the factor ambient/full a shadow multiplies by (WWDC 2003 session 212)
 };
 
 class WorldRenderer {

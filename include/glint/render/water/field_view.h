@@ -1,6 +1,6 @@
 #pragma once
 // glint/render/water/field_view.h — a simulation texture shown as a picture: the wave
-// heights as gray levels (seed 002: "the resulting texture can be used as a gray-scale
+// heights as gray levels (the VGP353 lecture: "the resulting texture can be used as a gray-scale
 // texture") or a normal map as its colours, centred in the viewport at the largest square
 // that fits, texel for texel crisp (nearest filtering).
 

@@ -9,7 +9,7 @@
 //                         glint's data is installed, else a procedural sky (and says which)
 //
 // Per pixel (shaders/water/surface.frag): the normal comes from the normal map the
-// height→normal pass made from the wave heights (seed 002: "the resulting texture can be
+// height→normal pass made from the wave heights (the VGP353 lecture: "the resulting texture can be
 // used ... to generate a normal map"), turned from the grid's tangent space (u = +X,
 // v = −Z, up = +Y) into world space. The view ray is reflected by it into the cube map and
 // refracted (water's index 1.33) down to a tiled pool floor; Schlick's Fresnel term mixes the

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/water/wave_simulation.h — seed 002's wave simulation on the GPU: a
+// glint/render/water/wave_simulation.h — the VGP353 lecture's wave simulation on the GPU: a
 // spring-network height field stepped by a fragment shader between two framebuffer
 // textures (ping-pong), with drops drawn into it periodically.
 //
