@@ -251,10 +251,13 @@ TEST(TrustFarm, CtrlCStopsFollowingAndSaysTheJobsGoOn) {
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   EXPECT_EQ(glint::testing::interruptAndWait(pid), 130) << readBytes(log);
   EXPECT_NE(readBytes(log).find("the jobs keep running"), std::string::npos) << readBytes(log);
-  // They do: following again finishes the job.
+  // They do: following again finishes the job, with no piece submitted again — or finds it
+  // already made, when the jobs finished in between (a fast machine, or one busy elsewhere).
   const auto r = glintIn(d, "farm post clip.mkv -o out.mkv --codec ffv1 -e kuwahara --chunks 2 --scheduler local --wait");
   EXPECT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("submitted 0 pieces"), std::string::npos) << r.output;
+  EXPECT_TRUE(r.output.find("submitted 0 pieces") != std::string::npos ||
+              r.output.find("already made by this very job") != std::string::npos)
+      << r.output;
   EXPECT_TRUE(fs::exists(d / "out.mkv"));
 }
 
