@@ -1,10 +1,10 @@
 // glint post IN -o OUT -e EFFECT... — WWDC 2003 session 212's post-processing on an image, every frame of
 // a video, a camera or an FFmpeg lavfi source. Thin: the options, the job, its run and its
-// report are the library's (post/job.h); the GPU backend is render/post's (render/post/gpu.h).
+// report are the library's (post/job.h); the GPU backend is scenes/post_gpu.h's.
 #include "common.h"
 
 #include "glint/post/job.h"
-#include "glint/render/post/gpu.h"
+#include "glint/scenes/post_gpu.h"
 
 #include <fmt/format.h>
 
@@ -30,7 +30,7 @@ Command postCommand(CLI::App& app, const GlobalOptions& global) {
                    }
                    ToolRun run("post", a->tool);
                    const post::PostJob job = post::makeJob(a->post, global.glDebug);
-                   const auto gpu = render::post::gpuBackend();
+                   const auto gpu = scenes::postGpuBackend();
                    return post::finishJob(post::runJob(job, run, gpu.get()), run);
                  },
                  .readsImages = false};  // images load OpenImageIO themselves (runImage, runStill)

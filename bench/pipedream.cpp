@@ -3,7 +3,7 @@
 // volumes for the dynamic objects only made it over 30 (issue 14: ≥ 15× faster).
 //
 // The `pipedream` scene at its default size, polygon count and time, from its default
-// camera and from the side (WWDC 2003 session 212's worst overdraw): WWDC 2003 session 212's method (Mode::Full) against the naive method (every caster's volumes
+// camera and from the side (the talk's worst overdraw): WWDC 2003 session 212's method (Mode::Full) against the naive method (every caster's volumes
 // per light, the uncut scene, multi-pass), each frame waited for (glFinish), medians over
 // rounds that time a few frames of each method in turn, so that the shared machine's load
 // falls on all alike; the ratios are the medians of each round's own ratios.
@@ -45,7 +45,7 @@ int envInt(const char* name, int fallback) {
 }
 
 void runView(Recorder& recorder, rp::Renderer& renderer, rp::Renderer& floatRenderer, const gl::RenderTarget& target,
-             const rp::MachinePose& pose, const render::Camera& camera, const std::string& group, int runs) {
+             const glint::pipedream::MachinePose& pose, const glint::Camera& camera, const std::string& group, int runs) {
   const ivec2 size = target.size();
   const auto frame = [&](rp::Mode mode) { renderer.render(pose, camera, target.target(), mode); };
 
@@ -181,11 +181,11 @@ void runPipeDream(Recorder& recorder) {
   rp::Renderer floatRenderer(stage->machine, stage->geometry, {.floatBuffers = true});
   gl::RenderTarget target(size, GL_RGBA8, "bench-pipedream");
   const double time = desc.defaultTime;
-  const rp::MachinePose pose = rp::poseAt(stage->machine, stage->score, time);
+  const glint::pipedream::MachinePose pose = glint::pipedream::poseAt(stage->machine, stage->score, time);
   // The scene's own camera, and WWDC 2003 session 212's worst case: "if you look at it from the side
   // you get a lot of overdraw".
   for (const int cameraIndex : {0, 3}) {
-    const render::Camera camera = pd::namedCamera(cameraIndex, float(size.x) / float(size.y));
+    const glint::Camera camera = pd::namedCamera(cameraIndex, float(size.x) / float(size.y));
     const std::string group = fmt::format("{}x{} {}", size.x, size.y, pd::namedCameras()[std::size_t(cameraIndex)].name);
     runView(recorder, renderer, floatRenderer, target, pose, camera, group, runs);
   }

@@ -1,4 +1,4 @@
-// bench post — WWDC 2003 session 212's effects per frame at WWDC 2003 session 212's camera size (640×480), 1080p and
+// bench post — WWDC 2003 session 212's effects per frame at the talk's camera size (640×480), 1080p and
 // 4K, on the GPU and on the CPU backend (post/cpu.h), each against its CPU
 // equivalent in OpenCV (and the FFT against FFTW) measured in the same run, alternating
 // runs, medians; and `glint post` end to end (decode → effect → encode, H.264) at 640×480

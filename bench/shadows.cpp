@@ -1,6 +1,6 @@
 // bench shadows — what each shadow technique costs, as a ratio to the same scene drawn
 // without shadows, at about 10k, 100k and 1M scene triangles (a field of 64 spheres
-// over a ground, bench world of render/shadows/world.h). Also: stencil fill (fragments
+// over a ground, bench world of shadows/world.h). Also: stencil fill (fragments
 // the volumes rasterize per stencil pass, GL_SAMPLES_PASSED) and the CPU time of
 // silhouette extraction against GPU extrusion, which has none but draws every face
 // and a degenerate quad per edge.
@@ -29,14 +29,14 @@ constexpr ivec2 kSize{640, 360};
 void runShadows(Recorder& recorder) {
   for (std::size_t triangles : {10'000u, 100'000u, 1'000'000u}) {
     if (quick() && triangles > 10'000u) break;
-    const sh::World world = sh::makeBenchWorld(triangles);
+    const glint::shadows::World world = glint::shadows::makeBenchWorld(triangles);
     const std::string group = fmt::format("{}k tris", (world.triangleCount() + 500) / 1000);
     const int repeats = quick() ? 2 : triangles >= 1'000'000 ? 3 : 7;
     gl::RenderTarget target(kSize, GL_RGBA8, "bench-shadows");
     const float aspect = float(kSize.x) / float(kSize.y);
-    const render::Camera camera =
-        render::Camera::lookAt({0.0f, 9.0f, 12.0f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 45.0f, aspect, 0.5f, 80.0f);
-    render::Camera infinite = camera;
+    const glint::Camera camera =
+        glint::Camera::lookAt({0.0f, 9.0f, 12.0f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 45.0f, aspect, 0.5f, 80.0f);
+    glint::Camera infinite = camera;
     infinite.projection = sh::infiniteFarProjection(camera.projection);
 
     sh::WorldRenderer plain(world);
@@ -74,7 +74,7 @@ void runShadows(Recorder& recorder) {
       sh::StencilShadows shadows(world, v.options);
       const double setupMs =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setupStart).count();
-      const render::Camera& cam = sh::StencilShadows::needsInfiniteFar(v.options) ? infinite : camera;
+      const glint::Camera& cam = sh::StencilShadows::needsInfiniteFar(v.options) ? infinite : camera;
       const double ms = wallMs(
           [&] {
             if (v.rebuild) shadows.invalidate();

@@ -14,7 +14,8 @@
 #
 # Exported targets, namespace glint:: (the same names work in this build as aliases), one
 # package component each, named as the target (find_package(glint COMPONENTS render)):
-#   glint::core glint::farm glint::image glint::post glint::mesh glint::pipedream glint::raytrace glint::bake glint::raster glint::sim
+#   glint::core glint::farm glint::image glint::effects glint::post glint::mesh glint::pipedream glint::shadows
+#   glint::raytrace glint::bake glint::raster glint::sim
 #   glint::gl glint::render glint::scenes glint::video (without GLINT_BUILD_VIDEO: no FFmpeg module),
 #   glint::cut (GLINT_BUILD_CUT), glint::bench (GLINT_BUILD_BENCH), glint::window and glint::viewer (GLINT_BUILD_VIEWER)
 #   glint::glint (component glint: the command, an imported executable)
@@ -28,9 +29,10 @@ include(CMakePackageConfigHelpers)
 # video is always a component: without GLINT_BUILD_VIDEO it is the library without its
 # FFmpeg module (opening a video is a usage error naming the option), which scenes links for
 # `glint render`'s clips and post's job reads and writes through. post (GL-free: the effect
-# table, the CPU backend, the job) sits below render, whose GPU passes register against it.
-set(glint_components core farm image video post)  # post: GL-free (post/effects.h, cpu.h, job.h)
-list(APPEND glint_components mesh pipedream raytrace bake)
+# table and CPU backend: effects; the job: post) sits below render, whose GPU passes register
+# against the table.
+set(glint_components core farm image video effects post)  # GL-free (post/effects.h, cpu.h; post/job.h)
+list(APPEND glint_components mesh pipedream shadows raytrace bake)
 if(GLINT_BUILD_CUT)
   list(APPEND glint_components cut)
 endif()
@@ -122,6 +124,41 @@ foreach(component IN LISTS glint_components)
 endforeach()
 string(APPEND GLINT_COMPONENT_TABLE "set(_glint_needs_glint glint)\nset(_glint_dependencies_glint \"\")\n")
 
+# What each layer may use, checked on the link graph (a violation stops the configure):
+#   - the GL-free modules need neither glint::gl nor a GL library (EGL, epoxy, GLFW, ImGui);
+#   - render/ (the code that needs a GL context) needs neither the video layer, the farm nor
+#     a tool's job: what it draws comes from GL-free modules below it.
+# The graph is written to glint-layers.md in the build, the table README's architecture
+# section shows (ctest docs.layers compares the two).
+set(glint_gl_free core farm image video effects post mesh pipedream shadows raytrace bake cut raster sim)
+set(glint_gl_libraries epoxy egl glfw3 imgui)
+set(GLINT_LAYERS_TABLE "| module | GL | links (glint modules, directly) |\n|---|---|---|\n")
+foreach(component IN LISTS glint_components)
+  glint_direct_dependencies(${component} direct dependencies)
+  list(REMOVE_DUPLICATES direct)
+  set(gl "GL")
+  if(component IN_LIST glint_gl_free)
+    set(gl "no GL")
+    if("gl" IN_LIST glint_needs_${component} OR "window" IN_LIST glint_needs_${component})
+      message(FATAL_ERROR "glint::${component} is GL-free but needs glint::gl (through: ${glint_needs_${component}})")
+    endif()
+    foreach(library IN LISTS glint_gl_libraries)
+      if(library IN_LIST glint_dependencies_${component})
+        message(FATAL_ERROR "glint::${component} is GL-free but links ${library}")
+      endif()
+    endforeach()
+  endif()
+  string(REPLACE ";" " " direct_text "${direct}")
+  string(APPEND GLINT_LAYERS_TABLE "| `${component}` | ${gl} | ${direct_text} |\n")
+endforeach()
+foreach(forbidden IN ITEMS video farm post bake cut scenes)
+  if(forbidden IN_LIST glint_needs_render)
+    message(FATAL_ERROR "glint::render needs glint::${forbidden} (through: ${glint_needs_render}): "
+                        "render/ may use only GL-free modules below it")
+  endif()
+endforeach()
+file(WRITE "${CMAKE_BINARY_DIR}/glint-layers.md" "${GLINT_LAYERS_TABLE}")
+
 foreach(component IN LISTS glint_components)
   set(library glint_${component})
   set_target_properties(${library} PROPERTIES EXPORT_NAME ${component})
@@ -132,11 +169,18 @@ foreach(component IN LISTS glint_components)
   # A module's public headers (window's header is gl/window.h, in gl's directory).
   if(IS_DIRECTORY "${PROJECT_SOURCE_DIR}/include/glint/${component}")
     set(exclude "")
+    if(component STREQUAL "post")
+      set(exclude PATTERN effects.h EXCLUDE PATTERN cpu.h EXCLUDE)  # component effects's
+    endif()
     if(component STREQUAL "scenes" AND NOT GLINT_BUILD_CUT)
       set(exclude PATTERN pipedream.h EXCLUDE)  # the pipedream stage: a cut
     endif()
     install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/glint/${component}" DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/glint
             COMPONENT ${component} ${exclude})
+  endif()
+  if(component STREQUAL "effects")  # the effect table's headers sit with post's
+    install(FILES "${PROJECT_SOURCE_DIR}/include/glint/post/effects.h" "${PROJECT_SOURCE_DIR}/include/glint/post/cpu.h"
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/glint/post COMPONENT ${component})
   endif()
 endforeach()
 add_executable(glint::glint ALIAS glint)

@@ -21,7 +21,7 @@
 #include "glint/mesh/mesh.h"
 #include "glint/post/effects.h"
 #include "glint/post/job.h"
-#include "glint/render/post/gpu.h"
+#include "glint/scenes/post_gpu.h"
 #include "glint/scenes/model.h"
 #include "glint/scenes/runner.h"
 #include "glint/video/source.h"
@@ -367,7 +367,7 @@ class Post {
 public:
   Post(std::vector<std::string> effects, std::vector<std::string> settings, const std::string& backend, int channels,
        bool floatOutput)
-      : m_gpu(render::post::gpuBackend()) {
+      : m_gpu(scenes::postGpuBackend()) {
     m_job.effects = post::parseEffects(effects, settings);
     m_job.backend = post::parseBackend(backend);
     m_job.channels = channels;
@@ -489,11 +489,11 @@ py::array renderVariant(std::string variant, std::optional<std::pair<int, int>> 
 
 }  // namespace
 
-PYBIND11_MODULE(_glint, m) {
-  m.doc() = "glint's compiled core; use the glint package (glint/__init__.py)";
-  log::setLevel(log::Level::Warn);  // a library in a notebook: warnings and errors only
+namespace {
 
-  // Exceptions: glint.Error and one subclass per kind (also a standard exception where one fits).
+/// glint.Error and one subclass per kind (also a standard exception where one fits), and
+/// the translator that raises them with the command's one-line message.
+void bindErrors(py::module_& m) {
   static py::exception<Error> base(m, "Error", PyExc_RuntimeError);
   g_errors[int(ErrorKind::Internal)] = base.ptr();
   const auto kind = [&](ErrorKind k, const char* name, PyObject* also) {
@@ -522,7 +522,11 @@ PYBIND11_MODULE(_glint, m) {
       PyErr_SetString(g_errors[int(ErrorKind::OutOfMemory)], "out of memory");
     }
   });
+}
 
+/// What this glint is: its version, threads, the bake's maps and options, post's effects,
+/// the scenes' variants.
+void bindInfo(py::module_& m) {
   m.def("version", [] { return std::string(ToolRun::version()); });
   m.def("threads", [] { return tbb::info::default_concurrency(); });
   // The maps by their report keys ("normal", "ao", "bent_normal"), each with its option's name.
@@ -540,7 +544,10 @@ PYBIND11_MODULE(_glint, m) {
     for (const scenes::VariantRef& v : scenes::Registry::builtin().allVariants()) names.push_back(v.fullName());
     return names;
   });
+}
 
+/// glint.Mesh: arrays in, read-only views out (the mesh stays alive while a view does).
+void bindMesh(py::module_& m) {
   py::class_<Mesh, std::shared_ptr<Mesh>>(m, "Mesh")
       .def(py::init(&meshFrom), py::arg("positions"), py::arg("indices"), py::arg("normals") = py::none(),
            py::arg("uvs") = py::none())
@@ -572,7 +579,11 @@ PYBIND11_MODULE(_glint, m) {
     py::gil_scoped_release released;
     return std::make_shared<Mesh>(loadMesh(path));
   });
+}
 
+/// Images and the tools: reading and writing image files, bake, post, frames, normalmap,
+/// cut and render, each through its library job.
+void bindTools(py::module_& m) {
   m.def("read_image", [](const std::string& path) {
     Image image;
     {
@@ -613,4 +624,15 @@ PYBIND11_MODULE(_glint, m) {
   });
   m.def("cut", &cutMesh);
   m.def("render", &renderVariant);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_glint, m) {
+  m.doc() = "glint's compiled core; use the glint package (glint/__init__.py)";
+  log::setLevel(log::Level::Warn);  // a library in a notebook: warnings and errors only
+  bindErrors(m);
+  bindInfo(m);
+  bindMesh(m);
+  bindTools(m);
 }

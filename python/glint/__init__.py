@@ -219,6 +219,12 @@ def normalmap(height: _np.ndarray, scale: Optional[float] = None, wrap: bool = F
     wrap: neighbours wrap around the edges (tileable textures); else they clamp.
     formula: "gradient" (the surface's true normal) or "slide" (the VGP353 lecture's formula as written).
     Returns H×W×3 uint8, (n + 1) / 2; H×W×4 with the input's alpha when it has one.
+
+    >>> import numpy as np
+    >>> ramp = np.tile(np.linspace(0.0, 1.0, 64, dtype=np.float32), (32, 1))  # rising to the right
+    >>> n = glint.normalmap(ramp, scale=8)
+    >>> n.shape, n.dtype, bool(n[16, 32, 0] < 128)  # a slope up to the right tilts the normal to −x
+    ((32, 64, 3), dtype('uint8'), True)
     """
     return _glint.normalmap(_np.asarray(height), None if scale is None else float(scale), bool(wrap), formula)
 
@@ -241,6 +247,12 @@ def post(image_or_frames: Union[_np.ndarray, Iterable[_np.ndarray]], effects: Un
     progress: accepted for symmetry; an image is one step (Ctrl-C is raised when it returns).
 
     An image gives an array (uint8 unless linear_output); an iterable gives an iterator of arrays.
+
+    >>> import numpy as np
+    >>> grey = np.full((48, 64, 3), 128, dtype=np.uint8)
+    >>> toned = glint.post(grey, ["sepia", "kuwahara:size=4"])
+    >>> toned.shape, bool(toned[24, 32, 0] > toned[24, 32, 2])  # sepia: warmer than it was
+    ((48, 64, 3), True)
     """
     chain = _glint.Post(_effect_list(effects), list(settings), backend, int(channels), bool(linear_output))
     if isinstance(image_or_frames, _np.ndarray):
@@ -269,6 +281,15 @@ def cut(meshes: Union[MeshLike, Sequence[MeshLike]], lights: Sequence[Union[str,
     Returns a dict: "positions" (N×3 float32), "triangles" (M×3 uint32), "light_masks" (M
     uint32: bit i set when light i reaches the triangle), "triangle_polygon" (M: the convex
     polygon each triangle is part of), "lights", "report" (the command's counts), "warnings".
+
+    >>> import numpy as np
+    >>> ground = glint.Mesh(np.array([[-2, 0, -2], [2, 0, -2], [2, 0, 2], [-2, 0, 2]], np.float32),
+    ...                     np.array([[0, 2, 1], [0, 3, 2]], np.uint32))
+    >>> roof = glint.Mesh(np.array([[-1, 1, -1], [1, 1, -1], [1, 1, 1], [-1, 1, 1]], np.float32),
+    ...                   np.array([[0, 2, 1], [0, 3, 2]], np.uint32))
+    >>> result = glint.cut([ground, roof], ["0,3,0,lamp"])
+    >>> sorted(set(result["light_masks"].tolist()))  # shadowed (0) under the roof, lit (1) around it
+    [0, 1]
     """
     items = [meshes] if isinstance(meshes, (str, _os.PathLike, Mesh)) else list(meshes)
     if not items:
@@ -298,6 +319,10 @@ def render(variant: Union[str, "_os.PathLike[str]"], size: Optional[Size] = None
         None: the scene's own size.
     time: the scene time in seconds (None: the scene's default).
     options: the scene's options, ["name=value", ...] or {"name": value} (`glint render --set`).
+
+    >>> picture = glint.render("basics/triangle/depth", size=(64, 48))
+    >>> picture.shape, picture.dtype
+    ((48, 64, 4), dtype('uint8'))
     """
     if size is None:
         dims = None

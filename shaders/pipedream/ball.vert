@@ -1,5 +1,5 @@
 #version 450 core
-// WWDC 2003 session 212's motion-blurred ball (render/pipedream/motion_blur.h): a unit sphere whose
+// WWDC 2003 session 212's motion-blurred ball (pipedream/motion_blur.h): a unit sphere whose
 // seam lies across local +z, turned so that +z is the velocity (uFrame); the rear half
 // (aRear = 1) is moved back by the distance travelled while the shutter is open, and the
 // degenerate quads on the seam stretch into the pill's sides. stretchVertex() in

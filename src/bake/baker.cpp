@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <functional>
 #include <optional>
 #include <ctime>
 #include <span>
@@ -548,6 +549,89 @@ void makeImages(Context& ctx, const std::vector<std::uint8_t>& filled, BakeResul
   });
 }
 
+/// The rays a bake will trace: one per sample for the normal, plus AO's, thickness's and
+/// curvature's per sample (what picks the BVH's build quality).
+double expectedRaysOf(const BakeOptions& options) {
+  const double raysPerSample = 1.0 + (options.maps.needs(kHemisphereRays) ? double(options.aoSamples) : 0.0) +
+                               (options.maps.needs(kInwardRays) ? double(options.aoSamples) : 0.0) +
+                               (options.maps.needs(kCurvatureRays) ? 8.0 : 0.0);
+  return double(options.width) * double(options.height) * double(options.samples) * raysPerSample;
+}
+
+/// The BVH for `triangles` high-poly triangles traced by `expectedRays` rays. Not robust
+/// (watertight) traversal: ~15 % faster; the rare ray that slips through a shared vertex is
+/// retried (trace.cpp). Never Embree's high-quality (spatial split) BVH: a bake's short rays
+/// along the low poly's normals trace no faster through it — 4.26 M rays of a 2048² bake
+/// took 0.33 s either way — while it builds 4× slower (1 M triangles: 0.94 s against 0.22 s
+/// on two cores). The low-quality (Morton) build is 2–3× quicker again than the medium one
+/// (262k triangles: 0.03 s against 0.06–0.08 s; 1 M: 0.15 s against 0.30–0.45 s) and its rays
+/// cost the same up to tens of rays per triangle; at 150 (2048², 36 per texel, 1 M
+/// triangles) they took 4–8 % longer, more than the build saves: medium from 64 rays per
+/// triangle on. The high poly is read in place (it outlives the scene): no copy of its
+/// vertices.
+raytrace::SceneOptions sceneOptionsFor(double expectedRays, std::size_t triangles) {
+  return raytrace::SceneOptions{.quality = expectedRays < 64.0 * double(triangles) ? raytrace::SceneOptions::Quality::Fast
+                                                                                   : raytrace::SceneOptions::Quality::Default,
+                                .shareMeshes = true};
+}
+
+/// A group's surface offsets are those of the group baked alone: its low triangles' and its
+/// BVH's sizes (BVH quality too), so that it bakes the same texels either way.
+float groupEpsilon(const GroupMatch& match, const Mesh& low, const raytrace::Scene& scene, std::uint32_t g) {
+  Bounds b{vec3(std::numeric_limits<float>::max()), vec3(-std::numeric_limits<float>::max())};
+  for (std::size_t t = 0; t < match.lowTriangleGroup.size(); ++t) {
+    if (match.lowTriangleGroup[t] != g) continue;
+    for (int k = 0; k < 3; ++k) {
+      const vec3& p = low.positions[low.indices[3 * t + std::size_t(k)]];
+      b.min = glm::min(b.min, p);
+      b.max = glm::max(b.max, p);
+    }
+  }
+  return 1e-5f * std::max(b.diagonal(), scene.bounds().diagonal());
+}
+
+/// Bake groups: each group's low triangles against its own high parts' BVH, built in turn
+/// into `scene` (which `ctx` refers to; group 0's is built already, from `groupMesh`).
+void bakeGroups(Context& ctx, BakeStats& stats, const GroupMatch& match, const Mesh& high, const Mesh& low,
+                raytrace::Scene& scene, Mesh& groupMesh, std::vector<std::uint32_t>& groupIds,
+                const std::function<raytrace::SceneOptions(const Mesh&)>& sceneOptions) {
+  const std::vector<std::vector<int>> allBins = ctx.bins;
+  for (std::uint32_t g = 0; g < match.groups.size(); ++g) {
+    if (g > 0) {
+      std::vector<std::uint32_t> ids;
+      Mesh next = detail::groupHighMesh(high, match.highTriangleGroup, g, ids);
+      scene = raytrace::Scene(next, sceneOptions(next));  // (a moved vector keeps its buffer: the scene's view stays valid)
+      groupMesh = std::move(next);
+      groupIds = std::move(ids);
+      ctx.highCornerNormals = groupMesh.normals.data();
+      ctx.highTriangleIds = groupIds.data();
+      ctx.epsilon = groupEpsilon(match, low, scene, g);
+      ctx.vertexCache = detail::buildVertexCache(ctx, groupMesh);
+      stats.bvhBytes = std::max(stats.bvhBytes, scene.memoryBytes());
+    }
+    for (std::size_t i = 0; i < allBins.size(); ++i) {
+      ctx.bins[i].clear();
+      for (int tri : allBins[i])
+        if (match.lowTriangleGroup[std::size_t(tri)] == g) ctx.bins[i].push_back(tri);
+    }
+    bakeTiles(ctx, stats);
+  }
+}
+
+/// The covered texels grown over --padding texels (or every texel: --fill-all), the
+/// material IDs with them: which texels are filled.
+std::vector<std::uint8_t> dilateTexels(Context& ctx, BakeStats& stats) {
+  const BakeOptions& options = ctx.options;
+  std::vector<std::uint8_t> filled = ctx.covered;
+  if (options.padding > 0 || options.fillAll) {
+    stats.paddedTexels = dilate(ctx.texels, ctx.channels, options.width, options.height, filled,
+                                {.passes = options.fillAll ? -1 : options.padding, .unitVectorChannels = 3});
+  }
+  if (!ctx.texelMaterial.empty() && (options.padding > 0 || options.fillAll))
+    detail::dilateMaterials(ctx.texelMaterial, options.width, options.height, options.fillAll ? -1 : options.padding);
+  return filled;
+}
+
 }  // namespace
 
 BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
@@ -562,26 +646,9 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
   auto start = Clock::now();
   detail::Prepared in = detail::prepareInputs(low, high, options, stats, result.warnings);
   const double checkSeconds = secondsSince(start);  // (these split the phases in the debug log)
-  // Not robust (watertight) traversal: ~15 % faster; the rare ray that slips through a
-  // shared vertex is retried (trace.cpp). Never Embree's high-quality (spatial split) BVH:
-  // a bake's short rays along the low poly's normals trace no faster through it — 4.26 M
-  // rays of a 2048² bake took 0.33 s either way — while it builds 4× slower (1 M
-  // triangles: 0.94 s against 0.22 s on two cores). The low-quality (Morton) build is
-  // 2–3× quicker again than the medium one (262k triangles: 0.03 s against 0.06–0.08 s;
-  // 1 M: 0.15 s against 0.30–0.45 s) and its rays cost the same up to tens of rays per
-  // triangle; at 150 (2048², 36 per texel, 1 M triangles) they took 4–8 % longer, more
-  // than the build saves: medium from 64 rays per triangle on.
-  const double raysPerSample = 1.0 + (options.maps.needs(kHemisphereRays) ? double(options.aoSamples) : 0.0) +
-                               (options.maps.needs(kInwardRays) ? double(options.aoSamples) : 0.0) +
-                               (options.maps.needs(kCurvatureRays) ? 8.0 : 0.0);
-  const double expectedRays = double(options.width) * double(options.height) * double(options.samples) * raysPerSample;
+  const double expectedRays = expectedRaysOf(options);
   const bool fewRays = expectedRays < 64.0 * double(in.high->triangleCount());
-  // The high poly is read in place (it outlives the scene): no copy of its vertices.
-  const auto sceneOptions = [&](std::size_t triangles) {
-    return raytrace::SceneOptions{.quality = expectedRays < 64.0 * double(triangles) ? raytrace::SceneOptions::Quality::Fast
-                                                                                     : raytrace::SceneOptions::Quality::Default,
-                                  .shareMeshes = true};
-  };
+  const auto sceneOptions = [&](std::size_t triangles) { return sceneOptionsFor(expectedRays, triangles); };
   // Bake groups (bake/groups.h): one BVH per group, built in turn; `scene` holds the current
   // one (Context refers to it), `groupMesh` its triangles, `groupIds` their high-poly ids.
   const GroupMatch* match = parts && parts->match && parts->match->grouped() ? parts->match : nullptr;
@@ -609,23 +676,9 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
     partsTables = detail::makePartsTables(options, *in.high, parts ? parts->high : nullptr, result.warnings);
     ctx.parts = &partsTables;
   }
-  // A group's surface offsets are those of the group baked alone: its low triangles' and
-  // its BVH's sizes (BVH quality too, above), so that it bakes the same texels either way.
-  const auto groupEpsilon = [&](std::uint32_t g) {
-    Bounds b{vec3(std::numeric_limits<float>::max()), vec3(-std::numeric_limits<float>::max())};
-    for (std::size_t t = 0; t < match->lowTriangleGroup.size(); ++t) {
-      if (match->lowTriangleGroup[t] != g) continue;
-      for (int k = 0; k < 3; ++k) {
-        const vec3& p = in.low.positions[in.low.indices[3 * t + std::size_t(k)]];
-        b.min = glm::min(b.min, p);
-        b.max = glm::max(b.max, p);
-      }
-    }
-    return 1e-5f * std::max(b.diagonal(), scene.bounds().diagonal());
-  };
   if (match) {  // position bounds are the whole high poly's, as without groups
     if (options.maps.has(Map::Position)) stats.positionBounds = in.high->bounds();
-    ctx.epsilon = groupEpsilon(0);
+    ctx.epsilon = groupEpsilon(*match, in.low, scene, 0);
     ctx.highCornerNormals = groupMesh.normals.data();
     ctx.highTriangleIds = groupIds.data();
   }
@@ -639,28 +692,8 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
   if (!match) {
     bakeTiles(ctx, stats);
   } else {
-    // Each group's low triangles against its own high parts' BVH.
-    const std::vector<std::vector<int>> allBins = ctx.bins;
-    for (std::uint32_t g = 0; g < match->groups.size(); ++g) {
-      if (g > 0) {
-        std::vector<std::uint32_t> ids;
-        Mesh next = detail::groupHighMesh(*in.high, match->highTriangleGroup, g, ids);
-        scene = raytrace::Scene(next, sceneOptions(next.triangleCount()));  // (a moved vector keeps its buffer: the scene's view stays valid)
-        groupMesh = std::move(next);
-        groupIds = std::move(ids);
-        ctx.highCornerNormals = groupMesh.normals.data();
-        ctx.highTriangleIds = groupIds.data();
-        ctx.epsilon = groupEpsilon(g);
-        ctx.vertexCache = detail::buildVertexCache(ctx, groupMesh);
-        stats.bvhBytes = std::max(stats.bvhBytes, scene.memoryBytes());
-      }
-      for (std::size_t i = 0; i < allBins.size(); ++i) {
-        ctx.bins[i].clear();
-        for (int tri : allBins[i])
-          if (match->lowTriangleGroup[std::size_t(tri)] == g) ctx.bins[i].push_back(tri);
-      }
-      bakeTiles(ctx, stats);
-    }
+    bakeGroups(ctx, stats, *match, *in.high, in.low, scene, groupMesh, groupIds,
+               [&](const Mesh& mesh) { return sceneOptions(mesh.triangleCount()); });
   }
   stats.traceSeconds = secondsSince(start);
   stats.traceCpuSeconds = processCpuSeconds() - cpuStart;
@@ -668,13 +701,7 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
 
   // Dilation, then the maps as images (row 0 on top).
   start = Clock::now();
-  std::vector<std::uint8_t> filled = ctx.covered;
-  if (options.padding > 0 || options.fillAll) {
-    stats.paddedTexels = dilate(ctx.texels, ctx.channels, options.width, options.height, filled,
-                                {.passes = options.fillAll ? -1 : options.padding, .unitVectorChannels = 3});
-  }
-  if (!ctx.texelMaterial.empty() && (options.padding > 0 || options.fillAll))
-    detail::dilateMaterials(ctx.texelMaterial, options.width, options.height, options.fillAll ? -1 : options.padding);
+  const std::vector<std::uint8_t> filled = dilateTexels(ctx, stats);
   const double dilationSeconds = secondsSince(start);
   const auto imagesStart = Clock::now();
   makeImages(ctx, filled, result);

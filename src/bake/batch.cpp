@@ -1,6 +1,6 @@
 // Batches of bakes (bake/job.h): a JSON file's jobs parsed by the command's own option
 // definitions (a key is an option's long name), checked together, run one after another
-// with their high meshes shared, or planned for a farm (one task per bake).
+// with their high meshes shared (farm_plan.cpp plans them for a farm).
 #include "glint/bake/job.h"
 
 #include "glint/core/json.h"
@@ -92,53 +92,6 @@ Json canonicalKeys(const CLI::App& app, const Json& settings) {
   return out;
 }
 
-/// The argument list `glint bake` gets for settings (canonical keys, later layers winning):
-/// positionals first, then the options in the command's order; a flag appears when true;
-/// a number is written as JSON writes it; a relative path (a FILE option) is made relative
-/// to `base`, the batch file's folder.
-std::vector<std::string> argumentsFor(const CLI::App& app, const std::vector<const Json*>& layers, const fs::path& base) {
-  Json merged = Json::object();
-  for (const Json* layer : layers)
-    for (const auto& [key, value] : layer->items()) merged[key] = value;
-  std::vector<std::string> positionals, named;
-  for (const CLI::Option* option : app.get_options()) {
-    const std::string& key = option->get_single_name();
-    if (option == app.get_help_ptr() || !merged.contains(key)) continue;
-    const Json& value = merged[key];
-    const std::string spelling = option->get_snames().empty() ? "--" + key : "-" + option->get_snames().front();
-    if (option->get_expected_max() == 0) {  // a flag
-      if (!value.is_boolean()) fail(ErrorKind::Usage, "'{}' is a flag: true or false, got {}", key, printable(value.dump()));
-      if (value.get<bool>()) named.push_back(spelling);
-      continue;
-    }
-    std::string text;
-    if (value.is_string()) text = value.get<std::string>();
-    else if (value.is_number()) text = value.dump();
-    else fail(ErrorKind::Usage, "'{}' takes a value (a string or a number), got {}", key, printable(value.dump()));
-    if (option->get_type_name() == kFile && !text.empty() && text != "-") {
-      fs::path path(text);
-      if (path.is_relative() && !base.empty()) path = base / path;
-      text = path.string();
-      if (text.starts_with('-')) text = "./" + text;  // a file, not an option
-    }
-    if (option->get_positional()) {
-      positionals.push_back(text);
-    } else if (text.starts_with('-')) {  // a negative number: one word, not taken for an option
-      named.push_back("--" + key + "=" + text);
-    } else {
-      named.push_back(spelling);
-      named.push_back(text);
-    }
-  }
-  const bool dashed = std::any_of(positionals.begin(), positionals.end(), [](const std::string& p) { return p.starts_with('-'); });
-  if (dashed) {  // after "--", where nothing is an option
-    named.push_back("--");
-    named.insert(named.end(), positionals.begin(), positionals.end());
-    return named;
-  }
-  positionals.insert(positionals.end(), named.begin(), named.end());
-  return positionals;
-}
 
 /// The bake command's options, made once (a CLI::App with every option is ~0.3 ms to build):
 /// parseJob and jobFromSettings share it under its lock.
@@ -235,6 +188,50 @@ void checkBatch(const std::string& file, const std::vector<BatchJob>& jobs, cons
 
 }  // namespace
 
+std::vector<std::string> argumentsFor(const CLI::App& app, const std::vector<const Json*>& layers, const fs::path& base) {
+  Json merged = Json::object();
+  for (const Json* layer : layers)
+    for (const auto& [key, value] : layer->items()) merged[key] = value;
+  std::vector<std::string> positionals, named;
+  for (const CLI::Option* option : app.get_options()) {
+    const std::string& key = option->get_single_name();
+    if (option == app.get_help_ptr() || !merged.contains(key)) continue;
+    const Json& value = merged[key];
+    const std::string spelling = option->get_snames().empty() ? "--" + key : "-" + option->get_snames().front();
+    if (option->get_expected_max() == 0) {  // a flag
+      if (!value.is_boolean()) fail(ErrorKind::Usage, "'{}' is a flag: true or false, got {}", key, printable(value.dump()));
+      if (value.get<bool>()) named.push_back(spelling);
+      continue;
+    }
+    std::string text;
+    if (value.is_string()) text = value.get<std::string>();
+    else if (value.is_number()) text = value.dump();
+    else fail(ErrorKind::Usage, "'{}' takes a value (a string or a number), got {}", key, printable(value.dump()));
+    if (option->get_type_name() == kFile && !text.empty() && text != "-") {
+      fs::path path(text);
+      if (path.is_relative() && !base.empty()) path = base / path;
+      text = path.string();
+      if (text.starts_with('-')) text = "./" + text;  // a file, not an option
+    }
+    if (option->get_positional()) {
+      positionals.push_back(text);
+    } else if (text.starts_with('-')) {  // a negative number: one word, not taken for an option
+      named.push_back("--" + key + "=" + text);
+    } else {
+      named.push_back(spelling);
+      named.push_back(text);
+    }
+  }
+  const bool dashed = std::any_of(positionals.begin(), positionals.end(), [](const std::string& p) { return p.starts_with('-'); });
+  if (dashed) {  // after "--", where nothing is an option
+    named.push_back("--");
+    named.insert(named.end(), positionals.begin(), positionals.end());
+    return named;
+  }
+  positionals.insert(positionals.end(), named.begin(), named.end());
+  return positionals;
+}
+
 BakeJob jobFromSettings(const Json& settings) {
   std::vector<std::string> arguments;
   {
@@ -270,43 +267,37 @@ std::vector<BatchJob> loadBatch(const std::string& file, const Json& overrides) 
   return jobs;
 }
 
-int runBatch(const BatchRequest& request) {
-  // Every job through the command line's option parsing, before anything runs.
-  const std::vector<BatchJob> jobs = parseBatchJobs(readBatchFile(request.file), request.file, request.overrides);
-  const int count = int(jobs.size());
-  if (request.job >= count || request.job < -1)
-    fail(ErrorKind::Usage, "bake: --job {} is out of range: {} has {} job{} (0 to {})", request.job, request.file, count,
-         count == 1 ? "" : "s", count - 1);
-  std::vector<int> selected;
-  for (int i = 0; i < count; ++i)
-    if (request.job < 0 || request.job == i) selected.push_back(i);
+namespace {
 
-  if (request.list) {
-    for (int i : selected) {
-      std::string line = "glint bake";
-      for (const std::string& word : jobs[std::size_t(i)].arguments) line += " " + shellWord(word);
-      std::printf("%s\n", line.c_str());
+/// How one job of a batch ended.
+struct Outcome {
+  int job = 0;
+  double seconds = 0.0;
+  int status = 0;  ///< its exit status: 0 done
+  std::string error;
+};
+
+/// The selected jobs as `glint bake ...` command lines, one a line (--list).
+void listJobs(const std::vector<BatchJob>& jobs, const std::vector<int>& selected) {
+  for (int i : selected) {
+    std::string line = "glint bake";
+    for (const std::string& word : jobs[std::size_t(i)].arguments) {
+      line += ' ';
+      line += shellWord(word);
     }
-    std::fflush(stdout);
-    return 0;
+    std::printf("%s\n", line.c_str());
   }
-  checkBatch(request.file, jobs, request.tool);
+  std::fflush(stdout);
+}
 
-  // One job after another: each bake already uses every core.
-  const auto start = std::chrono::steady_clock::now();
-  const log::Level level = log::level();
-  if (request.tool.quiet && level < log::Level::Warn) log::setLevel(log::Level::Warn);
-  struct Outcome {
-    int job = 0;
-    double seconds = 0.0;
-    int status = 0;
-    std::string error;
-  };
+/// One job after another (each bake already uses every core), their high meshes shared:
+/// each job's outcome and report entry. A failed job is said and the batch goes on; Ctrl-C
+/// stops it (Error(Interrupted), no partial file). `firstFailure`: the first failed job's kind.
+std::vector<Outcome> runSelected(const std::vector<BatchJob>& jobs, const std::vector<int>& selected, Json& reports,
+                                 std::optional<ErrorKind>& firstFailure) {
   std::vector<Outcome> outcomes;
-  Json reports = Json::array();
   HighMeshCache highCache;  // jobs sharing a high poly read it and build its BVH once
   for (int i : selected) ++highCache.usesLeft[jobs[std::size_t(i)].job.high];
-  std::optional<ErrorKind> firstFailure;
   for (std::size_t k = 0; k < selected.size(); ++k) {
     const int i = selected[k];
     const BatchJob& job = jobs[std::size_t(i)];
@@ -322,10 +313,7 @@ int runBatch(const BatchRequest& request) {
       entry["status"] = "ok";
       entry.update(run.finish());
     } catch (const Error& e) {
-      if (e.kind() == ErrorKind::Interrupted) {
-        log::setLevel(level);
-        throw;  // Ctrl-C stops the batch: exit 130, no partial file
-      }
+      if (e.kind() == ErrorKind::Interrupted) throw;
       outcome.status = exitCode(e.kind());
       outcome.error = fmt::format("{}: {}", job.where, e.what());
       log::error("{}", outcome.error);
@@ -340,8 +328,77 @@ int runBatch(const BatchRequest& request) {
     outcomes.push_back(outcome);
     reports.push_back(std::move(entry));
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return outcomes;
+}
 
+/// The batch's --json report: every job's report, the failures, the time.
+void writeBatchReport(const BatchRequest& request, Json reports, std::size_t failed, double seconds) {
+  Json report;
+  report["tool"] = "bake";
+  report["version"] = ToolRun::version();
+  report["batch"] = request.file;
+  report["jobs"] = std::move(reports);
+  report["failed"] = failed;
+  report["seconds"] = {{"total", seconds}};
+  report["peak_memory_mib"] = ToolRun::peakMemoryMiB();
+  const std::string text = jsonText(report);
+  if (request.tool.json == "-") {
+    std::fputs(text.c_str(), stdout);
+    std::fflush(stdout);
+  } else {
+    writeTextAtomically(request.tool.json, text);
+  }
+}
+
+/// Each failure was printed when it happened; the batch's error names the failed jobs (ten
+/// at most) and has the first one's kind, hence its exit status.
+[[noreturn]] void failBatch(const BatchRequest& request, const std::vector<Outcome>& outcomes, std::size_t failed,
+                            ErrorKind first) {
+  std::string which;
+  std::size_t named = 0;
+  for (const Outcome& o : outcomes) {
+    if (o.status == 0) continue;
+    if (++named > 10) {
+      which += ", ...";
+      break;
+    }
+    which += fmt::format("{}{}", named == 1 ? "" : ", ", o.job);
+  }
+  fail(first, "bake: {}: {} of {} job{} failed (job{} {})", request.file, failed, outcomes.size(),
+       outcomes.size() == 1 ? "" : "s", failed == 1 ? "" : "s", which);
+}
+
+}  // namespace
+
+int runBatch(const BatchRequest& request) {
+  // Every job through the command line's option parsing, before anything runs.
+  const std::vector<BatchJob> jobs = parseBatchJobs(readBatchFile(request.file), request.file, request.overrides);
+  const int count = int(jobs.size());
+  if (request.job >= count || request.job < -1)
+    fail(ErrorKind::Usage, "bake: --job {} is out of range: {} has {} job{} (0 to {})", request.job, request.file, count,
+         count == 1 ? "" : "s", count - 1);
+  std::vector<int> selected;
+  for (int i = 0; i < count; ++i)
+    if (request.job < 0 || request.job == i) selected.push_back(i);
+  if (request.list) {
+    listJobs(jobs, selected);
+    return 0;
+  }
+  checkBatch(request.file, jobs, request.tool);
+
+  const auto start = std::chrono::steady_clock::now();
+  const log::Level level = log::level();
+  if (request.tool.quiet && level < log::Level::Warn) log::setLevel(log::Level::Warn);
+  Json reports = Json::array();
+  std::optional<ErrorKind> firstFailure;
+  std::vector<Outcome> outcomes;
+  try {
+    outcomes = runSelected(jobs, selected, reports, firstFailure);
+  } catch (...) {
+    log::setLevel(level);
+    throw;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::size_t failed = std::size_t(std::count_if(outcomes.begin(), outcomes.end(), [](const Outcome& o) { return o.status != 0; }));
   log::info("bake: {}: {} job{} in {:.2f} s, {} ok, {} failed", request.file, outcomes.size(),
             outcomes.size() == 1 ? "" : "s", seconds, outcomes.size() - failed, failed);
@@ -350,76 +407,9 @@ int runBatch(const BatchRequest& request) {
               o.status == 0 ? std::string("ok") : fmt::format("failed (exit {})", o.status));
   }
   log::setLevel(level);
-
-  if (!request.tool.json.empty()) {
-    Json report;
-    report["tool"] = "bake";
-    report["version"] = ToolRun::version();
-    report["batch"] = request.file;
-    report["jobs"] = std::move(reports);
-    report["failed"] = failed;
-    report["seconds"] = {{"total", seconds}};
-    report["peak_memory_mib"] = ToolRun::peakMemoryMiB();
-    const std::string text = jsonText(report);
-    if (request.tool.json == "-") {
-      std::fputs(text.c_str(), stdout);
-      std::fflush(stdout);
-    } else {
-      writeTextAtomically(request.tool.json, text);
-    }
-  }
-  if (firstFailure) {  // each failure was printed when it happened; the exit status is the first one's
-    std::string which;
-    std::size_t named = 0;
-    for (const Outcome& o : outcomes) {
-      if (o.status == 0) continue;
-      if (++named > 10) {
-        which += ", ...";
-        break;
-      }
-      which += fmt::format("{}{}", named == 1 ? "" : ", ", o.job);
-    }
-    fail(*firstFailure, "bake: {}: {} of {} job{} failed (job{} {})", request.file, failed, outcomes.size(),
-         outcomes.size() == 1 ? "" : "s", failed == 1 ? "" : "s", which);
-  }
+  if (!request.tool.json.empty()) writeBatchReport(request, std::move(reports), failed, seconds);
+  if (firstFailure) failBatch(request, outcomes, failed, *firstFailure);
   return 0;
-}
-
-farm::Plan farmPlan(const BatchRequest& request, const farm::Split& split) {
-  const std::vector<BatchJob> jobs = loadBatch(request.file, request.overrides);  // every check a bake makes
-  double most = 0.0;
-  for (const BatchJob& b : jobs) most = std::max(most, estimateMemoryMiB(b.job));
-  farm::Plan plan{.tool = "bake"};
-  plan.memoryMiB = farm::taskMemoryMiB(split, most);
-  const std::string file = farm::absolutePath(request.file);
-  plan.title = fmt::format("{} ({} bake{})", fs::path(file).filename().string(), jobs.size(), jobs.size() == 1 ? "" : "s");
-  plan.workDir = split.workDir.empty() ? fs::path(file).parent_path() : split.workDir;
-  // The options given with the farm command, for every job, as `glint bake` takes them.
-  std::vector<std::string> overrides;
-  {
-    CLI::App prototype{"glint bake", "bake"};
-    BakeJob unused;
-    addOptions(prototype, unused, Meshes::Required);
-    overrides = argumentsFor(prototype, {&request.overrides}, fs::path(file).parent_path());
-  }
-  const std::vector<std::string> limits = farm::pieceSettings(request.tool, split, plan.memoryMiB);
-  for (std::size_t i = 0; i < jobs.size(); ++i) {
-    const BatchJob& b = jobs[i];
-    farm::Piece piece{.label = b.where.substr(b.where.find(" job ") + 1),
-                      .command = {"bake", "--batch", file, "--job", std::to_string(i)}};
-    piece.command.insert(piece.command.end(), overrides.begin(), overrides.end());
-    piece.command.insert(piece.command.end(), limits.begin(), limits.end());
-    piece.inputs.push_back(file);
-    for (const FileUse& in : inputFiles(b.job))
-      if (!in.path.empty()) piece.inputs.push_back(farm::absolutePath(in.path.string()));
-    for (const FileUse& out : outputFiles(b.job)) {
-      if (out.path.empty() || out.path == "-") continue;
-      piece.outputs.push_back(farm::absolutePath(out.path.string()));
-      plan.outputs.push_back(farm::absolutePath(out.path.string()));
-    }
-    plan.pieces.push_back(std::move(piece));
-  }
-  return plan;
 }
 
 }  // namespace glint::bake

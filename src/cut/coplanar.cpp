@@ -45,6 +45,24 @@ public:
   std::optional<PatchPieces> merge(std::span<const std::uint32_t> triangles);
 
 private:
+  /// Copies the pieces of the patch's triangles into the local corner arrays.
+  void gatherCorners(std::span<const std::uint32_t> triangles);
+  /// Pairs each side with its twin, the side running the other way.
+  void findTwins();
+  /// Marks outline vertices and counts the region outline edges meeting at each vertex.
+  void collectVertexInfo();
+  /// Sets the triangulator's plane from the given triangle, once per patch.
+  void setPlane(std::uint32_t triangle);
+  /// Marks the vertices that go; true when there is any.
+  bool markDrops(std::uint32_t lowest);
+  /// Joins polygons into regions across sides whose polygons have the same mask.
+  void joinRegions();
+  /// Lists region r's polygons from p on; true when any of their vertices goes.
+  bool collectRegion(std::uint32_t p, std::uint32_t r);
+  /// Adds the region's polygons as they are, less the corners that go.
+  void keepRegionPolygons(PatchPieces& out);
+  /// Triangulates the region's outlines again with polygon p's mask; false when that fails.
+  bool retriangulateRegion(std::uint32_t p, PatchPieces& out);
   struct VertexInfo {
     bool outline = false;           ///< on the patch's outline: stays
     std::uint8_t degree = 0;        ///< region outline edges meeting here
@@ -65,13 +83,14 @@ private:
   // The patch's corners, polygon by polygon (local indices).
   std::vector<std::uint32_t> m_polyStart, m_vertex, m_next, m_poly, m_twin, m_region, m_sorted;
   std::vector<LightMask> m_mask;
-  std::vector<std::uint8_t> m_straight, m_visited;
+  std::vector<std::uint8_t> m_straight, m_visited, m_flags;
   std::unordered_map<std::uint32_t, VertexInfo> m_info;
   std::vector<std::uint32_t> m_loopVertices, m_loopStart, m_regionPolys;
   ConvexPieces m_pieces;
+  bool m_plane = false;  ///< the triangulator's plane is set for this patch
 };
 
-std::optional<PatchPieces> PatchMerger::merge(std::span<const std::uint32_t> triangles) {
+void PatchMerger::gatherCorners(std::span<const std::uint32_t> triangles) {
   const CutMesh& src = m_polygons;
   m_polyStart.assign(1, 0);
   m_vertex.clear();
@@ -92,6 +111,9 @@ std::optional<PatchPieces> PatchMerger::merge(std::span<const std::uint32_t> tri
       m_mask.push_back(src.polygonMask[p]);
       m_polyStart.push_back(std::uint32_t(m_vertex.size()));
     }
+}
+
+void PatchMerger::findTwins() {
   const std::uint32_t n = std::uint32_t(m_vertex.size());
   // Twins: the side v → u of side u → v.
   m_sorted.resize(n);
@@ -105,6 +127,10 @@ std::optional<PatchPieces> PatchMerger::merge(std::span<const std::uint32_t> tri
                                      [&](std::uint32_t x, const std::pair<std::uint32_t, std::uint32_t>& k) { return key(x) < k; });
     if (it != m_sorted.end() && key(*it) == want) m_twin[i] = *it;
   }
+}
+
+void PatchMerger::collectVertexInfo() {
+  const std::uint32_t n = std::uint32_t(m_vertex.size());
   // Outline, region outline degrees and their ends.
   m_info.clear();
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -118,37 +144,41 @@ std::optional<PatchPieces> PatchMerger::merge(std::span<const std::uint32_t> tri
     a.degree = std::uint8_t(std::min(a.degree + 1, 255));
     b.degree = std::uint8_t(std::min(b.degree + 1, 255));
   }
-  // Which vertices go: inside the patch, inside a region or on a straight outline.
-  // The patch's plane for exact tests: its lowest triangle, projected along the dominant
-  // axis of its normal (once, when first needed).
-  bool any = false, plane = false;
-  const auto setPlane = [&] {
-    if (plane) return;
-    plane = true;
-    const auto& corners = m_in.prep.scene->triangles[triangles.front()];
-    const exact::Geometry& g = m_in.prep.scene->geometry;
-    const dvec3 a = g.point(corners[0]), b = g.point(corners[1]), c = g.point(corners[2]);
-    const dvec3 an = glm::abs(glm::cross(b - a, c - a));
-    const int axis = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
-    std::array<exact::VertexDef, 3> defs;
-    for (std::size_t k = 0; k < 3; ++k) defs[k] = exact::VertexDef{.kind = exact::VertexKind::Point, .a = corners[k]};
-    m_triangulator.reset((axis + 1) % 3, (axis + 2) % 3, defs,
-                         [this](std::uint32_t v) -> const exact::VertexDef& { return m_in.defs[v]; });
-  };
+}
+
+void PatchMerger::setPlane(std::uint32_t triangle) {
+  if (m_plane) return;
+  m_plane = true;
+  const auto& corners = m_in.prep.scene->triangles[triangle];
+  const exact::Geometry& g = m_in.prep.scene->geometry;
+  const dvec3 a = g.point(corners[0]), b = g.point(corners[1]), c = g.point(corners[2]);
+  const dvec3 an = glm::abs(glm::cross(b - a, c - a));
+  const int axis = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
+  std::array<exact::VertexDef, 3> defs;
+  for (std::size_t k = 0; k < 3; ++k) defs[k] = exact::VertexDef{.kind = exact::VertexKind::Point, .a = corners[k]};
+  m_triangulator.reset((axis + 1) % 3, (axis + 2) % 3, defs,
+                       [this](std::uint32_t v) -> const exact::VertexDef& { return m_in.defs[v]; });
+}
+
+bool PatchMerger::markDrops(std::uint32_t lowest) {
+  bool any = false;
   for (auto& [id, info] : m_info) {
     // On the outline only where no other patch has the vertex (an open edge of the
     // surface), and then only on a straight outline.
     if (info.outline && (m_in.shared[id] || info.degree != 2)) continue;
     if (info.degree != 0 && info.degree != 2) continue;
     if (info.degree == 2) {
-      setPlane();
+      setPlane(lowest);
       if (!m_triangulator.collinear(info.ends[0], id, info.ends[1])) continue;
     }
     info.drop = true;
     any = true;
   }
-  if (!any) return std::nullopt;
-  setPlane();
+  return any;
+}
+
+void PatchMerger::joinRegions() {
+  const std::uint32_t n = std::uint32_t(m_vertex.size());
   // Regions: polygons joined across sides whose polygons have the same mask.
   const std::uint32_t polys = std::uint32_t(m_mask.size());
   m_region.resize(polys);
@@ -158,57 +188,86 @@ std::optional<PatchPieces> PatchMerger::merge(std::span<const std::uint32_t> tri
       const std::uint32_t a = findRegion(m_poly[i]), b = findRegion(m_poly[m_twin[i]]);
       if (a != b) m_region[std::max(a, b)] = std::min(a, b);
     }
+}
+
+bool PatchMerger::collectRegion(std::uint32_t p, std::uint32_t r) {
+  const std::uint32_t polys = std::uint32_t(m_mask.size());
+  m_regionPolys.clear();
+  bool drops = false;
+  for (std::uint32_t q = p; q < polys; ++q)
+    if (findRegion(q) == r) {
+      m_regionPolys.push_back(q);
+      for (std::uint32_t i = m_polyStart[q]; i < m_polyStart[q + 1]; ++i) drops |= m_info[m_vertex[i]].drop;
+    }
+  return drops;
+}
+
+void PatchMerger::keepRegionPolygons(PatchPieces& out) {
+  // As they are, less their straight corners that go (a single convex piece stays one).
+  for (std::uint32_t q : m_regionPolys) {
+    m_loopVertices.clear();
+    m_flags.clear();
+    for (std::uint32_t i = m_polyStart[q]; i < m_polyStart[q + 1]; ++i) {
+      if (m_info[m_vertex[i]].drop) continue;
+      m_loopVertices.push_back(m_vertex[i]);
+      m_flags.push_back(m_straight[i]);
+    }
+    out.add(m_loopVertices, m_flags, m_mask[q]);
+  }
+}
+
+bool PatchMerger::retriangulateRegion(std::uint32_t p, PatchPieces& out) {
+  // The region's outlines, kept corners only, and its triangles.
+  m_loopVertices.clear();
+  m_loopStart.clear();
+  for (std::uint32_t q : m_regionPolys)
+    for (std::uint32_t i0 = m_polyStart[q]; i0 < m_polyStart[q + 1]; ++i0) {
+      if (!boundary(i0) || m_visited[i0]) continue;
+      m_loopStart.push_back(std::uint32_t(m_loopVertices.size()));
+      std::uint32_t i = i0;
+      do {
+        m_visited[i] = 1;
+        if (!m_info[m_vertex[i]].drop) m_loopVertices.push_back(m_vertex[i]);
+        std::uint32_t x = m_next[i];
+        while (!boundary(x)) x = m_next[m_twin[x]];
+        i = x;
+      } while (i != i0);
+    }
+  m_loopStart.push_back(std::uint32_t(m_loopVertices.size()));
+  m_pieces.clear();
+  if (!m_triangulator.triangulate(m_loopVertices, m_loopStart, m_pieces)) return false;
+  for (std::size_t q = 0, s = 0; q < m_pieces.end.size(); s = m_pieces.end[q++])
+    out.add(std::span(m_pieces.corners).subspan(s, m_pieces.end[q] - s),
+            std::span(m_pieces.straight).subspan(s, m_pieces.end[q] - s), m_mask[p]);
+  return true;
+}
+
+std::optional<PatchPieces> PatchMerger::merge(std::span<const std::uint32_t> triangles) {
+  gatherCorners(triangles);
+  const std::uint32_t n = std::uint32_t(m_vertex.size());
+  findTwins();
+  collectVertexInfo();
+  // Which vertices go: inside the patch, inside a region or on a straight outline.
+  // The patch's plane for exact tests: its lowest triangle, projected along the dominant
+  // axis of its normal (once, when first needed).
+  m_plane = false;
+  if (!markDrops(triangles.front())) return std::nullopt;
+  setPlane(triangles.front());
+  joinRegions();
+  const std::uint32_t polys = std::uint32_t(m_mask.size());
   PatchPieces out;
   m_visited.assign(n, 0);
   std::vector<std::uint8_t> done(polys, 0);
-  std::vector<std::uint8_t> flags;
   for (std::uint32_t p = 0; p < polys; ++p) {
     const std::uint32_t r = findRegion(p);
     if (done[r]) continue;
     done[r] = 1;
-    m_regionPolys.clear();
-    bool drops = false;
-    for (std::uint32_t q = p; q < polys; ++q)
-      if (findRegion(q) == r) {
-        m_regionPolys.push_back(q);
-        for (std::uint32_t i = m_polyStart[q]; i < m_polyStart[q + 1]; ++i) drops |= m_info[m_vertex[i]].drop;
-      }
+    const bool drops = collectRegion(p, r);
     if (!drops || m_regionPolys.size() == 1) {
-      // As they are, less their straight corners that go (a single convex piece stays one).
-      for (std::uint32_t q : m_regionPolys) {
-        m_loopVertices.clear();
-        flags.clear();
-        for (std::uint32_t i = m_polyStart[q]; i < m_polyStart[q + 1]; ++i) {
-          if (m_info[m_vertex[i]].drop) continue;
-          m_loopVertices.push_back(m_vertex[i]);
-          flags.push_back(m_straight[i]);
-        }
-        out.add(m_loopVertices, flags, m_mask[q]);
-      }
+      keepRegionPolygons(out);
       continue;
     }
-    // The region's outlines, kept corners only, and its triangles.
-    m_loopVertices.clear();
-    m_loopStart.clear();
-    for (std::uint32_t q : m_regionPolys)
-      for (std::uint32_t i0 = m_polyStart[q]; i0 < m_polyStart[q + 1]; ++i0) {
-        if (!boundary(i0) || m_visited[i0]) continue;
-        m_loopStart.push_back(std::uint32_t(m_loopVertices.size()));
-        std::uint32_t i = i0;
-        do {
-          m_visited[i] = 1;
-          if (!m_info[m_vertex[i]].drop) m_loopVertices.push_back(m_vertex[i]);
-          std::uint32_t x = m_next[i];
-          while (!boundary(x)) x = m_next[m_twin[x]];
-          i = x;
-        } while (i != i0);
-      }
-    m_loopStart.push_back(std::uint32_t(m_loopVertices.size()));
-    m_pieces.clear();
-    if (!m_triangulator.triangulate(m_loopVertices, m_loopStart, m_pieces)) return std::nullopt;
-    for (std::size_t q = 0, s = 0; q < m_pieces.end.size(); s = m_pieces.end[q++])
-      out.add(std::span(m_pieces.corners).subspan(s, m_pieces.end[q] - s),
-              std::span(m_pieces.straight).subspan(s, m_pieces.end[q] - s), m_mask[p]);
+    if (!retriangulateRegion(p, out)) return std::nullopt;
   }
   return out;
 }

@@ -43,21 +43,31 @@ using Guard = CGAL::Protect_FPU_rounding<true>;
 #endif
 using E = CGAL::Mpzf;
 
-struct I3 {
-  I x, y, z;
+/// A 3-vector of an exact or interval number type: the same arithmetic for both.
+template <class T>
+struct V3 {
+  T x, y, z;
 };
-I3 sub(const I3& a, const I3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-I3 cross(const I3& a, const I3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-I dot(const I3& a, const I3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-I3 toI(const dvec3& p) { return {I(p.x), I(p.y), I(p.z)}; }
-
-struct E3 {
-  E x, y, z;
-};
-E3 sub(const E3& a, const E3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-E3 cross(const E3& a, const E3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-E dot(const E3& a, const E3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-E3 toE(const dvec3& p) { return {E(p.x), E(p.y), E(p.z)}; }
+template <class T>
+V3<T> sub(const V3<T>& a, const V3<T>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T>
+V3<T> cross(const V3<T>& a, const V3<T>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+template <class T>
+T dot(const V3<T>& a, const V3<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+V3<T> to(const dvec3& p) {
+  return {T(p.x), T(p.y), T(p.z)};
+}
+using I3 = V3<I>;
+using E3 = V3<E>;
+I3 toI(const dvec3& p) { return to<I>(p); }
+E3 toE(const dvec3& p) { return to<E>(p); }
 
 int signOf(const E& e) { return int(e.sign()); }
 

@@ -664,54 +664,105 @@ bool ReceiverCutter::boundary(std::uint32_t e) const {
   return he.twin == kNone || m_faces[m_edges[he.twin].face].mask != m_faces[he.face].mask;
 }
 
-void ReceiverCutter::emit(ReceiverPieces& out) {
-  // Regions: faces joined across edges whose faces have the same mask, in order of their
-  // first face (so the output does not depend on anything but the subdivision).
-  const std::uint32_t faceCount = std::uint32_t(m_faces.size());
-  m_region.assign(faceCount, kNone);
-  m_regionFaces.clear();
-  m_regionStart.clear();
+namespace {
+
+/// Groups the live faces into regions: faces joined across edges whose faces have the same
+/// mask, numbered in order of their first face. Region r is faces
+/// regionFaces[regionStart[r] .. regionStart[r + 1]); region[f] is face f's region.
+template <typename Edges, typename Faces, typename Boundary>
+void groupRegions(const Edges& edges, const Faces& faces, const Boundary& boundary, std::uint32_t none,
+                  std::vector<std::uint32_t>& region, std::vector<std::uint32_t>& regionFaces,
+                  std::vector<std::uint32_t>& regionStart, std::vector<std::uint32_t>& stack) {
+  const std::uint32_t faceCount = std::uint32_t(faces.size());
+  region.assign(faceCount, none);
+  regionFaces.clear();
+  regionStart.clear();
   for (std::uint32_t f = 0; f < faceCount; ++f) {
-    if (!m_faces[f].alive || m_region[f] != kNone) continue;
-    const std::uint32_t r = std::uint32_t(m_regionStart.size());
-    m_regionStart.push_back(std::uint32_t(m_regionFaces.size()));
-    m_region[f] = r;
-    m_stack.assign(1, f);
-    while (!m_stack.empty()) {
-      const std::uint32_t g = m_stack.back();
-      m_stack.pop_back();
-      m_regionFaces.push_back(g);
-      std::uint32_t e = m_faces[g].edge;
+    if (!faces[f].alive || region[f] != none) continue;
+    const std::uint32_t r = std::uint32_t(regionStart.size());
+    regionStart.push_back(std::uint32_t(regionFaces.size()));
+    region[f] = r;
+    stack.assign(1, f);
+    while (!stack.empty()) {
+      const std::uint32_t g = stack.back();
+      stack.pop_back();
+      regionFaces.push_back(g);
+      std::uint32_t e = faces[g].edge;
       do {
-        const HalfEdge& he = m_edges[e];
-        if (he.twin != kNone && !boundary(e)) {
-          const std::uint32_t h = m_edges[he.twin].face;
-          if (m_region[h] == kNone) {
-            m_region[h] = r;
-            m_stack.push_back(h);
+        const auto& he = edges[e];
+        if (he.twin != none && !boundary(e)) {
+          const std::uint32_t h = edges[he.twin].face;
+          if (region[h] == none) {
+            region[h] = r;
+            stack.push_back(h);
           }
         }
         e = he.next;
-      } while (e != m_faces[g].edge);
+      } while (e != faces[g].edge);
     }
   }
-  m_regionStart.push_back(std::uint32_t(m_regionFaces.size()));
+  regionStart.push_back(std::uint32_t(regionFaces.size()));
+}
+
+/// Counts the outline edges meeting at each vertex (A's edges count) into `degree`, and
+/// marks in `onEdge` which of A's edges each vertex lies on (bit k: edge k).
+template <typename Edges, typename Faces, typename Boundary>
+void countOutlineEdges(const Edges& edges, const Faces& faces, const Boundary& boundary, std::uint32_t none,
+                       std::size_t vertexCount, std::vector<std::uint8_t>& degree, std::vector<std::uint8_t>& onEdge) {
+  degree.assign(vertexCount, 0);
+  onEdge.assign(vertexCount, 0);
+  for (std::uint32_t e = 0; e < edges.size(); ++e) {
+    const auto& he = edges[e];
+    if (!he.alive || !faces[he.face].alive) continue;
+    const std::uint32_t to = edges[he.next].origin;
+    if (he.line < 0) {
+      onEdge[he.origin] |= std::uint8_t(1u << (-1 - he.line));
+      onEdge[to] |= std::uint8_t(1u << (-1 - he.line));
+    }
+    if (!boundary(e) || (he.twin != none && he.twin < e)) continue;
+    degree[he.origin] = std::uint8_t(std::min(degree[he.origin] + 1, 255));
+    degree[to] = std::uint8_t(std::min(degree[to] + 1, 255));
+  }
+}
+
+/// Traces the outlines of the region of faces `regionFaces`: from each unvisited outline
+/// edge, around the region. Loop l is loopEdges[loopStart[l] .. loopStart[l + 1]).
+template <typename Edges, typename Faces, typename Boundary>
+void traceOutlines(const Edges& edges, const Faces& faces, const Boundary& boundary,
+                   std::span<const std::uint32_t> regionFaces, std::vector<std::uint8_t>& visited,
+                   std::vector<std::uint32_t>& loopEdges, std::vector<std::uint32_t>& loopStart) {
+  loopEdges.clear();
+  loopStart.clear();
+  for (const std::uint32_t g : regionFaces) {
+    std::uint32_t e0 = faces[g].edge;
+    do {
+      if (boundary(e0) && !visited[e0]) {
+        loopStart.push_back(std::uint32_t(loopEdges.size()));
+        std::uint32_t e = e0;
+        do {
+          visited[e] = 1;
+          loopEdges.push_back(e);
+          std::uint32_t x = edges[e].next;  // around the end vertex, through the region, to the next outline edge
+          while (!boundary(x)) x = edges[edges[x].twin].next;
+          e = x;
+        } while (e != e0);
+      }
+      e0 = edges[e0].next;
+    } while (e0 != faces[g].edge);
+  }
+  loopStart.push_back(std::uint32_t(loopEdges.size()));
+}
+
+}  // namespace
+
+void ReceiverCutter::emit(ReceiverPieces& out) {
+  const auto outline = [this](std::uint32_t e) { return boundary(e); };
+  // Regions: faces joined across edges whose faces have the same mask, in order of their
+  // first face (so the output does not depend on anything but the subdivision).
+  groupRegions(m_edges, m_faces, outline, kNone, m_region, m_regionFaces, m_regionStart, m_stack);
   // How many outline edges meet at each vertex (A's edges count), and which of A's edges
   // each vertex lies on.
-  m_degree.assign(m_vertices.size(), 0);
-  m_onEdge.assign(m_vertices.size(), 0);
-  for (std::uint32_t e = 0; e < m_edges.size(); ++e) {
-    const HalfEdge& he = m_edges[e];
-    if (!he.alive || !m_faces[he.face].alive) continue;
-    const std::uint32_t to = m_edges[he.next].origin;
-    if (he.line < 0) {
-      m_onEdge[he.origin] |= std::uint8_t(1u << (-1 - he.line));
-      m_onEdge[to] |= std::uint8_t(1u << (-1 - he.line));
-    }
-    if (!boundary(e) || (he.twin != kNone && he.twin < e)) continue;
-    m_degree[he.origin] = std::uint8_t(std::min(m_degree[he.origin] + 1, 255));
-    m_degree[to] = std::uint8_t(std::min(m_degree[to] + 1, 255));
-  }
+  countOutlineEdges(m_edges, m_faces, outline, kNone, m_vertices.size(), m_degree, m_onEdge);
   // A vertex stays where two outline edges turn or more than two meet; elsewhere it lies
   // on a straight outline between two regions (or inside one) and every face around it
   // agrees to drop it. On A's edges, a neighbouring receiver that keeps one puts it back
@@ -727,27 +778,9 @@ void ReceiverCutter::emit(ReceiverPieces& out) {
     const std::uint32_t first = m_regionFaces[m_regionStart[r]];
     const LightMask mask = m_faces[first].mask;
     // The region's outlines: from each unvisited outline edge, around the region.
-    m_loopEdges.clear();
-    m_loopStart.clear();
-    for (std::uint32_t i = m_regionStart[r]; i < m_regionStart[r + 1]; ++i) {
-      const std::uint32_t g = m_regionFaces[i];
-      std::uint32_t e0 = m_faces[g].edge;
-      do {
-        if (boundary(e0) && !m_visited[e0]) {
-          m_loopStart.push_back(std::uint32_t(m_loopEdges.size()));
-          std::uint32_t e = e0;
-          do {
-            m_visited[e] = 1;
-            m_loopEdges.push_back(e);
-            std::uint32_t x = m_edges[e].next;  // around the end vertex, through the region, to the next outline edge
-            while (!boundary(x)) x = m_edges[m_edges[x].twin].next;
-            e = x;
-          } while (e != e0);
-        }
-        e0 = m_edges[e0].next;
-      } while (e0 != m_faces[g].edge);
-    }
-    m_loopStart.push_back(std::uint32_t(m_loopEdges.size()));
+    traceOutlines(m_edges, m_faces, outline,
+                  std::span(m_regionFaces).subspan(m_regionStart[r], m_regionStart[r + 1] - m_regionStart[r]),
+                  m_visited, m_loopEdges, m_loopStart);
     // The corners kept, loop by loop.
     m_loopVertices.clear();
     m_polygonFlags.clear();

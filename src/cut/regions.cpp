@@ -33,6 +33,46 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constrai
 /// gmp_rational, as CGAL was configured; both take an mpq_t.
 K::FT kernelNumber(const mpq_class& q) { return K::FT(K::FT::ET(q.get_mpq_t())); }
 
+/// Sets every face's nesting level, from the infinite face inwards: crossing a constraint
+/// goes one deeper.
+void markNesting(Cdt& cdt) {
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
+  std::deque<Cdt::Face_handle> border{cdt.infinite_face()};
+  cdt.infinite_face()->info() = 0;
+  std::deque<Cdt::Face_handle> queue;
+  while (!border.empty()) {
+    const Cdt::Face_handle start = border.front();
+    border.pop_front();
+    const int level = start->info();
+    queue.assign(1, start);
+    while (!queue.empty()) {
+      const Cdt::Face_handle f = queue.front();
+      queue.pop_front();
+      for (int i = 0; i < 3; ++i) {
+        const Cdt::Face_handle n = f->neighbor(i);
+        if (n->info() != -1) continue;
+        if (cdt.is_constrained(Cdt::Edge(f, i))) {
+          n->info() = level + 1;
+          border.push_back(n);
+        } else {
+          n->info() = level;
+          queue.push_back(n);
+        }
+      }
+    }
+  }
+}
+
+/// Whether every outline edge has the region (an odd nesting level) on exactly one side.
+bool regionOnOneSide(Cdt& cdt) {
+  for (auto e = cdt.finite_edges_begin(); e != cdt.finite_edges_end(); ++e) {
+    if (!cdt.is_constrained(*e)) continue;
+    const bool in = e->first->info() % 2 == 1, out = e->first->neighbor(e->second)->info() % 2 == 1;
+    if (in == out) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 struct RegionTriangulator::Impl {
@@ -49,6 +89,34 @@ struct RegionTriangulator::Impl {
       it = points.emplace(id, Point(kernelNumber(x[std::size_t(u)]), kernelNumber(x[std::size_t(v)]))).first;
     }
     return it->second;
+  }
+
+  /// Inserts the loops' vertices and their edges as constraints; false when a loop has
+  /// fewer than three vertices, two vertices lie at one point, or CGAL throws.
+  bool insertLoops(Cdt& cdt, std::span<const std::uint32_t> loopVertices, std::span<const std::uint32_t> loopStart) {
+    try {
+      for (std::size_t l = 0; l + 1 < loopStart.size(); ++l) {
+        const std::uint32_t a = loopStart[l], z = loopStart[l + 1];
+        if (z - a < 3) return false;
+        Cdt::Vertex_handle first, previous;
+        for (std::uint32_t i = a; i < z; ++i) {
+          const std::uint32_t id = loopVertices[i];
+          const std::size_t count = cdt.number_of_vertices();
+          const Cdt::Vertex_handle h = cdt.insert(point(id));
+          if (cdt.number_of_vertices() > count) h->info() = id;
+          else if (h->info() != id) return false;  // two vertices at one point: a zero-length edge
+          if (i == a) first = h;
+          else cdt.insert_constraint(previous, h);
+          previous = h;
+        }
+        cdt.insert_constraint(previous, first);
+      }
+    } catch (const CGAL::Failure_exception&) {
+      return false;
+    } catch (const std::exception&) {
+      return false;
+    }
+    return true;
   }
 };
 
@@ -75,61 +143,12 @@ bool RegionTriangulator::collinear(std::uint32_t a, std::uint32_t b, std::uint32
 bool RegionTriangulator::triangulate(std::span<const std::uint32_t> loopVertices,
                                      std::span<const std::uint32_t> loopStart, ConvexPieces& out) {
   Cdt cdt;
-  try {
-    for (std::size_t l = 0; l + 1 < loopStart.size(); ++l) {
-      const std::uint32_t a = loopStart[l], z = loopStart[l + 1];
-      if (z - a < 3) return false;
-      Cdt::Vertex_handle first, previous;
-      for (std::uint32_t i = a; i < z; ++i) {
-        const std::uint32_t id = loopVertices[i];
-        const std::size_t count = cdt.number_of_vertices();
-        const Cdt::Vertex_handle h = cdt.insert(m->point(id));
-        if (cdt.number_of_vertices() > count) h->info() = id;
-        else if (h->info() != id) return false;  // two vertices at one point: a zero-length edge
-        if (i == a) first = h;
-        else cdt.insert_constraint(previous, h);
-        previous = h;
-      }
-      cdt.insert_constraint(previous, first);
-    }
-  } catch (const CGAL::Failure_exception&) {
-    return false;
-  } catch (const std::exception&) {
-    return false;
-  }
+  if (!m->insertLoops(cdt, loopVertices, loopStart)) return false;
   // Nesting levels from the infinite face inwards: crossing a constraint goes one deeper.
-  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
-  std::deque<Cdt::Face_handle> border{cdt.infinite_face()};
-  cdt.infinite_face()->info() = 0;
-  std::deque<Cdt::Face_handle> queue;
-  while (!border.empty()) {
-    const Cdt::Face_handle start = border.front();
-    border.pop_front();
-    const int level = start->info();
-    queue.assign(1, start);
-    while (!queue.empty()) {
-      const Cdt::Face_handle f = queue.front();
-      queue.pop_front();
-      for (int i = 0; i < 3; ++i) {
-        const Cdt::Face_handle n = f->neighbor(i);
-        if (n->info() != -1) continue;
-        if (cdt.is_constrained(Cdt::Edge(f, i))) {
-          n->info() = level + 1;
-          border.push_back(n);
-        } else {
-          n->info() = level;
-          queue.push_back(n);
-        }
-      }
-    }
-  }
+  markNesting(cdt);
   // Every outline edge has the region on exactly one side; otherwise the loops were not
   // the outline of one region.
-  for (auto e = cdt.finite_edges_begin(); e != cdt.finite_edges_end(); ++e) {
-    if (!cdt.is_constrained(*e)) continue;
-    const bool in = e->first->info() % 2 == 1, out = e->first->neighbor(e->second)->info() % 2 == 1;
-    if (in == out) return false;
-  }
+  if (!regionOnOneSide(cdt)) return false;
   // The region's triangles, each a polygon (counter-clockwise in the projection), then
   // joined greedily across diagonals where both ends stay convex.
   std::vector<Cdt::Face_handle> faces;

@@ -490,6 +490,115 @@ Submission Farm::submit() {
   return result;
 }
 
+namespace {
+/// The pieces counted by state: what wait() reports and decides on.
+struct PieceCounts {
+  int done = 0, running = 0, queued = 0;
+  std::vector<int> failed, neverStart;
+  std::map<std::string, int> reasons;  // why the queued ones wait
+};
+
+/// Counts `states` by state; queued pieces that can never start are listed too.
+PieceCounts countPieces(const std::vector<PieceStatus>& states) {
+  PieceCounts c;
+  for (int i = 0; i < int(states.size()); ++i) {
+    const PieceStatus& s = states[std::size_t(i)];
+    switch (s.state) {
+      case PieceState::Done: ++c.done; break;
+      case PieceState::Running: ++c.running; break;
+      case PieceState::Queued:
+        ++c.queued;
+        if (!s.reason.empty()) ++c.reasons[s.reason];
+        if (reasonIsPermanent(s.reason)) c.neverStart.push_back(i);
+        break;
+      case PieceState::Failed: c.failed.push_back(i); break;
+      case PieceState::Missing: c.failed.push_back(i); break;
+    }
+  }
+  return c;
+}
+
+/// The exit code a failed task reports: Slurm's "code:signal" code when above 0, else 1.
+int failedExitCode(const std::string& exitCode) {
+  int code = 0;
+  try {
+    code = parseInt(exitCode.substr(0, exitCode.find(':')), "an exit code", 0, 255);
+  } catch (const Error&) {
+  }
+  return code > 0 ? code : 1;
+}
+
+/// The report line of failed piece `i`: its state, the reason, the exit code and the log.
+std::string pieceFailure(const Farm& farm, int i, const PieceStatus& s) {
+  std::string what =
+      s.state == PieceState::Missing ? "never submitted" : (s.slurmState.empty() ? "failed" : s.slurmState);
+  if (s.slurmState == "COMPLETED" || (!s.reason.empty() && s.reason != "NonZeroExitCode"))
+    what += fmt::format(" ({})", s.reason);
+  return fmt::format("piece {} ({}): {}{}; log: {}", i, farm.plan().pieces[std::size_t(i)].label, what,
+                     s.exitCode.empty() ? "" : ", exit code " + s.exitCode, farm.pieceLog(i).string());
+}
+
+/// wait()'s progress line: the counts, why the queued ones wait, the join, nodes that are down.
+std::string progressLine(const PieceCounts& c, int total, bool hasJoin, const TaskRecord& join, Scheduler& scheduler) {
+  std::string line = fmt::format("{}/{} pieces done, {} running, {} queued", c.done, total, c.running, c.queued);
+  if (!c.reasons.empty()) {
+    const auto most = std::max_element(c.reasons.begin(), c.reasons.end(),
+                                       [](const auto& a, const auto& b) { return a.second < b.second; });
+    line += fmt::format(" ({})", explainReason(most->first));
+  }
+  if (!c.failed.empty()) line += fmt::format(", {} failed", c.failed.size());
+  if (c.done == total && hasJoin) {
+    line += join.state == "RUNNING" ? " · joining"
+                                    : fmt::format(" · join queued{}", join.reason.empty() || join.reason == "Dependency"
+                                                                          ? ""
+                                                                          : " (" + explainReason(join.reason) + ")");
+  }
+  if ((c.queued > 0 && c.running == 0) || (c.done == total && join.state == "PENDING")) {
+    for (const auto& problem : scheduler.nodeProblems()) line += "; " + problem;
+  }
+  return line;
+}
+
+/// Reports the tasks that can never start (the join too when `join` is given) and cancels
+/// every task of the submission.
+void cancelNeverStarting(Farm& farm, const std::vector<std::string>& pieceJobs, const std::vector<PieceStatus>& states,
+                         const std::vector<int>& neverStart, const TaskRecord* join, WaitResult& result) {
+  for (int i : neverStart) {
+    const PieceStatus& s = states[std::size_t(i)];
+    result.failures.push_back(fmt::format("piece {} ({}): can never start: {}", i,
+                                          farm.plan().pieces[std::size_t(i)].label, explainReason(s.reason)));
+  }
+  if (join) result.failures.push_back(fmt::format("join: can never start: {}", explainReason(join->reason)));
+  if (!farm.arrayJob().empty()) farm.scheduler().cancel(farm.arrayJob());
+  for (const auto& job : pieceJobs)
+    if (!job.empty() && job.substr(0, job.find('_')) != farm.arrayJob()) farm.scheduler().cancel(job);
+  if (!farm.joinJob().empty()) farm.scheduler().cancel(farm.joinJob());
+  result.failures.push_back("the queued tasks were cancelled: change the request (--cpus-per-task, --mem, --time, "
+                            "--partition) and run again");
+  result.exitCode = 2;
+  result.cannotStart = true;
+}
+
+/// Reports how the submission ended without its outputs: every failed piece, else the join;
+/// a join still waiting for a failed piece is cancelled.
+void reportEnded(Farm& farm, const std::vector<PieceStatus>& states, const std::vector<int>& failed,
+                 const TaskRecord& join, WaitResult& result) {
+  for (int i : failed) {
+    const PieceStatus& s = states[std::size_t(i)];
+    result.failures.push_back(pieceFailure(farm, i, s));
+    if (result.exitCode == 0) result.exitCode = failedExitCode(s.exitCode);
+  }
+  if (failed.empty()) {
+    result.failures.push_back(fmt::format("join: {}{}; log: {}", join.state.empty() ? "ended" : join.state,
+                                          join.exitCode.empty() ? "" : ", exit code " + join.exitCode,
+                                          farm.joinLog().string()));
+    result.exitCode = failedExitCode(join.exitCode);
+  } else if (!farm.joinJob().empty() && liveState(join.state)) {
+    farm.scheduler().cancel(farm.joinJob());  // its dependency can never be satisfied
+  }
+}
+}  // namespace
+
 WaitResult Farm::wait(const std::function<void(int, int, const std::string&)>& progress, const std::atomic<bool>* stop) {
   WaitResult result;
   const int total = int(m_plan.pieces.size());
@@ -506,99 +615,26 @@ WaitResult Farm::wait(const std::function<void(int, int, const std::string&)>& p
       return result;
     }
     const auto states = status();
-    int done = 0, running = 0, queued = 0;
-    std::vector<int> failed, neverStart;
-    std::map<std::string, int> reasons;  // why the queued ones wait
-    for (int i = 0; i < total; ++i) {
-      const PieceStatus& s = states[std::size_t(i)];
-      switch (s.state) {
-        case PieceState::Done: ++done; break;
-        case PieceState::Running: ++running; break;
-        case PieceState::Queued:
-          ++queued;
-          if (!s.reason.empty()) ++reasons[s.reason];
-          if (reasonIsPermanent(s.reason)) neverStart.push_back(i);
-          break;
-        case PieceState::Failed: failed.push_back(i); break;
-        case PieceState::Missing: failed.push_back(i); break;
-      }
-    }
+    const PieceCounts counts = countPieces(states);
     TaskRecord join;
     if (!m_plan.join.empty() && !m_joinJob.empty())
       for (const auto& [id, record] : m_scheduler->query(m_joinJob)) join = record;
     // A task that can never start as submitted (more CPUs than any node has): said, and
     // cancelled, instead of "queued" forever.
-    const bool joinNeverStarts = done == total && join.state == "PENDING" && reasonIsPermanent(join.reason);
-    if (!neverStart.empty() || joinNeverStarts) {
-      for (int i : neverStart) {
-        const PieceStatus& s = states[std::size_t(i)];
-        result.failures.push_back(fmt::format("piece {} ({}): can never start: {}", i,
-                                              m_plan.pieces[std::size_t(i)].label, explainReason(s.reason)));
-      }
-      if (joinNeverStarts) result.failures.push_back(fmt::format("join: can never start: {}", explainReason(join.reason)));
-      if (!m_arrayJob.empty()) m_scheduler->cancel(m_arrayJob);
-      for (const auto& job : m_pieceJobs)
-        if (!job.empty() && job.substr(0, job.find('_')) != m_arrayJob) m_scheduler->cancel(job);
-      if (!m_joinJob.empty()) m_scheduler->cancel(m_joinJob);
-      result.failures.push_back("the queued tasks were cancelled: change the request (--cpus-per-task, --mem, --time, "
-                                "--partition) and run again");
-      result.exitCode = 2;
-      result.cannotStart = true;
+    const bool joinNeverStarts = counts.done == total && join.state == "PENDING" && reasonIsPermanent(join.reason);
+    if (!counts.neverStart.empty() || joinNeverStarts) {
+      cancelNeverStarting(*this, m_pieceJobs, states, counts.neverStart, joinNeverStarts ? &join : nullptr, result);
       return result;
     }
-    const bool live = running + queued > 0;
+    const bool live = counts.running + counts.queued > 0;
     const bool joinEnded = !m_plan.join.empty() && (m_joinJob.empty() || !liveState(join.state));
-    if (!live && (!failed.empty() || joinEnded)) {
+    if (!live && (!counts.failed.empty() || joinEnded)) {
       if (joinedBefore()) continue;  // the join finished between the two looks
-      for (int i : failed) {
-        const PieceStatus& s = states[std::size_t(i)];
-        std::string what = s.state == PieceState::Missing ? "never submitted" : (s.slurmState.empty() ? "failed" : s.slurmState);
-        if (s.slurmState == "COMPLETED" || (!s.reason.empty() && s.reason != "NonZeroExitCode"))
-          what += fmt::format(" ({})", s.reason);
-        result.failures.push_back(fmt::format("piece {} ({}): {}{}; log: {}", i, m_plan.pieces[std::size_t(i)].label,
-                                              what, s.exitCode.empty() ? "" : ", exit code " + s.exitCode,
-                                              pieceLog(i).string()));
-        if (result.exitCode == 0) {
-          int code = 0;
-          try {
-            code = parseInt(s.exitCode.substr(0, s.exitCode.find(':')), "an exit code", 0, 255);
-          } catch (const Error&) {
-          }
-          result.exitCode = code > 0 ? code : 1;
-        }
-      }
-      if (failed.empty()) {
-        result.failures.push_back(fmt::format("join: {}{}; log: {}", join.state.empty() ? "ended" : join.state,
-                                              join.exitCode.empty() ? "" : ", exit code " + join.exitCode,
-                                              joinLog().string()));
-        int code = 0;
-        try {
-          code = parseInt(join.exitCode.substr(0, join.exitCode.find(':')), "an exit code", 0, 255);
-        } catch (const Error&) {
-        }
-        result.exitCode = code > 0 ? code : 1;
-      } else if (!m_joinJob.empty() && liveState(join.state)) {
-        m_scheduler->cancel(m_joinJob);  // its dependency can never be satisfied
-      }
+      reportEnded(*this, states, counts.failed, join, result);
       return result;
     }
-    std::string line = fmt::format("{}/{} pieces done, {} running, {} queued", done, total, running, queued);
-    if (!reasons.empty()) {
-      const auto most = std::max_element(reasons.begin(), reasons.end(),
-                                         [](const auto& a, const auto& b) { return a.second < b.second; });
-      line += fmt::format(" ({})", explainReason(most->first));
-    }
-    if (!failed.empty()) line += fmt::format(", {} failed", failed.size());
-    if (done == total && !m_plan.join.empty()) {
-      line += join.state == "RUNNING" ? " · joining"
-                                      : fmt::format(" · join queued{}", join.reason.empty() || join.reason == "Dependency"
-                                                                            ? ""
-                                                                            : " (" + explainReason(join.reason) + ")");
-    }
-    if ((queued > 0 && running == 0) || (done == total && join.state == "PENDING")) {
-      for (const auto& problem : m_scheduler->nodeProblems()) line += "; " + problem;
-    }
-    if (progress && line != lastLine) progress(done, total, line);
+    const std::string line = progressLine(counts, total, !m_plan.join.empty(), join, *m_scheduler);
+    if (progress && line != lastLine) progress(counts.done, total, line);
     lastLine = line;
     for (int i = 0; i < 6 && !stopped(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }

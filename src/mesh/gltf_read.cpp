@@ -145,7 +145,22 @@ private:
 
   void readMaterials(Model& model);
   void readNodes(Model& model);
+  /// Each node's children and parent, checked: every child in range, no node with two parents.
+  void linkNodes(const json& nodes, std::vector<std::vector<std::size_t>>& children,
+                 std::vector<std::size_t>& parent) const;
+  /// Fails when a node is its own ancestor.
+  void checkAcyclic(const std::vector<std::size_t>& parent) const;
+  /// The nodes to walk from: the default scene's (or the first scene's), else every parentless node.
+  std::vector<std::size_t> rootNodes(std::size_t nodeCount, const std::vector<std::size_t>& parent) const;
+  /// The lights nodes may carry (KHR_lights_punctual): name, directional.
+  std::vector<std::pair<std::string, bool>> lightDefinitions() const;
   void readPrimitive(Model& model, std::size_t meshIndex, std::size_t p, const mat4& world, const std::string& nodeName);
+  /// Reads a primitive's optional attributes (NORMAL, TEXCOORD_0, TANGENT, COLOR_0), each of `vertices` elements.
+  void readAttributes(Primitive& out, const json& attributes, const std::string& aw, std::size_t accessors,
+                      std::size_t vertices) const;
+  /// A primitive's corners: its indices, else its vertices in order.
+  std::vector<std::uint32_t> primitiveCorners(const json& g, const std::string& where, std::size_t accessors,
+                                              std::size_t vertices) const;
   int imageOfTexture(const json& textureInfo, const std::string& where);
   void readImages(Model& model);
 
@@ -453,6 +468,25 @@ void Reader::readMaterials(Model& model) {
   }
 }
 
+/// A primitive's triangles from its corners in glTF mode 4 (triangles), 5 (strip) or 6 (fan).
+std::vector<std::uint32_t> triangulateCorners(std::uint64_t mode, std::vector<std::uint32_t> corners) {
+  std::vector<std::uint32_t> out;
+  if (mode == 4) {
+    corners.resize(corners.size() / 3 * 3);
+    out = std::move(corners);
+  } else {  // 5 strip, 6 fan: as triangles, every other strip triangle turned to keep the winding
+    for (std::size_t i = 2; i < corners.size(); ++i) {
+      if (mode == 5) {
+        const bool odd = i % 2 == 1;
+        out.insert(out.end(), {corners[i - 2], corners[odd ? i : i - 1], corners[odd ? i - 1 : i]});
+      } else {
+        out.insert(out.end(), {corners[0], corners[i - 1], corners[i]});
+      }
+    }
+  }
+  return out;
+}
+
 void Reader::readPrimitive(Model& model, std::size_t meshIndex, std::size_t p, const mat4& world, const std::string& nodeName) {
   const json& mesh = array(m_json, "meshes")[meshIndex];
   const std::string mw = at("meshes", meshIndex);
@@ -482,29 +516,38 @@ void Reader::readPrimitive(Model& model, std::size_t meshIndex, std::size_t p, c
     bad(where, fmt::format("the scene's instances make over {} vertices, more than glint reads", kMaxVertices));
   out.positions.resize(vertices);
   if (!pos.empty()) std::memcpy(out.positions.data(), pos.data(), pos.size() * sizeof(float));
+  readAttributes(out, *attributes, aw, accessors, vertices);
+  out.indices = triangulateCorners(mode, primitiveCorners(g, where, accessors, vertices));
+  if (out.indices.empty()) return;
+  model.primitives.push_back(std::move(out));
+}
+
+void Reader::readAttributes(Primitive& out, const json& attributes, const std::string& aw, std::size_t accessors,
+                            std::size_t vertices) const {
+  int n = 0;
   const auto same = [&](const std::vector<float>& v, int components, const char* name) {
     if (v.size() / std::size_t(components) != vertices)
       bad(field(aw, name), fmt::format("has {} elements for {} positions", v.size() / std::size_t(components), vertices));
   };
-  if (const auto a = index(*attributes, "NORMAL", aw, accessors, "accessors")) {
+  if (const auto a = index(attributes, "NORMAL", aw, accessors, "accessors")) {
     const std::vector<float> v = floats(*a, {3}, field(aw, "NORMAL"), n);
     same(v, 3, "NORMAL");
     out.normals.resize(vertices);
     if (!v.empty()) std::memcpy(out.normals.data(), v.data(), v.size() * sizeof(float));
   }
-  if (const auto a = index(*attributes, "TEXCOORD_0", aw, accessors, "accessors")) {
+  if (const auto a = index(attributes, "TEXCOORD_0", aw, accessors, "accessors")) {
     const std::vector<float> v = floats(*a, {2}, field(aw, "TEXCOORD_0"), n);
     same(v, 2, "TEXCOORD_0");
     out.uvs.resize(vertices);
     for (std::size_t i = 0; i < vertices; ++i) out.uvs[i] = vec2(v[2 * i], 1.0f - v[2 * i + 1]);  // glTF's t down → v up
   }
-  if (const auto a = index(*attributes, "TANGENT", aw, accessors, "accessors")) {
+  if (const auto a = index(attributes, "TANGENT", aw, accessors, "accessors")) {
     const std::vector<float> v = floats(*a, {4}, field(aw, "TANGENT"), n);
     same(v, 4, "TANGENT");
     out.tangents.resize(vertices);
     if (!v.empty()) std::memcpy(out.tangents.data(), v.data(), v.size() * sizeof(float));
   }
-  if (const auto a = index(*attributes, "COLOR_0", aw, accessors, "accessors")) {
+  if (const auto a = index(attributes, "COLOR_0", aw, accessors, "accessors")) {
     int c = 0;
     const std::vector<float> v = floats(*a, {3, 4}, field(aw, "COLOR_0"), c);
     same(v, c, "COLOR_0");
@@ -512,6 +555,10 @@ void Reader::readPrimitive(Model& model, std::size_t meshIndex, std::size_t p, c
     for (std::size_t i = 0; i < vertices; ++i)
       out.colors[i] = vec4(v[i * std::size_t(c)], v[i * std::size_t(c) + 1], v[i * std::size_t(c) + 2], c == 4 ? v[i * 4 + 3] : 1.0f);
   }
+}
+
+std::vector<std::uint32_t> Reader::primitiveCorners(const json& g, const std::string& where, std::size_t accessors,
+                                                    std::size_t vertices) const {
   std::vector<std::uint32_t> corners;
   if (const auto a = index(g, "indices", where, accessors, "accessors")) {
     corners = indices(*a, vertices, field(where, "indices"));
@@ -520,21 +567,7 @@ void Reader::readPrimitive(Model& model, std::size_t meshIndex, std::size_t p, c
     corners.resize(vertices);
     for (std::size_t i = 0; i < vertices; ++i) corners[i] = std::uint32_t(i);
   }
-  if (mode == 4) {
-    corners.resize(corners.size() / 3 * 3);
-    out.indices = std::move(corners);
-  } else {  // 5 strip, 6 fan: as triangles, every other strip triangle turned to keep the winding
-    for (std::size_t i = 2; i < corners.size(); ++i) {
-      if (mode == 5) {
-        const bool odd = i % 2 == 1;
-        out.indices.insert(out.indices.end(), {corners[i - 2], corners[odd ? i : i - 1], corners[odd ? i - 1 : i]});
-      } else {
-        out.indices.insert(out.indices.end(), {corners[0], corners[i - 1], corners[i]});
-      }
-    }
-  }
-  if (out.indices.empty()) return;
-  model.primitives.push_back(std::move(out));
+  return corners;
 }
 
 mat4 localMatrix(const std::vector<double>& matrix, const std::vector<double>& t, const std::vector<double>& r, const std::vector<double>& s) {
@@ -550,13 +583,8 @@ mat4 localMatrix(const std::vector<double>& matrix, const std::vector<double>& t
   return m;
 }
 
-void Reader::readNodes(Model& model) {
-  const json& nodes = array(m_json, "nodes");
-  const std::size_t meshes = array(m_json, "meshes").size();
-  // The node graph, checked as glTF requires before anything walks it: every child index
-  // in range, no node with two parents, no cycle (a node its own ancestor).
-  std::vector<std::vector<std::size_t>> children(nodes.size());
-  std::vector<std::size_t> parent(nodes.size(), SIZE_MAX);
+void Reader::linkNodes(const json& nodes, std::vector<std::vector<std::size_t>>& children,
+                       std::vector<std::size_t>& parent) const {
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const std::string where = at("nodes", i);
     const json* c = member(nodes[i], "children", where);
@@ -573,10 +601,13 @@ void Reader::readNodes(Model& model) {
       children[i].push_back(child);
     }
   }
+}
+
+void Reader::checkAcyclic(const std::vector<std::size_t>& parent) const {
   // A cycle: walking up from any node never reaches a root. Marked nodes are known to
   // reach one, so each node is walked once.
-  std::vector<char> state(nodes.size(), 0);  // 0 unknown, 1 on the current walk, 2 reaches a root
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
+  std::vector<char> state(parent.size(), 0);  // 0 unknown, 1 on the current walk, 2 reaches a root
+  for (std::size_t i = 0; i < parent.size(); ++i) {
     std::size_t n = i;
     std::vector<std::size_t> walk;
     while (n != SIZE_MAX && state[n] == 0) {
@@ -587,6 +618,9 @@ void Reader::readNodes(Model& model) {
     if (n != SIZE_MAX && state[n] == 1) bad(at("nodes", n), "is its own ancestor (a cycle in the node tree)");
     for (std::size_t w : walk) state[w] = 2;
   }
+}
+
+std::vector<std::size_t> Reader::rootNodes(std::size_t nodeCount, const std::vector<std::size_t>& parent) const {
   // The roots: the default scene's (or the first scene's), else every parentless node.
   std::vector<std::size_t> roots;
   const json& scenes = array(m_json, "scenes");
@@ -598,17 +632,22 @@ void Reader::readNodes(Model& model) {
     std::set<std::size_t> seen;
     for (std::size_t k = 0; list && k < list->size(); ++k) {
       const json& r = (*list)[k];
-      if (!r.is_number_unsigned() || r.get<std::uint64_t>() >= nodes.size())
-        bad(at(field(sw, "nodes"), k), fmt::format("is {}, not one of the file's {} nodes", printable(r.dump()), nodes.size()));
+      if (!r.is_number_unsigned() || r.get<std::uint64_t>() >= nodeCount)
+        bad(at(field(sw, "nodes"), k),
+            fmt::format("is {}, not one of the file's {} nodes", printable(r.dump()), nodeCount));
       const auto root = std::size_t(r.get<std::uint64_t>());
       if (parent[root] != SIZE_MAX) bad(at(field(sw, "nodes"), k), fmt::format("node {} is a child, not a root", root));
       if (!seen.insert(root).second) bad(at(field(sw, "nodes"), k), fmt::format("node {} is listed twice", root));
       roots.push_back(root);
     }
   } else {
-    for (std::size_t i = 0; i < nodes.size(); ++i)
+    for (std::size_t i = 0; i < nodeCount; ++i)
       if (parent[i] == SIZE_MAX) roots.push_back(i);
   }
+  return roots;
+}
+
+std::vector<std::pair<std::string, bool>> Reader::lightDefinitions() const {
   // The lights nodes may carry (KHR_lights_punctual).
   std::vector<std::pair<std::string, bool>> lightDefs;  // name, directional
   if (const json* ext = member(m_json, "extensions", ""); ext && ext->is_object())
@@ -618,6 +657,20 @@ void Reader::readNodes(Model& model) {
           const std::string w = at("extensions.KHR_lights_punctual.lights", i);
           lightDefs.emplace_back(string((*lights)[i], "name", w), string((*lights)[i], "type", w) == "directional");
         }
+  return lightDefs;
+}
+
+void Reader::readNodes(Model& model) {
+  const json& nodes = array(m_json, "nodes");
+  const std::size_t meshes = array(m_json, "meshes").size();
+  // The node graph, checked as glTF requires before anything walks it: every child index
+  // in range, no node with two parents, no cycle (a node its own ancestor).
+  std::vector<std::vector<std::size_t>> children(nodes.size());
+  std::vector<std::size_t> parent(nodes.size(), SIZE_MAX);
+  linkNodes(nodes, children, parent);
+  checkAcyclic(parent);
+  const std::vector<std::size_t> roots = rootNodes(nodes.size(), parent);
+  const std::vector<std::pair<std::string, bool>> lightDefs = lightDefinitions();
   // Depth first, pre-order, children in order: the order Assimp walks a scene in. An
   // explicit stack: a chain of 100,000 nodes is a file, not a crash.
   std::vector<std::pair<std::size_t, mat4>> stack;

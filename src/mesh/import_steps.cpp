@@ -250,7 +250,11 @@ void expandPerCorner(PolyMesh& mesh) {
   mesh = std::move(out);
 }
 
-std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::vector<std::uint32_t>& triangles) {
+namespace {
+
+/// Each triangle's unit normal on its three vertices (a later triangle's wins); NaN on a
+/// vertex that no triangle uses.
+std::vector<vec3> faceNormals(const std::vector<vec3>& positions, const std::vector<std::uint32_t>& triangles) {
   const std::size_t n = positions.size();
   const float qnan = std::numeric_limits<float>::quiet_NaN();
   std::vector<vec3> faceNormal(n, vec3(qnan));
@@ -262,70 +266,23 @@ std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::v
     if (length > 0.0f) normal *= 1.0f / length;
     for (int k = 0; k < 3; ++k) faceNormal[triangles[t + std::size_t(k)]] = normal;
   }
-  // Positions within ε = 1e-4 · bounding-box diagonal (Assimp's ComputePositionEpsilon)
-  // are one: a grid of ε cells finds them in the 27 cells around a vertex.
-  vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  for (const vec3& p : positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  const float epsilon = n == 0 ? 0.0f : std::sqrt(dot3(hi - lo, hi - lo)) * 1e-4f;
-  const float squareEpsilon = epsilon * epsilon;
-  // Cells in double: a box wider than float's range makes ε infinite, and a float cell
-  // index could then be NaN or past 2⁶³ (undefined to convert; found by fuzz/mesh.cpp).
-  const glm::dvec3 extent = glm::dvec3(hi) - glm::dvec3(lo);
-  const double diagonal = std::sqrt(glm::dot(extent, extent));
-  const double cell = epsilon > 0.0f && std::isfinite(epsilon) ? double(epsilon)
-                      : diagonal > 0.0 && std::isfinite(diagonal) ? diagonal * 1e-4 : 1.0;
-  const auto cellOf = [&](const vec3& p) {
-    return glm::i64vec3(std::floor((double(p.x) - double(lo.x)) / cell), std::floor((double(p.y) - double(lo.y)) / cell),
-                        std::floor((double(p.z) - double(lo.z)) / cell));
-  };
-  const auto key = [](const glm::i64vec3& c) { return hashKey(std::uint64_t(c.x), std::uint64_t(c.y), std::uint64_t(c.z)); };
-  // The grid as a flat table: the vertices sorted by cell key (in parallel), and an
-  // open-addressing table from a key to its run of vertices. (A hash multimap of one node
-  // per vertex spent 3/4 of a small bake of a 262k-triangle OBJ chasing its bucket lists.)
-  struct Entry {
-    std::uint64_t key;
-    std::uint32_t index;
-  };
-  std::vector<Entry> entries(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) entries[i] = {key(cellOf(positions[i])), std::uint32_t(i)};
-  });
-  tbb::parallel_sort(entries.begin(), entries.end(),
-                     [](const Entry& a, const Entry& b) { return a.key < b.key || (a.key == b.key && a.index < b.index); });
-  struct Run {
-    std::uint64_t key = 0;
-    std::uint32_t begin = 0, end = 0;  // end == begin: an empty slot
-  };
-  std::size_t capacity = 16;
-  while (capacity < 2 * n) capacity *= 2;
-  std::vector<Run> runs(capacity);
-  const auto slotOf = [&](std::uint64_t k) { return std::size_t(k * 0x9E3779B97F4A7C15ull >> 20) & (capacity - 1); };
-  for (std::size_t i = 0; i < n;) {
-    std::size_t j = i + 1;
-    while (j < n && entries[j].key == entries[i].key) ++j;
-    std::size_t slot = slotOf(entries[i].key);
-    while (runs[slot].end != runs[slot].begin) slot = (slot + 1) & (capacity - 1);
-    runs[slot] = {entries[i].key, std::uint32_t(i), std::uint32_t(j)};
-    i = j;
-  }
-  const auto runOf = [&](std::uint64_t k) -> const Run* {
-    for (std::size_t slot = slotOf(k);; slot = (slot + 1) & (capacity - 1)) {
-      const Run& run = runs[slot];
-      if (run.end == run.begin) return nullptr;
-      if (run.key == k) return &run;
-    }
-  };
+  return faceNormal;
+}
 
-  std::vector<vec3> result(n, vec3(0.0f));
-  std::vector<char> had(n, 0);
-  std::vector<std::uint32_t> found;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (had[i]) continue;
-    found.clear();
-    const vec3 p = positions[i];
+/// Finds the vertices at one position: positions within ε = 1e-4 · bounding-box diagonal
+/// (Assimp's ComputePositionEpsilon) are one, and a grid of ε cells finds them in the 27
+/// cells around a vertex.
+class PositionGrid {
+public:
+  explicit PositionGrid(const std::vector<vec3>& positions) : m_positions(positions) {
+    measure();
+    sortByCell();
+    buildRuns();
+  }
+
+  /// Appends the vertices within ε of vertex i to `found`, cell by cell.
+  void near(std::size_t i, std::vector<std::uint32_t>& found) const {
+    const vec3 p = m_positions[i];
     const glm::i64vec3 c = cellOf(p);
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
@@ -333,11 +290,113 @@ std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::v
           const glm::i64vec3 neighbour = c + glm::i64vec3(dx, dy, dz);
           const Run* run = runOf(key(neighbour));
           for (std::uint32_t k = run ? run->begin : 0; run && k != run->end; ++k) {
-            const std::uint32_t j = entries[k].index;
-            const vec3 d = positions[j] - p;
-            if (cellOf(positions[j]) == neighbour && dot3(d, d) < squareEpsilon) found.push_back(j);
+            const std::uint32_t j = m_entries[k].index;
+            const vec3 d = m_positions[j] - p;
+            if (cellOf(m_positions[j]) == neighbour && dot3(d, d) < m_squareEpsilon) found.push_back(j);
           }
         }
+  }
+
+private:
+  struct Entry {
+    std::uint64_t key;
+    std::uint32_t index;
+  };
+  struct Run {
+    std::uint64_t key = 0;
+    std::uint32_t begin = 0, end = 0;  // end == begin: an empty slot
+  };
+
+  /// The bounding box's low corner, ε and the cell size.
+  void measure() {
+    const std::size_t n = m_positions.size();
+    vec3 hi(-std::numeric_limits<float>::max());
+    for (const vec3& p : m_positions) {
+      m_lo = glm::min(m_lo, p);
+      hi = glm::max(hi, p);
+    }
+    const float epsilon = n == 0 ? 0.0f : std::sqrt(dot3(hi - m_lo, hi - m_lo)) * 1e-4f;
+    m_squareEpsilon = epsilon * epsilon;
+    // Cells in double: a box wider than float's range makes ε infinite, and a float cell
+    // index could then be NaN or past 2⁶³ (undefined to convert; found by fuzz/mesh.cpp).
+    const glm::dvec3 extent = glm::dvec3(hi) - glm::dvec3(m_lo);
+    const double diagonal = std::sqrt(glm::dot(extent, extent));
+    m_cell = epsilon > 0.0f && std::isfinite(epsilon) ? double(epsilon)
+             : diagonal > 0.0 && std::isfinite(diagonal) ? diagonal * 1e-4 : 1.0;
+  }
+
+  glm::i64vec3 cellOf(const vec3& p) const {
+    return glm::i64vec3(std::floor((double(p.x) - double(m_lo.x)) / m_cell),
+                        std::floor((double(p.y) - double(m_lo.y)) / m_cell),
+                        std::floor((double(p.z) - double(m_lo.z)) / m_cell));
+  }
+  static std::uint64_t key(const glm::i64vec3& c) {
+    return hashKey(std::uint64_t(c.x), std::uint64_t(c.y), std::uint64_t(c.z));
+  }
+
+  // The grid as a flat table: the vertices sorted by cell key (in parallel), and an
+  // open-addressing table from a key to its run of vertices. (A hash multimap of one node
+  // per vertex spent 3/4 of a small bake of a 262k-triangle OBJ chasing its bucket lists.)
+
+  /// Sorts the vertices by cell key, then index.
+  void sortByCell() {
+    const std::size_t n = m_positions.size();
+    m_entries.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) m_entries[i] = {key(cellOf(m_positions[i])), std::uint32_t(i)};
+    });
+    tbb::parallel_sort(m_entries.begin(), m_entries.end(), [](const Entry& a, const Entry& b) {
+      return a.key < b.key || (a.key == b.key && a.index < b.index);
+    });
+  }
+
+  /// Fills the open-addressing table with each key's run of sorted vertices.
+  void buildRuns() {
+    const std::size_t n = m_positions.size();
+    while (m_capacity < 2 * n) m_capacity *= 2;
+    m_runs.resize(m_capacity);
+    for (std::size_t i = 0; i < n;) {
+      std::size_t j = i + 1;
+      while (j < n && m_entries[j].key == m_entries[i].key) ++j;
+      std::size_t slot = slotOf(m_entries[i].key);
+      while (m_runs[slot].end != m_runs[slot].begin) slot = (slot + 1) & (m_capacity - 1);
+      m_runs[slot] = {m_entries[i].key, std::uint32_t(i), std::uint32_t(j)};
+      i = j;
+    }
+  }
+
+  std::size_t slotOf(std::uint64_t k) const { return std::size_t(k * 0x9E3779B97F4A7C15ull >> 20) & (m_capacity - 1); }
+  const Run* runOf(std::uint64_t k) const {
+    for (std::size_t slot = slotOf(k);; slot = (slot + 1) & (m_capacity - 1)) {
+      const Run& run = m_runs[slot];
+      if (run.end == run.begin) return nullptr;
+      if (run.key == k) return &run;
+    }
+  }
+
+  const std::vector<vec3>& m_positions;
+  vec3 m_lo{std::numeric_limits<float>::max()};
+  float m_squareEpsilon = 0.0f;
+  double m_cell = 1.0;
+  std::vector<Entry> m_entries;
+  std::size_t m_capacity = 16;
+  std::vector<Run> m_runs;
+};
+
+}  // namespace
+
+std::vector<vec3> smoothNormals(const std::vector<vec3>& positions, const std::vector<std::uint32_t>& triangles) {
+  const std::size_t n = positions.size();
+  const std::vector<vec3> faceNormal = faceNormals(positions, triangles);
+  const PositionGrid grid(positions);
+
+  std::vector<vec3> result(n, vec3(0.0f));
+  std::vector<char> had(n, 0);
+  std::vector<std::uint32_t> found;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (had[i]) continue;
+    found.clear();
+    grid.near(i, found);
     vec3 sum(0.0f);
     for (std::uint32_t j : found) {
       if (!std::isnan(faceNormal[j].x)) sum += faceNormal[j];

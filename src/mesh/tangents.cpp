@@ -206,29 +206,11 @@ vec3 anyTangent(const vec3& n) {
   return notZero(t) ? glm::normalize(t) : vec3(1.0f, 0.0f, 0.0f);
 }
 
-}  // namespace
-
-std::vector<vec4> computeCornerTangents(const Mesh& mesh) {
-  mesh.validate("mesh for tangents");
-  if (!mesh.hasNormals()) fail(ErrorKind::Input, "mesh for tangents: has no normals");
-  if (!mesh.hasUvs()) fail(ErrorKind::Input, "mesh for tangents: has no UVs");
-
-  const std::vector<std::uint32_t> weld = weldVertices(mesh);
-  const std::size_t triCount = mesh.triangleCount();
-  std::vector<std::uint32_t> tris(mesh.indices.size());
-  for (std::size_t i = 0; i < tris.size(); ++i) tris[i] = weld[mesh.indices[i]];
-
-  std::vector<TriInfo> info(triCount);
-  std::vector<int> good;
-  good.reserve(triCount);
-  for (std::size_t t = 0; t < triCount; ++t) {
-    info[t] = initTriangle(mesh, &mesh.indices[3 * t], &tris[3 * t]);
-    if (!(info[t].flags & kDegenerate)) good.push_back(int(t));
-  }
-  findNeighbors(tris, good, info);
-
-  // Groups: one per vertex and connected same-orientation fan; UV-less triangles never
-  // start a group but join the first one that reaches them.
+/// The groups: one per vertex and connected same-orientation fan, grown from the good
+/// triangles in order; UV-less triangles never start a group but join the first one that
+/// reaches them.
+std::vector<Group> buildGroups(const std::vector<std::uint32_t>& tris, const std::vector<int>& good,
+                               std::vector<TriInfo>& info) {
   std::vector<Group> groups;
   for (int t : good) {
     for (int k = 0; k < 3; ++k) {
@@ -239,11 +221,14 @@ std::vector<vec4> computeCornerTangents(const Mesh& mesh) {
       growGroup(tris, info, groups, id, t);
     }
   }
+  return groups;
+}
 
-  std::vector<vec4> corners(mesh.indices.size(), vec4(0.0f));
-  std::vector<char> assigned(mesh.indices.size(), 0);
-  // Within a group, triangles whose tangents point exactly opposite would form separate
-  // subgroups (MikkTSpace's 180° threshold: cos > -1); identical member lists share a result.
+/// Sets the frame of each group's corners from its subgroup's averaged tangent: within a
+/// group, triangles whose tangents point exactly opposite form separate subgroups, and
+/// identical member lists share a result.
+void assignGroupTangents(const Mesh& mesh, const std::vector<std::uint32_t>& tris, const std::vector<TriInfo>& info,
+                         const std::vector<Group>& groups, std::vector<vec4>& corners, std::vector<char>& assigned) {
   std::vector<int> members;
   std::vector<std::pair<std::vector<int>, vec3>> subgroups;
   for (const Group& group : groups) {
@@ -270,8 +255,12 @@ std::vector<vec4> computeCornerTangents(const Mesh& mesh) {
       assigned[corner] = 1;
     }
   }
+}
 
-  // Degenerate triangles copy the frame of the first good corner on the same vertex.
+/// Frames for the corners no group set: a degenerate triangle's corner copies the first
+/// good corner on the same vertex; any other gets an arbitrary tangent.
+void fillUnassigned(const Mesh& mesh, const std::vector<std::uint32_t>& tris, const std::vector<TriInfo>& info,
+                    const std::vector<int>& good, std::vector<vec4>& corners, const std::vector<char>& assigned) {
   std::unordered_map<std::uint32_t, std::size_t> firstGoodCorner;
   for (int t : good) {
     for (std::size_t k = 0; k < 3; ++k) firstGoodCorner.try_emplace(tris[3 * std::size_t(t) + k], 3 * std::size_t(t) + k);
@@ -288,6 +277,41 @@ std::vector<vec4> computeCornerTangents(const Mesh& mesh) {
     // Unreached UV-less corners and isolated degenerate triangles.
     corners[c] = vec4(anyTangent(mesh.normals[mesh.indices[c]]), 1.0f);
   }
+}
+
+}  // namespace
+
+std::vector<vec4> computeCornerTangents(const Mesh& mesh) {
+  mesh.validate("mesh for tangents");
+  if (!mesh.hasNormals()) fail(ErrorKind::Input, "mesh for tangents: has no normals");
+  if (!mesh.hasUvs()) fail(ErrorKind::Input, "mesh for tangents: has no UVs");
+
+  const std::vector<std::uint32_t> weld = weldVertices(mesh);
+  const std::size_t triCount = mesh.triangleCount();
+  std::vector<std::uint32_t> tris(mesh.indices.size());
+  for (std::size_t i = 0; i < tris.size(); ++i) tris[i] = weld[mesh.indices[i]];
+
+  std::vector<TriInfo> info(triCount);
+  std::vector<int> good;
+  good.reserve(triCount);
+  for (std::size_t t = 0; t < triCount; ++t) {
+    info[t] = initTriangle(mesh, &mesh.indices[3 * t], &tris[3 * t]);
+    if (!(info[t].flags & kDegenerate)) good.push_back(int(t));
+  }
+  findNeighbors(tris, good, info);
+
+  // Groups: one per vertex and connected same-orientation fan; UV-less triangles never
+  // start a group but join the first one that reaches them.
+  const std::vector<Group> groups = buildGroups(tris, good, info);
+
+  std::vector<vec4> corners(mesh.indices.size(), vec4(0.0f));
+  std::vector<char> assigned(mesh.indices.size(), 0);
+  // Within a group, triangles whose tangents point exactly opposite would form separate
+  // subgroups (MikkTSpace's 180° threshold: cos > -1); identical member lists share a result.
+  assignGroupTangents(mesh, tris, info, groups, corners, assigned);
+
+  // Degenerate triangles copy the frame of the first good corner on the same vertex.
+  fillUnassigned(mesh, tris, info, good, corners, assigned);
   return corners;
 }
 

@@ -313,19 +313,24 @@ Mesh makeMalletMesh(int segments, float headRadius = 0.075f) {
   return m;
 }
 
-/// One module of instruments around `c`. One function on purpose: its parts draw from `rng`
-/// in this order, and the stage's geometry (and so its cached cut and the golden pictures)
-/// depends on that order; each part is a paragraph of its own below.
-void addInstrumentModule(PartBuilder& b, InstrumentMachine& out, vec3 c, int detail, HashSequence& rng) {
-  const int big = 8 + 6 * detail;     // drums, collectors
-  const int pipe = 6 + 4 * detail;    // pipes
-  const int thin = 4 + 2 * detail;    // posts, stands
-  const int bands = detail;           // bands along straight tubes
-  const vec3 up(0.0f, 1.0f, 0.0f);
-  const float deck = 0.3f;
-  b.material(MachineMaterial::Platform);
-  b.box(c + vec3(-2.6f, 0.0f, -2.6f), c + vec3(2.6f, deck, 2.6f));
+/// One module's sizes: segment counts from the detail level, the deck's height.
+struct ModuleSizes {
+  explicit ModuleSizes(int detail)
+      : big(8 + 6 * detail), pipe(6 + 4 * detail), thin(4 + 2 * detail), bands(detail), detail(detail) {}
+  int big;     ///< drums, collectors
+  int pipe;    ///< pipes
+  int thin;    ///< posts, stands
+  int bands;   ///< bands along straight tubes
+  int detail;
+  vec3 up{0.0f, 1.0f, 0.0f};
+  float deck = 0.3f;
+};
 
+/// Two drums at the front, each with a mallet on a post to its right.
+void addDrums(PartBuilder& b, InstrumentMachine& out, vec3 c, const ModuleSizes& z, HashSequence& rng) {
+  const int big = z.big, bands = z.bands;
+  const vec3 up = z.up;
+  const float deck = z.deck;
   // Two drums at the front, each with a mallet on a post to its right.
   const vec2 drumAt[2] = {{-1.35f, 1.3f}, {0.35f, 1.55f}};
   for (int i = 0; i < 2; ++i) {
@@ -340,7 +345,13 @@ void addInstrumentModule(PartBuilder& b, InstrumentMachine& out, vec3 c, int det
     b.box(post + vec3(-0.035f, 0.0f, -0.035f), post + vec3(0.035f, h + 0.5f, 0.035f));
     out.mallets.push_back({post + vec3(0.0f, h + 0.5f, 0.0f), int(out.drums.size()) - 1});
   }
+}
 
+/// A cymbal stand at the front right.
+void addCymbalStand(PartBuilder& b, InstrumentMachine& out, vec3 c, const ModuleSizes& z, HashSequence& rng) {
+  const int pipe = z.pipe, thin = z.thin, bands = z.bands;
+  const vec3 up = z.up;
+  const float deck = z.deck;
   // A cymbal stand at the front right.
   const vec3 stand = c + vec3(1.85f, deck, 0.85f);
   const float standHeight = rng.range(1.5f, 1.9f);
@@ -348,7 +359,11 @@ void addInstrumentModule(PartBuilder& b, InstrumentMachine& out, vec3 c, int det
   b.tube(stand, up, 0.03f, 0.22f, pipe);
   b.tube(stand + vec3(0.0f, 0.03f, 0.0f), up, standHeight - 0.03f, 0.025f, thin, bands);
   out.cymbals.push_back({stand + vec3(0.0f, standHeight + 0.02f, 0.0f), rng.range(0.42f, 0.5f)});
+}
 
+/// A xylophone: two rails on four legs, eight bars of falling length across them.
+void addXylophone(PartBuilder& b, InstrumentMachine& out, vec3 c, const ModuleSizes& z) {
+  const float deck = z.deck;
   // A xylophone: two rails on four legs, eight bars of falling length across them.
   const float railTop = 0.85f, x0 = -2.3f, x1 = 0.55f, za = -0.25f, zb = -0.95f;
   b.material(MachineMaterial::Steel);
@@ -366,14 +381,25 @@ void addInstrumentModule(PartBuilder& b, InstrumentMachine& out, vec3 c, int det
     b.box(lo, hi);
     out.bars.push_back({vec3(0.5f * (lo.x + hi.x), hi.y, 0.5f * (lo.z + hi.z)), hi - lo});
   }
+}
 
+/// A bank of upright pipes at the back, of rising heights.
+void addPipeBank(PartBuilder& b, vec3 c, const ModuleSizes& z, HashSequence& rng) {
+  const int pipe = z.pipe, bands = z.bands;
+  const vec3 up = z.up;
+  const float deck = z.deck;
   // A bank of upright pipes at the back, of rising heights.
   b.material(MachineMaterial::Brass);
   for (int i = 0; i < 6; ++i) {
     const float h = 2.0f + 0.45f * float(i) + rng.range(0.0f, 0.5f);
     b.tube(c + vec3(-2.05f + 0.62f * float(i), deck, -2.0f), up, h, rng.range(0.14f, 0.2f), pipe, 2 * bands);
   }
+}
 
+/// The launcher: a pipe along the deck, bent upwards, rising to its mouth, with a clamp.
+void addLauncher(PartBuilder& b, InstrumentMachine& out, vec3 c, const ModuleSizes& z, HashSequence& rng) {
+  const int pipe = z.pipe, detail = z.detail;
+  const float deck = z.deck;
   // The launcher: a pipe along the deck, bent upwards, rising to its mouth.
   {
     const float r = 0.13f, bend = 0.45f;
@@ -394,14 +420,25 @@ void addInstrumentModule(PartBuilder& b, InstrumentMachine& out, vec3 c, int det
     b.material(MachineMaterial::Steel);
     b.box(c + vec3(x + r, deck, -0.3f - bend - 0.03f), c + vec3(x + r + 0.06f, 0.5f * (deck + mouthHeight), -0.3f - bend + 0.03f));
   }
+}
 
+/// A collector at the left.
+void addCollector(PartBuilder& b, InstrumentMachine& out, vec3 c, const ModuleSizes& z, HashSequence& rng) {
+  const int big = z.big, bands = z.bands;
+  const vec3 up = z.up;
+  const float deck = z.deck;
   // A collector at the left.
   b.material(MachineMaterial::Teal);
   const vec3 collector = c + vec3(-2.15f, deck, 0.35f);
   const float collectorHeight = rng.range(0.9f, 1.2f);
   b.tube(collector, up, collectorHeight, 0.3f, big, bands);
   out.collectors.push_back({collector + vec3(0.0f, collectorHeight, 0.0f), 0.3f});
+}
 
+/// Overhead: a straight pipe on two struts, and a pipe arched across the module.
+void addOverhead(PartBuilder& b, vec3 c, const ModuleSizes& z, HashSequence& rng) {
+  const int pipe = z.pipe, bands = z.bands, detail = z.detail;
+  const float deck = z.deck;
   // Overhead: a straight pipe on two struts, and a pipe arched across the module.
   const float hx = rng.range(3.1f, 3.6f);
   b.material(MachineMaterial::Brass);
@@ -421,6 +458,21 @@ void addInstrumentModule(PartBuilder& b, InstrumentMachine& out, vec3 c, int det
     b.material(MachineMaterial::Brass);
     b.sweep(path, 0.1f, pipe);
   }
+}
+
+/// One module of instruments around `c`. Its parts draw from `rng` in this order, and the
+/// stage's geometry (and so its cached cut and the golden pictures) depends on that order.
+void addInstrumentModule(PartBuilder& b, InstrumentMachine& out, vec3 c, int detail, HashSequence& rng) {
+  const ModuleSizes z(detail);
+  b.material(MachineMaterial::Platform);
+  b.box(c + vec3(-2.6f, 0.0f, -2.6f), c + vec3(2.6f, z.deck, 2.6f));
+  addDrums(b, out, c, z, rng);
+  addCymbalStand(b, out, c, z, rng);
+  addXylophone(b, out, c, z);
+  addPipeBank(b, c, z, rng);
+  addLauncher(b, out, c, z, rng);
+  addCollector(b, out, c, z, rng);
+  addOverhead(b, c, z, rng);
 }
 
 }  // namespace

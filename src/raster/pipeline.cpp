@@ -160,12 +160,10 @@ bool isCulled(const State& state, bool frontFacing) {
   return false;
 }
 
-}  // namespace
-
-DrawStats drawTriangles(Framebuffer& fb, const State& state, std::span<const Vertex> vertices,
-                        std::span<const std::uint32_t> indices, const FragmentShader& shader) {
-  // -- Primitive assembly and validation (before anything is drawn) ------------------
-  const std::size_t triangleCount = (indices.empty() ? vertices.size() : indices.size()) / 3;
+/// The varyings every vertex of a draw has: Error(Usage) for an index out of range, more
+/// than kMaxVaryings, or vertices that differ in their count.
+std::size_t checkedVaryingCount(std::span<const Vertex> vertices, std::span<const std::uint32_t> indices,
+                                std::size_t triangleCount) {
   auto vertexIndex = [&](std::size_t k) -> std::size_t { return indices.empty() ? k : std::size_t(indices[k]); };
   const std::size_t varyingCount = triangleCount > 0 ? vertices[vertexIndex(0)].varyings.size() : 0;
   if (varyingCount > kMaxVaryings)
@@ -178,6 +176,17 @@ DrawStats drawTriangles(Framebuffer& fb, const State& state, std::span<const Ver
       fail(ErrorKind::Usage, "vertex {} has {} varyings but vertex {} has {}; a draw needs the same count everywhere",
            index, vertices[index].varyings.size(), vertexIndex(0), varyingCount);
   }
+  return varyingCount;
+}
+
+}  // namespace
+
+DrawStats drawTriangles(Framebuffer& fb, const State& state, std::span<const Vertex> vertices,
+                        std::span<const std::uint32_t> indices, const FragmentShader& shader) {
+  // -- Primitive assembly and validation (before anything is drawn) ------------------
+  const std::size_t triangleCount = (indices.empty() ? vertices.size() : indices.size()) / 3;
+  auto vertexIndex = [&](std::size_t k) -> std::size_t { return indices.empty() ? k : std::size_t(indices[k]); };
+  const std::size_t varyingCount = checkedVaryingCount(vertices, indices, triangleCount);
 
   const Viewport viewport = effectiveViewport(state, fb.width(), fb.height());
   const DepthRange range = clampDepthRange(state.depthRange);

@@ -9,7 +9,7 @@
 #include "glint/image/image.h"
 #include "glint/mesh/mesh.h"
 #include "glint/raster/raster.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/scenes/reference.h"
 
 #include <fmt/format.h>
@@ -89,7 +89,7 @@ Frame meshFrame(const Mesh& mesh, ivec2 size, vec3 camera, bool cull) {
   const Bounds b = mesh.bounds();
   const float radius = std::max(0.5f * b.diagonal(), 1e-20f);
   const mat4 model = glm::scale(mat4(1.0f), vec3(1.0f / radius)) * glm::translate(mat4(1.0f), -b.center());
-  const auto cam = render::Camera::orbit(vec3(0.0f), camera.z, glm::radians(camera.x), glm::radians(camera.y), 40.0f,
+  const auto cam = glint::Camera::orbit(vec3(0.0f), camera.z, glm::radians(camera.x), glm::radians(camera.y), 40.0f,
                                          float(size.x) / float(size.y), 0.9f * (camera.z - 1.0f), camera.z + 1.1f);
   const mat4 mvp = cam.viewProjection() * model;
   // Light from the upper left behind the viewer, fixed to the camera.

@@ -15,6 +15,7 @@
 #include "glint/core/error.h"
 #include "glint/video/sink.h"
 #include "glint/video/source.h"
+#include "glint/video/packet.h"
 
 #include <cstdint>
 #include <deque>

@@ -2,6 +2,7 @@
 
 #include "glint/core/error.h"
 #include "glint/core/log.h"
+#include "glint/video/packet.h"
 
 #include <algorithm>
 #include <cctype>

@@ -15,6 +15,7 @@ extern "C" {
 
 #include "glint/core/error.h"
 #include "glint/video/frame.h"
+#include "glint/video/packet.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -2,6 +2,7 @@
 #include "ffmpeg.h"
 
 #include "glint/core/log.h"
+#include "glint/video/packet.h"
 
 #include <cstdint>
 #include <deque>

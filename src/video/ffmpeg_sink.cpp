@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 #include "glint/core/file.h"
 #include "glint/core/log.h"
+#include "glint/video/packet.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -135,6 +136,32 @@ void openFile(AVFormatContext& output, const fs::path& tmp, const fs::path& dest
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, e));
   }
 }
+
+/// Fails on options no encoder takes: the size, an odd size for H.264, the CRF.
+void checkSinkOptions(const SinkOptions& options) {
+  if (options.size.x <= 0 || options.size.y <= 0) fail(ErrorKind::Usage, "video size must be positive");
+  if (options.codec == Codec::H264 && (options.size.x % 2 || options.size.y % 2)) {
+    fail(ErrorKind::Usage, "H.264 (yuv420p) needs an even width and height, got {}x{}; use --codec ffv1",
+         options.size.x, options.size.y);
+  }
+  if (options.crf < 0 || options.crf > 51) fail(ErrorKind::Usage, "--crf must be 0..51, got {}", options.crf);
+}
+
+/// The encoder of the options' codec, after checking that the destination's format holds it.
+const AVCodec* findEncoder(const fs::path& destination, const SinkOptions& options) {
+  // Fail on a format that cannot hold the codec before making any file.
+  const AVOutputFormat* guessed = av_guess_format(nullptr, destination.filename().c_str(), nullptr);
+  const AVCodecID id = options.codec == Codec::H264 ? AV_CODEC_ID_H264 : AV_CODEC_ID_FFV1;
+  if (guessed && avformat_query_codec(guessed, id, FF_COMPLIANCE_NORMAL) != 1) {
+    fail(ErrorKind::Usage, "{} video cannot go into a {} file ({}); use {}", codecName(options.codec),
+         destination.extension().string(), guessed->name, options.codec == Codec::H264 ? ".mp4 or .mkv" : ".mkv");
+  }
+  const AVCodec* codec = options.codec == Codec::H264 ? avcodec_find_encoder_by_name("libx264")
+                                                      : avcodec_find_encoder(AV_CODEC_ID_FFV1);
+  if (!codec) fail(ErrorKind::Internal, "this FFmpeg has no {} encoder", options.codec == Codec::H264 ? "libx264" : "FFV1");
+  return codec;
+}
+
 struct FfmpegSink {
   SinkOptions options;
   fs::path destination;
@@ -153,6 +180,15 @@ struct FfmpegSink {
   bool headerWritten = false, finished = false;
 
   FfmpegSink(const fs::path& destination, const fs::path& target, const SinkOptions& options);
+  /// Sets up the encoder for the options' codec, size and rate, and opens it.
+  void openEncoder(const AVCodec& codec, Rational rate, Rational timeBase);
+  /// Adds the video stream (with the source's display matrix) to the output.
+  void addVideoStream();
+  /// Adds the audio stream when the container holds its codec (else notes why not), and
+  /// offsets the file by the audio's lead where the container cannot keep it.
+  void addAudioStream();
+  /// Opens the file and writes the container's header.
+  void writeHeader(const fs::path& target);
   void drain(bool flushing);
   void writePacket(AVPacket& p);
   void write(const Frame& frame);
@@ -186,33 +222,32 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const fs::path& target_, co
   const SinkOptions& options = options_;
   s.options = options;
   s.destination = destination;
-  if (options.size.x <= 0 || options.size.y <= 0) fail(ErrorKind::Usage, "video size must be positive");
-  if (options.codec == Codec::H264 && (options.size.x % 2 || options.size.y % 2)) {
-    fail(ErrorKind::Usage, "H.264 (yuv420p) needs an even width and height, got {}x{}; use --codec ffv1",
-         options.size.x, options.size.y);
-  }
-  if (options.crf < 0 || options.crf > 51) fail(ErrorKind::Usage, "--crf must be 0..51, got {}", options.crf);
+  checkSinkOptions(options);
   const Rational rate = options.frameRate.valid() ? options.frameRate : Rational{30, 1};
   const Rational timeBase = options.timeBase.valid() ? options.timeBase : Rational{rate.den, rate.num};
-
-  // Fail on a format that cannot hold the codec before making any file.
-  const AVOutputFormat* guessed = av_guess_format(nullptr, destination.filename().c_str(), nullptr);
-  const AVCodecID id = options.codec == Codec::H264 ? AV_CODEC_ID_H264 : AV_CODEC_ID_FFV1;
-  if (guessed && avformat_query_codec(guessed, id, FF_COMPLIANCE_NORMAL) != 1) {
-    fail(ErrorKind::Usage, "{} video cannot go into a {} file ({}); use {}", codecName(options.codec),
-         destination.extension().string(), guessed->name, options.codec == Codec::H264 ? ".mp4 or .mkv" : ".mkv");
-  }
-  const AVCodec* codec = options.codec == Codec::H264 ? avcodec_find_encoder_by_name("libx264")
-                                                      : avcodec_find_encoder(AV_CODEC_ID_FFV1);
-  if (!codec) fail(ErrorKind::Internal, "this FFmpeg has no {} encoder", options.codec == Codec::H264 ? "libx264" : "FFV1");
+  const AVCodec* codec = findEncoder(destination, options);
 
   // A file goes into the caller's temporary (renamed when the run's outputs are committed);
   // stdout ("-") is written as it is made.
   const fs::path target = destination == "-" ? fs::path("pipe:1") : target_;
   s.output = createOutput(destination, target, options.format);
 
-  s.encoder.reset(avcodec_alloc_context3(codec));
-  AVCodecContext& e = *s.encoder;
+  openEncoder(*codec, rate, timeBase);
+  addVideoStream();
+  addAudioStream();
+  writeHeader(target);
+
+  const AVCodecContext& e = *s.encoder;
+  s.frame->format = e.pix_fmt;
+  s.frame->width = e.width;
+  s.frame->height = e.height;
+  s.frame->colorspace = e.colorspace;
+  s.frame->color_range = e.color_range;
+}
+
+void FfmpegSink::openEncoder(const AVCodec& codec, Rational rate, Rational timeBase) {
+  encoder.reset(avcodec_alloc_context3(&codec));
+  AVCodecContext& e = *encoder;
   e.width = options.size.x;
   e.height = options.size.y;
   e.time_base = toAv(timeBase);
@@ -234,32 +269,37 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const fs::path& target_, co
     e.level = 3;
     av_opt_set(e.priv_data, "slicecrc", "1", 0);
   }
-  if (s.output->oformat->flags & AVFMT_GLOBALHEADER) e.flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  if (output->oformat->flags & AVFMT_GLOBALHEADER) e.flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   e.flags |= AV_CODEC_FLAG_BITEXACT;  // no encoder version string in the stream either
-  if (const int o = avcodec_open2(&e, codec, nullptr); o < 0) {
-    fail(ErrorKind::Internal, "cannot start the {} encoder: {}", codec->name, ffmpegError(o));
+  if (const int o = avcodec_open2(&e, &codec, nullptr); o < 0) {
+    fail(ErrorKind::Internal, "cannot start the {} encoder: {}", codec.name, ffmpegError(o));
   }
-  s.videoStream = avformat_new_stream(s.output.get(), nullptr);
-  avcodec_parameters_from_context(s.videoStream->codecpar, &e);
-  s.videoStream->time_base = e.time_base;
-  s.videoStream->avg_frame_rate = e.framerate;
+}
+
+void FfmpegSink::addVideoStream() {
+  videoStream = avformat_new_stream(output.get(), nullptr);
+  avcodec_parameters_from_context(videoStream->codecpar, encoder.get());
+  videoStream->time_base = encoder->time_base;
+  videoStream->avg_frame_rate = encoder->framerate;
   if (options.displayMatrix.size() == 9) {  // a rotated source stays rotated
-    std::uint8_t* m = newStreamSideData(*s.videoStream, AV_PKT_DATA_DISPLAYMATRIX, 9 * sizeof(std::int32_t));
+    std::uint8_t* m = newStreamSideData(*videoStream, AV_PKT_DATA_DISPLAYMATRIX, 9 * sizeof(std::int32_t));
     if (!m) fail(ErrorKind::Internal, "cannot add the display matrix to '{}'", destination.string());
     std::memcpy(m, options.displayMatrix.data(), 9 * sizeof(std::int32_t));
   }
+}
 
+void FfmpegSink::addAudioStream() {
   if (options.audio) {
     const AVCodecParameters& a = options.audio->parameters();
-    if (audioFits(*s.output->oformat, a.codec_id)) {
-      s.audioStream = avformat_new_stream(s.output.get(), nullptr);
-      avcodec_parameters_copy(s.audioStream->codecpar, &a);
-      s.audioStream->codecpar->codec_tag = 0;
-      s.audioStream->time_base = options.audio->timeBase();
-      s.audio = options.audio;
+    if (audioFits(*output->oformat, a.codec_id)) {
+      audioStream = avformat_new_stream(output.get(), nullptr);
+      avcodec_parameters_copy(audioStream->codecpar, &a);
+      audioStream->codecpar->codec_tag = 0;
+      audioStream->time_base = options.audio->timeBase();
+      audio = options.audio;
     } else {
-      s.audioNote = fmt::format("{} audio cannot go into a {} file: dropped (use .mkv to keep it)",
-                                avcodec_get_name(a.codec_id), destination.extension().string());
+      audioNote = fmt::format("{} audio cannot go into a {} file: dropped (use .mkv to keep it)",
+                              avcodec_get_name(a.codec_id), destination.extension().string());
     }
   }
 
@@ -268,23 +308,19 @@ FfmpegSink::FfmpegSink(const fs::path& destination_, const fs::path& target_, co
   // whatever it is given first. Shifting by the source's lead instead gives every part of a
   // split video (`--frames`) the same timeline as the whole, so the parts join with --concat
   // into the very bytes of one run.
-  if (s.audio && s.audio->leadSeconds() > 0 &&
-      !keepsNegativeTimestamps(*s.output->oformat, s.audio->parameters(), s.audio->leadSeconds()))
-    s.output->output_ts_offset = std::llround(s.audio->leadSeconds() * AV_TIME_BASE);
+  if (audio && audio->leadSeconds() > 0 &&
+      !keepsNegativeTimestamps(*output->oformat, audio->parameters(), audio->leadSeconds()))
+    output->output_ts_offset = std::llround(audio->leadSeconds() * AV_TIME_BASE);
+}
 
-  s.matroska = std::string_view(s.output->oformat->name).find("matroska") != std::string_view::npos ||
-               std::string_view(s.output->oformat->name) == "webm";
-  openFile(*s.output, target, destination);
-  if (const int h = avformat_write_header(s.output.get(), nullptr); h < 0) {
+void FfmpegSink::writeHeader(const fs::path& target) {
+  matroska = std::string_view(output->oformat->name).find("matroska") != std::string_view::npos ||
+             std::string_view(output->oformat->name) == "webm";
+  openFile(*output, target, destination);
+  if (const int h = avformat_write_header(output.get(), nullptr); h < 0) {
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, h));
   }
-  s.headerWritten = true;
-
-  s.frame->format = e.pix_fmt;
-  s.frame->width = e.width;
-  s.frame->height = e.height;
-  s.frame->colorspace = e.colorspace;
-  s.frame->color_range = e.color_range;
+  headerWritten = true;
 }
 
 void FfmpegSink::write(const Frame& frame) {
@@ -383,13 +419,9 @@ InputPtr openPart(const fs::path& path) {
   }
   return input;
 }
-}  // namespace
 
-std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& destination, const fs::path& target) {
-  initFfmpeg();
-  if (parts.empty()) fail(ErrorKind::Usage, "concatenate: no parts given");
-  std::vector<InputPtr> inputs;
-  for (const auto& p : parts) inputs.push_back(openPart(p));
+/// Fails unless every part has the first one's streams, codecs and size.
+void checkPartsMatch(std::span<const fs::path> parts, const std::vector<InputPtr>& inputs) {
   const AVFormatContext& first = *inputs.front();
   for (std::size_t k = 1; k < inputs.size(); ++k) {
     const AVFormatContext& other = *inputs[k];
@@ -404,12 +436,12 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
            parts[k].string(), parts[0].string());
     }
   }
-  int video = av_find_best_stream(inputs.front().get(), AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
-  if (video < 0) fail(ErrorKind::Input, "'{}' has no video stream", parts[0].string());
+}
 
-  OutputPtr output = createOutput(destination, target);
+/// Adds a copy of each of the first part's streams to `output`, with its rotation.
+void copyStreams(AVFormatContext& output, const AVFormatContext& first) {
   for (unsigned i = 0; i < first.nb_streams; ++i) {
-    AVStream* out = avformat_new_stream(output.get(), nullptr);
+    AVStream* out = avformat_new_stream(&output, nullptr);
     avcodec_parameters_copy(out->codecpar, first.streams[i]->codecpar);
     out->codecpar->codec_tag = 0;
     out->time_base = first.streams[i]->time_base;
@@ -421,90 +453,138 @@ std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& d
         std::memcpy(copy, m, matrixSize);
     }
   }
+}
+
+/// The joined file as the parts' packets are copied into it, one part after the other.
+struct Joined {
+  AVFormatContext& output;
+  const fs::path& destination;
+  int video;  // the video stream's index
+  PacketPtr packet{av_packet_alloc()};
+  std::int64_t frames = 0;
+  std::int64_t previousEnd = kNoTimestamp;  // in the output video stream's time base
+  std::vector<std::int64_t> lastDts;
+
+  Joined(AVFormatContext& out, const fs::path& path, int videoIndex)
+      : output(out), destination(path), video(videoIndex), lastDts(out.nb_streams, kNoTimestamp) {}
+
+  /// Writes one packet to the joined file.
+  void write(AVPacket& p) {
+    if (const int w = av_interleaved_write_frame(&output, &p); w < 0) {
+      fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, w));
+    }
+  }
+
+  /// Copies part k's packets; the last part's last packets are trimmed to its duration.
+  void copyPart(AVFormatContext& in, std::span<const fs::path> parts, std::size_t k);
+  /// Widens [partStart, partEnd) to the video packet in `packet` (rescaled to the output).
+  void extendSpan(const AVStream& inStream, std::int64_t& partStart, std::int64_t& partEnd) const;
+  /// Writes the packets held back from the last part, each trimmed to end where the part ends.
+  void writeHeld(const AVFormatContext& in, std::vector<PacketPtr>& held);
+  /// Fails unless part k begins where the part before it ended.
+  void checkConsecutive(std::span<const fs::path> parts, std::size_t k, std::int64_t partStart) const;
+};
+
+void Joined::copyPart(AVFormatContext& in, std::span<const fs::path> parts, std::size_t k) {
+  std::int64_t partStart = kNoTimestamp, partEnd = kNoTimestamp;
+  const bool holdLast = k + 1 == parts.size() && in.duration > 0 &&
+                        std::string_view(in.iformat->name).find("matroska") != std::string_view::npos;
+  std::vector<PacketPtr> held(in.nb_streams);
+  while (true) {
+    const int r = av_read_frame(&in, packet.get());
+    if (r == AVERROR_EOF) break;
+    if (r < 0) fail(ErrorKind::Input, "cannot read '{}': {}", parts[k].string(), ffmpegError(r));
+    const int index = packet->stream_index;
+    AVStream* out = output.streams[index];
+    av_packet_rescale_ts(packet.get(), in.streams[index]->time_base, out->time_base);
+    if (index == video) {
+      ++frames;
+      extendSpan(*in.streams[index], partStart, partEnd);
+    }
+    if (packet->dts != AV_NOPTS_VALUE && lastDts[std::size_t(index)] != kNoTimestamp &&
+        packet->dts <= lastDts[std::size_t(index)]) {
+      fail(ErrorKind::Input, "'{}' overlaps the part before it in time: not the next range of frames",
+           parts[k].string());
+    }
+    if (packet->dts != AV_NOPTS_VALUE) lastDts[std::size_t(index)] = packet->dts;
+    packet->pos = -1;
+    if (holdLast) {  // written one behind, so the last one can be trimmed at the end
+      PacketPtr& h = held[std::size_t(index)];
+      if (h) write(*h);
+      else h.reset(av_packet_alloc());
+      av_packet_move_ref(h.get(), packet.get());
+    } else {
+      write(*packet);
+    }
+  }
+  if (holdLast) writeHeld(in, held);
+  checkConsecutive(parts, k, partStart);
+  previousEnd = partEnd;
+}
+
+void Joined::extendSpan(const AVStream& inStream, std::int64_t& partStart, std::int64_t& partEnd) const {
+  if (packet->pts == AV_NOPTS_VALUE) return;
+  if (partStart == kNoTimestamp || packet->pts < partStart) partStart = packet->pts;
+  // An MP4's last sample often has no duration: it lasts a frame.
+  const AVRational rate = inStream.avg_frame_rate.num > 0 ? inStream.avg_frame_rate : inStream.r_frame_rate;
+  const std::int64_t duration = packet->duration > 0 ? packet->duration
+                                : rate.num > 0       ? av_rescale_q(1, av_inv_q(rate), output.streams[video]->time_base)
+                                                     : 0;
+  const std::int64_t end = packet->pts + duration;
+  if (partEnd == kNoTimestamp || end > partEnd) partEnd = end;
+}
+
+void Joined::writeHeld(const AVFormatContext& in, std::vector<PacketPtr>& held) {
+  // Matroska keeps no audio durations: read back, a trimmed last packet (an encoder's end
+  // padding) lasts a whole frame. The part's own duration still says where it ended, and
+  // the joined file ends there too, as one run's would.
+  for (unsigned i = 0; i < held.size(); ++i) {
+    if (!held[i]) continue;
+    AVPacket& last = *held[i];
+    const std::int64_t end = av_rescale_q(in.duration, AV_TIME_BASE_Q, output.streams[i]->time_base);
+    if (last.pts != AV_NOPTS_VALUE && last.pts < end && last.pts + last.duration > end) last.duration = end - last.pts;
+    write(last);
+  }
+}
+
+void Joined::checkConsecutive(std::span<const fs::path> parts, std::size_t k, std::int64_t partStart) const {
+  // A part must begin where the previous one ended: within half a frame (containers
+  // round timestamps and last-packet durations to their own time bases).
+  const AVRational tb = output.streams[video]->time_base;
+  const AVRational rate = output.streams[video]->avg_frame_rate;
+  const std::int64_t slack = rate.num > 0 ? std::max<std::int64_t>(1, av_rescale_q(1, av_inv_q(rate), tb) / 2) : 1;
+  if (k > 0 && previousEnd != kNoTimestamp && partStart != kNoTimestamp && std::abs(partStart - previousEnd) > slack) {
+    const double gap = double(partStart - previousEnd) * av_q2d(tb);
+    fail(ErrorKind::Input, "'{}' does not start where '{}' ends ({:+.3f} s): not consecutive --frames ranges",
+         parts[k].string(), parts[k - 1].string(), gap);
+  }
+}
+}  // namespace
+
+std::int64_t concatenateFiles(std::span<const fs::path> parts, const fs::path& destination, const fs::path& target) {
+  initFfmpeg();
+  if (parts.empty()) fail(ErrorKind::Usage, "concatenate: no parts given");
+  std::vector<InputPtr> inputs;
+  for (const auto& p : parts) inputs.push_back(openPart(p));
+  checkPartsMatch(parts, inputs);
+  const AVFormatContext& first = *inputs.front();
+  int video = av_find_best_stream(inputs.front().get(), AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
+  if (video < 0) fail(ErrorKind::Input, "'{}' has no video stream", parts[0].string());
+
+  OutputPtr output = createOutput(destination, target);
+  copyStreams(*output, first);
   openFile(*output, target, destination);
   if (const int h = avformat_write_header(output.get(), nullptr); h < 0) {
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, h));
   }
 
-  PacketPtr packet(av_packet_alloc());
-  const auto write = [&](AVPacket& p) {
-    if (const int w = av_interleaved_write_frame(output.get(), &p); w < 0) {
-      fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, w));
-    }
-  };
-  std::int64_t frames = 0;
-  std::int64_t previousEnd = kNoTimestamp;  // in the output video stream's time base
-  std::vector<std::int64_t> lastDts(first.nb_streams, kNoTimestamp);
-  for (std::size_t k = 0; k < inputs.size(); ++k) {
-    AVFormatContext& in = *inputs[k];
-    std::int64_t partStart = kNoTimestamp, partEnd = kNoTimestamp;
-    const bool holdLast = k + 1 == inputs.size() && in.duration > 0 &&
-                          std::string_view(in.iformat->name).find("matroska") != std::string_view::npos;
-    std::vector<PacketPtr> held(in.nb_streams);
-    while (true) {
-      const int r = av_read_frame(&in, packet.get());
-      if (r == AVERROR_EOF) break;
-      if (r < 0) fail(ErrorKind::Input, "cannot read '{}': {}", parts[k].string(), ffmpegError(r));
-      const int index = packet->stream_index;
-      AVStream* out = output->streams[index];
-      av_packet_rescale_ts(packet.get(), in.streams[index]->time_base, out->time_base);
-      if (index == video) {
-        ++frames;
-        if (packet->pts != AV_NOPTS_VALUE) {
-          if (partStart == kNoTimestamp || packet->pts < partStart) partStart = packet->pts;
-          // An MP4's last sample often has no duration: it lasts a frame.
-          const AVRational rate = in.streams[index]->avg_frame_rate.num > 0 ? in.streams[index]->avg_frame_rate
-                                                                            : in.streams[index]->r_frame_rate;
-          const std::int64_t duration = packet->duration > 0 ? packet->duration
-                                        : rate.num > 0       ? av_rescale_q(1, av_inv_q(rate), out->time_base)
-                                                             : 0;
-          const std::int64_t end = packet->pts + duration;
-          if (partEnd == kNoTimestamp || end > partEnd) partEnd = end;
-        }
-      }
-      if (packet->dts != AV_NOPTS_VALUE && lastDts[std::size_t(index)] != kNoTimestamp &&
-          packet->dts <= lastDts[std::size_t(index)]) {
-        fail(ErrorKind::Input, "'{}' overlaps the part before it in time: not the next range of frames",
-             parts[k].string());
-      }
-      if (packet->dts != AV_NOPTS_VALUE) lastDts[std::size_t(index)] = packet->dts;
-      packet->pos = -1;
-      if (holdLast) {  // written one behind, so the last one can be trimmed at the end
-        PacketPtr& h = held[std::size_t(index)];
-        if (h) write(*h);
-        else h.reset(av_packet_alloc());
-        av_packet_move_ref(h.get(), packet.get());
-      } else {
-        write(*packet);
-      }
-    }
-    // Matroska keeps no audio durations: read back, a trimmed last packet (an encoder's end
-    // padding) lasts a whole frame. The part's own duration still says where it ended, and
-    // the joined file ends there too, as one run's would.
-    for (unsigned i = 0; holdLast && i < held.size(); ++i) {
-      if (!held[i]) continue;
-      AVPacket& last = *held[i];
-      const std::int64_t end = av_rescale_q(in.duration, AV_TIME_BASE_Q, output->streams[i]->time_base);
-      if (last.pts != AV_NOPTS_VALUE && last.pts < end && last.pts + last.duration > end) last.duration = end - last.pts;
-      write(last);
-    }
-    // A part must begin where the previous one ended: within half a frame (containers
-    // round timestamps and last-packet durations to their own time bases).
-    const AVRational tb = output->streams[video]->time_base;
-    const AVRational rate = output->streams[video]->avg_frame_rate;
-    const std::int64_t slack = rate.num > 0 ? std::max<std::int64_t>(1, av_rescale_q(1, av_inv_q(rate), tb) / 2) : 1;
-    if (k > 0 && previousEnd != kNoTimestamp && partStart != kNoTimestamp && std::abs(partStart - previousEnd) > slack) {
-      const double gap = double(partStart - previousEnd) * av_q2d(tb);
-      fail(ErrorKind::Input, "'{}' does not start where '{}' ends ({:+.3f} s): not consecutive --frames ranges",
-           parts[k].string(), parts[k - 1].string(), gap);
-    }
-    previousEnd = partEnd;
-  }
+  Joined joined(*output, destination, video);
+  for (std::size_t k = 0; k < inputs.size(); ++k) joined.copyPart(*inputs[k], parts, k);
   if (const int t = av_write_trailer(output.get()); t < 0) {
     fail(ErrorKind::Output, "cannot write '{}': {}", destination.string(), writeError(destination, t));
   }
   if (!(output->oformat->flags & AVFMT_NOFILE)) avio_closep(&output->pb);
-  return frames;
+  return joined.frames;
 }
 
 // ---------------------------------------------------------------------------

@@ -6,6 +6,7 @@ extern "C" {
 
 #include "glint/core/error.h"
 #include "glint/core/log.h"
+#include "glint/video/packet.h"
 
 #include <algorithm>
 #include <chrono>
@@ -97,7 +98,28 @@ struct FfmpegSource {
     return std::llround(secondsOf(pts) * rate.value());
   }
 
+  /// Where a name is read from: the URL, the input format and its options for avformat_open_input.
+  struct Input {
+    std::string url;
+    const AVInputFormat* format = nullptr;
+    AVDictionary* options = nullptr;
+  };
+
   void open(const std::string& name);
+  /// The input for `name` (a camera, a lavfi graph, stdin or a file), checked; sets info.kind.
+  Input chooseInput(const std::string& name);
+  /// Opens the container and finds its streams and the video stream.
+  void openInput(const std::string& name);
+  /// Opens the decoder of the video `stream`; fails on a video it cannot decode.
+  const AVCodec* openDecoder(const std::string& name, AVStream& stream);
+  /// Fills info with the video's size, rate, codec, duration and frame count.
+  void describeVideo(const AVStream& stream, const AVCodec& codec);
+  /// Reads the stream's display matrix: the rotation, applied here when asked.
+  void applyDisplayMatrix(const AVStream& stream);
+  /// Finds the audio stream (kept when asked) and discards the streams not read.
+  void selectAudio();
+  /// Fails on a --frames range that selects nothing.
+  void checkFrameRange() const;
   double audioLead();
   void seekTo(std::int64_t frameIndex);
   bool decodeOne(Frame& frame);  // the next decoded frame, any index
@@ -109,39 +131,60 @@ struct FfmpegSource {
 
 void FfmpegSource::open(const std::string& name) {
   initFfmpeg();
-  const AVInputFormat* inputFormat = nullptr;
-  std::string url = name;
-  AVDictionary* dict = nullptr;
+  openInput(name);
+  AVStream* stream = format->streams[videoStream];
+  const AVCodec* codec = openDecoder(name, *stream);
+  describeVideo(*stream, *codec);
+  applyDisplayMatrix(*stream);
+  startPts = stream->start_time != AV_NOPTS_VALUE ? stream->start_time : kNoTimestamp;
+  selectAudio();
+  checkFrameRange();
+  if (options.firstFrame > 0) seekTo(options.firstFrame);
+}
+
+FfmpegSource::Input FfmpegSource::chooseInput(const std::string& name) {
+  Input input{.url = name};
   if (options.camera) {
     info.kind = SourceKind::Camera;
-    inputFormat = av_find_input_format("video4linux2");
-    if (!inputFormat) fail(ErrorKind::Input, "this FFmpeg has no V4L2 input (libavdevice without video4linux2)");
-    if (options.size.x > 0) av_dict_set(&dict, "video_size", fmt::format("{}x{}", options.size.x, options.size.y).c_str(), 0);
-    if (options.frameRate > 0) av_dict_set(&dict, "framerate", fmt::format("{}", options.frameRate).c_str(), 0);
+    input.format = av_find_input_format("video4linux2");
+    if (!input.format) fail(ErrorKind::Input, "this FFmpeg has no V4L2 input (libavdevice without video4linux2)");
+    if (options.size.x > 0) {
+      av_dict_set(&input.options, "video_size", fmt::format("{}x{}", options.size.x, options.size.y).c_str(), 0);
+    }
+    if (options.frameRate > 0) {
+      av_dict_set(&input.options, "framerate", fmt::format("{}", options.frameRate).c_str(), 0);
+    }
     std::error_code ec;
     if (!std::filesystem::exists(name, ec)) fail(ErrorKind::Input, "no camera at '{}' (no such device)", name);
   } else if (name.starts_with(kLavfiPrefix)) {
     info.kind = SourceKind::Lavfi;
-    url = name.substr(kLavfiPrefix.size());
-    inputFormat = av_find_input_format("lavfi");
-    if (!inputFormat) fail(ErrorKind::Input, "this FFmpeg has no lavfi input (libavdevice)");
-    if (url.empty()) fail(ErrorKind::Usage, "lavfi: needs a filter graph, e.g. lavfi:testsrc2=size=640x480:duration=2");
+    input.url = name.substr(kLavfiPrefix.size());
+    input.format = av_find_input_format("lavfi");
+    if (!input.format) fail(ErrorKind::Input, "this FFmpeg has no lavfi input (libavdevice)");
+    if (input.url.empty()) {
+      fail(ErrorKind::Usage, "lavfi: needs a filter graph, e.g. lavfi:testsrc2=size=640x480:duration=2");
+    }
   } else if (name == "-") {
-    url = "pipe:0";  // a stream: no seeking (MP4 only with its index first)
+    input.url = "pipe:0";  // a stream: no seeking (MP4 only with its index first)
   } else {
     std::error_code ec;
     if (!std::filesystem::exists(name, ec)) fail(ErrorKind::Input, "cannot read '{}': no such file", name);
     if (std::filesystem::is_directory(name, ec)) fail(ErrorKind::Input, "cannot read '{}': it is a directory", name);
   }
+  return input;
+}
+
+void FfmpegSource::openInput(const std::string& name) {
+  Input input = chooseInput(name);
   info.name = name;
   what = describe(name, info.kind);
 
   AVFormatContext* raw = nullptr;
-  const int e = avformat_open_input(&raw, url.c_str(), inputFormat, &dict);
-  av_dict_free(&dict);
+  const int e = avformat_open_input(&raw, input.url.c_str(), input.format, &input.options);
+  av_dict_free(&input.options);
   if (e < 0) {
     if (info.kind == SourceKind::Camera) fail(ErrorKind::Input, "cannot open camera '{}': {}", name, ffmpegError(e));
-    if (info.kind == SourceKind::Lavfi) fail(ErrorKind::Usage, "bad lavfi graph '{}': {}", url, ffmpegError(e));
+    if (info.kind == SourceKind::Lavfi) fail(ErrorKind::Usage, "bad lavfi graph '{}': {}", input.url, ffmpegError(e));
     fail(ErrorKind::Input, "cannot read '{}': {}", name, ffmpegError(e));
   }
   format.reset(raw);
@@ -150,16 +193,18 @@ void FfmpegSource::open(const std::string& name) {
   }
   videoStream = av_find_best_stream(format.get(), AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
   if (videoStream < 0) fail(ErrorKind::Input, "{} has no video stream", what);
-  AVStream* stream = format->streams[videoStream];
-  const AVCodec* codec = avcodec_find_decoder(stream->codecpar->codec_id);
+}
+
+const AVCodec* FfmpegSource::openDecoder(const std::string& name, AVStream& stream) {
+  const AVCodec* codec = avcodec_find_decoder(stream.codecpar->codec_id);
   if (!codec) {
-    fail(ErrorKind::Input, "{}: no decoder for its '{}' video", what, avcodec_get_name(stream->codecpar->codec_id));
+    fail(ErrorKind::Input, "{}: no decoder for its '{}' video", what, avcodec_get_name(stream.codecpar->codec_id));
   }
   decoder.reset(avcodec_alloc_context3(codec));
-  avcodec_parameters_to_context(decoder.get(), stream->codecpar);
+  avcodec_parameters_to_context(decoder.get(), stream.codecpar);
   decoder->thread_count = options.threads;
   decoder->thread_type = FF_THREAD_FRAME | FF_THREAD_SLICE;
-  decoder->pkt_timebase = stream->time_base;
+  decoder->pkt_timebase = stream.time_base;
   decoderErrors.attach(*decoder);
   if (const int o = avcodec_open2(decoder.get(), codec, nullptr); o < 0) {
     fail(ErrorKind::Input, "{}: cannot decode its {} video: {}", what, codec->name, ffmpegError(o));
@@ -172,28 +217,34 @@ void FfmpegSource::open(const std::string& name) {
     }
     fail(ErrorKind::Input, "{}: unknown pixel format", what);
   }
+  return codec;
+}
 
+void FfmpegSource::describeVideo(const AVStream& stream, const AVCodec& codec) {
   info.size = {decoder->width, decoder->height};
-  AVRational rate = stream->avg_frame_rate.num > 0 ? stream->avg_frame_rate : stream->r_frame_rate;
+  AVRational rate = stream.avg_frame_rate.num > 0 ? stream.avg_frame_rate : stream.r_frame_rate;
   info.frameRate = toRational(rate);
-  info.timeBase = toRational(stream->time_base);
+  info.timeBase = toRational(stream.time_base);
   info.container = format->iformat->name;
-  info.codec = codec->name;
+  info.codec = codec.name;
   info.pixelFormat = av_get_pix_fmt_name(decoder->pix_fmt) ? av_get_pix_fmt_name(decoder->pix_fmt) : "?";
   info.live = info.kind == SourceKind::Camera || options.realtime;
   if (format->duration > 0 && info.kind == SourceKind::File) info.durationSeconds = double(format->duration) / AV_TIME_BASE;
-  if (stream->duration > 0 && info.kind == SourceKind::File) info.durationSeconds = double(stream->duration) * av_q2d(stream->time_base);
+  if (stream.duration > 0 && info.kind == SourceKind::File) info.durationSeconds = double(stream.duration) * av_q2d(stream.time_base);
   if (info.kind == SourceKind::File) {
-    if (stream->nb_frames > 0) {
-      info.frameCount = stream->nb_frames;
+    if (stream.nb_frames > 0) {
+      info.frameCount = stream.nb_frames;
       info.frameCountExact = true;
     } else if (info.durationSeconds > 0 && info.frameRate.valid()) {
       info.frameCount = std::llround(info.durationSeconds * info.frameRate.value());
     }
   }
+}
+
+void FfmpegSource::applyDisplayMatrix(const AVStream& stream) {
   // A phone's portrait clip is stored sideways with a display matrix that turns it.
   std::size_t matrixSize = 0;
-  if (const std::uint8_t* m = streamSideData(*stream, AV_PKT_DATA_DISPLAYMATRIX, matrixSize);
+  if (const std::uint8_t* m = streamSideData(stream, AV_PKT_DATA_DISPLAYMATRIX, matrixSize);
       m && matrixSize >= 9 * sizeof(std::int32_t)) {
     const auto* values = reinterpret_cast<const std::int32_t*>(m);
     info.displayMatrix.assign(values, values + 9);
@@ -209,8 +260,9 @@ void FfmpegSource::open(const std::string& name) {
       this->options.yuv420 = this->options.yuv420 && quarterTurns == 0;
     }
   }
-  startPts = stream->start_time != AV_NOPTS_VALUE ? stream->start_time : kNoTimestamp;
+}
 
+void FfmpegSource::selectAudio() {
   // Found even when not kept, so a report can say "dropped (--no-audio)" rather than "none".
   if (const int found = av_find_best_stream(format.get(), AVMEDIA_TYPE_AUDIO, -1, videoStream, nullptr, 0); found >= 0) {
     AVStream* a = format->streams[found];
@@ -227,12 +279,13 @@ void FfmpegSource::open(const std::string& name) {
     AVStream* a = format->streams[audioStream];
     audio = std::make_unique<AudioTrack>(*a->codecpar, a->time_base, audioLead());
   }
+}
 
+void FfmpegSource::checkFrameRange() const {
   if (options.firstFrame < 0) fail(ErrorKind::Usage, "--frames: the first frame must not be negative");
   if (options.lastFrame >= 0 && options.lastFrame <= options.firstFrame) {
     fail(ErrorKind::Usage, "--frames {}:{} selects no frames", options.firstFrame, options.lastFrame);
   }
-  if (options.firstFrame > 0) seekTo(options.firstFrame);
 }
 
 // How long before the video's start the audio begins when it begins before 0 (AAC priming

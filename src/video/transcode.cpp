@@ -3,6 +3,7 @@
 #include "glint/core/error.h"
 #include "glint/video/sink.h"
 #include "glint/video/source.h"
+#include "glint/video/packet.h"
 
 #include <algorithm>
 #include <chrono>
@@ -115,24 +116,38 @@ private:
   std::mutex m_mutex;
   std::vector<Image> m_free;
 };
-}  // namespace
 
-// One function on purpose: the three stages (reader thread, processing here, writer
-// thread) share the queues, the image pool, the failure flag and the stats, and both
-// threads must be joined before any stage's error is rethrown. Each stage is one lambda.
-TranscodeStats transcode(Source& source, Sink& sink, FrameProcessor& processor, const TranscodeOptions& options) {
-  const auto start = Clock::now();
+// The three stages (reader thread, processing here, writer thread) share one Pipeline: the
+// queues, the image pool, the failure flag and the stats. Both threads are joined before
+// any stage's error is rethrown.
+struct Pipeline {
+  Source& source;
+  Sink& sink;
+  FrameProcessor& processor;
+  const TranscodeOptions& options;
   TranscodeStats stats;
-  const std::size_t depth = std::size_t(std::max(1, options.queueDepth));
-  StageQueue decoded(depth), processed(depth);
+  StageQueue decoded, processed;
   ImagePool pool;
-  const bool live = source.info().live;
+  const bool live;
   std::atomic<bool> failed{false};
   std::exception_ptr writerError;
   std::int64_t droppedHere = 0;
-  const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
 
-  std::thread reader([&] {
+  Pipeline(Source& from, Sink& to, FrameProcessor& by, const TranscodeOptions& with, std::size_t depth)
+      : source(from), sink(to), processor(by), options(with), decoded(depth), processed(depth),
+        live(from.info().live) {}
+
+  bool cancelled() const { return options.cancel && options.cancel->load(); }
+
+  /// A stage failed: the others stop now.
+  void abortAll() {
+    failed = true;
+    decoded.abort();
+    processed.abort();
+  }
+
+  /// The reader thread: frames from the source into `decoded`, its audio into `processed`.
+  void readFrames() {
     while (!cancelled() && !failed) {
       Frame frame;
       frame.image = pool.take();
@@ -160,9 +175,10 @@ TranscodeStats transcode(Source& source, Sink& sink, FrameProcessor& processor, 
       }
     }
     decoded.close();
-  });
+  }
 
-  std::thread writer([&] {
+  /// The writer thread: frames and audio from `processed` into the sink.
+  void writeItems() {
     try {
       while (auto item = processed.pop()) {
         const auto t = Clock::now();
@@ -178,54 +194,70 @@ TranscodeStats transcode(Source& source, Sink& sink, FrameProcessor& processor, 
       }
     } catch (...) {
       writerError = std::current_exception();
-      failed = true;
-      decoded.abort();
-      processed.abort();
+      abortAll();
     }
-  });
-
-  std::exception_ptr processorError;
-  std::int64_t processedFrames = 0;
-  const FrameProcessor::Emit emit = [&](Frame&& frame) {
-    ++processedFrames;
-    processed.push(std::move(frame));
-    if (options.progress) options.progress(processedFrames);
-  };
-  try {
-    while (auto item = decoded.pop()) {
-      const auto t = Clock::now();
-      processor.process(std::move(std::get<Frame>(*item)), emit);
-      stats.processSeconds += since(t);
-    }
-    if (!failed) {
-      const auto t = Clock::now();
-      processor.flush(emit);
-      stats.processSeconds += since(t);
-    }
-  } catch (...) {
-    processorError = std::current_exception();
-    failed = true;
-    decoded.abort();
-    processed.abort();
   }
-  processed.close();
+
+  /// Processing, on the calling thread: `decoded` through the processor into `processed`.
+  /// The processor's error, if any.
+  std::exception_ptr processFrames() {
+    std::exception_ptr processorError;
+    std::int64_t processedFrames = 0;
+    const FrameProcessor::Emit emit = [&](Frame&& frame) {
+      ++processedFrames;
+      processed.push(std::move(frame));
+      if (options.progress) options.progress(processedFrames);
+    };
+    try {
+      while (auto item = decoded.pop()) {
+        const auto t = Clock::now();
+        processor.process(std::move(std::get<Frame>(*item)), emit);
+        stats.processSeconds += since(t);
+      }
+      if (!failed) {
+        const auto t = Clock::now();
+        processor.flush(emit);
+        stats.processSeconds += since(t);
+      }
+    } catch (...) {
+      processorError = std::current_exception();
+      abortAll();
+    }
+    return processorError;
+  }
+
+  /// After the threads: the audio demuxed after the last frame, then the sink finished.
+  void finishOutput() {
+    for (Packet& p : source.takeAudio()) {  // demuxed after the last frame
+      sink.writeAudio(std::move(p));
+      ++stats.audioPackets;
+    }
+    if (stats.framesWritten > 0) {  // an empty video is no result: the sink's temporary file goes
+      const auto t = Clock::now();
+      sink.finish();
+      stats.writeSeconds += since(t);
+      stats.finished = true;
+    }
+  }
+};
+}  // namespace
+
+TranscodeStats transcode(Source& source, Sink& sink, FrameProcessor& processor, const TranscodeOptions& options) {
+  const auto start = Clock::now();
+  Pipeline pipeline(source, sink, processor, options, std::size_t(std::max(1, options.queueDepth)));
+  std::thread reader([&] { pipeline.readFrames(); });
+  std::thread writer([&] { pipeline.writeItems(); });
+  const std::exception_ptr processorError = pipeline.processFrames();
+  pipeline.processed.close();
   reader.join();
   writer.join();
   if (processorError) std::rethrow_exception(processorError);
-  if (writerError) std::rethrow_exception(writerError);
+  if (pipeline.writerError) std::rethrow_exception(pipeline.writerError);
 
-  for (Packet& p : source.takeAudio()) {  // demuxed after the last frame
-    sink.writeAudio(std::move(p));
-    ++stats.audioPackets;
-  }
-  if (stats.framesWritten > 0) {  // an empty video is no result: the sink's temporary file goes
-    const auto t = Clock::now();
-    sink.finish();
-    stats.writeSeconds += since(t);
-    stats.finished = true;
-  }
-  stats.interrupted = cancelled();
-  stats.droppedFrames = droppedHere + source.droppedFrames();
+  pipeline.finishOutput();
+  TranscodeStats& stats = pipeline.stats;
+  stats.interrupted = pipeline.cancelled();
+  stats.droppedFrames = pipeline.droppedHere + source.droppedFrames();
   stats.seconds = since(start);
   return stats;
 }

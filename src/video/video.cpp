@@ -9,6 +9,7 @@
 #include "glint/core/log.h"
 #include "glint/video/sink.h"
 #include "glint/video/source.h"
+#include "glint/video/packet.h"
 
 #include <algorithm>
 #include <array>

@@ -472,8 +472,8 @@ private:
   bool m_shotRequested = false;
   // The camera: the user's change to it, and the camera the scene defined last frame
   // (empty for a 2D view).
-  render::OrbitControl m_view;
-  std::optional<render::Camera> m_defined;
+  glint::OrbitControl m_view;
+  std::optional<glint::Camera> m_defined;
   Drag m_drag = Drag::None;
   int m_dragButton = -1;
   vec2 m_cursor{0.0f};

@@ -50,7 +50,7 @@ struct Frame {
   Image lit;      // RGBA F32
 };
 
-Frame renderFrame(const render::GpuMesh& mesh, const render::Camera& camera, render::bump::ShadingNormal source,
+Frame renderFrame(const render::GpuMesh& mesh, const glint::Camera& camera, render::bump::ShadingNormal source,
                   const gl::Texture* map) {
   static const render::bump::DirectionalLight lights[] = {
       {.direction = {0.6f, 0.8f, 0.3f}, .color = vec3(0.8f)},
@@ -111,7 +111,7 @@ Agreement roundTrip(const Mesh& low, const Mesh& high, const bake::BakeOptions& 
   const render::GpuMesh highMesh(high, {}, "high");
   Agreement worst;
   for (float azimuth : {0.3f, 2.4f, 4.4f}) {
-    const auto camera = render::Camera::orbit(vec3(0.0f), 3.2f, azimuth, 0.6f, 40.0f, 1.0f);
+    const auto camera = glint::Camera::orbit(vec3(0.0f), 3.2f, azimuth, 0.6f, 40.0f, 1.0f);
     const Frame withMap = renderFrame(lowMesh, camera, render::bump::ShadingNormal::TangentMap, &map);
     const Frame reference = renderFrame(highMesh, camera, render::bump::ShadingNormal::Vertex, nullptr);
     const Agreement a = compare(withMap, reference, 2, glm::normalize(camera.position), minFacing);

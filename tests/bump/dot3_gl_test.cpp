@@ -52,8 +52,8 @@ Image randomImage(unsigned seed) {
 
 // An orthographic camera that maps the polygon's [−1, 1]² exactly onto the viewport, so pixel
 // (x, y) samples texel (x, y) with nearest filtering.
-render::Camera fullViewport() {
-  render::Camera c;
+glint::Camera fullViewport() {
+  glint::Camera c;
   c.projection = glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, -1.0f, 1.0f);
   return c;
 }

@@ -152,7 +152,7 @@ TEST_F(EnvGl, DynamicCubeFacesSeeTheirOwnDirections) {
   const gl::Texture source = renv::cubeFromFaces(faces);
   renv::Skybox sky;
   renv::DynamicCubeMap dynamic(size);
-  dynamic.render(vec3(3.0f, -1.0f, 2.0f), [&](const render::Camera& face) { sky.draw(source, face); });
+  dynamic.render(vec3(3.0f, -1.0f, 2.0f), [&](const glint::Camera& face) { sky.draw(source, face); });
   EXPECT_EQ(dynamic.texture().levels(), 6);
   double worst = 0;
   for (int f = 0; f < 6; ++f) {
@@ -178,7 +178,7 @@ struct ReflectionCheck {
 ReflectionCheck checkMirrorBall(const renv::Reflector& mirror, const gl::Texture& environment, const mat3& sphereFrame,
                                 float maxAngleFromViewer) {
   const ivec2 size{96, 96};
-  const auto camera = render::Camera::orbit(vec3(0.0f), 3.5f, 0.7f, 0.3f, 45.0f, 1.0f);
+  const auto camera = glint::Camera::orbit(vec3(0.0f), 3.5f, 0.7f, 0.3f, 45.0f, 1.0f);
   render::GpuMesh ball(makeUvSphere(1.0f, 128, 64));
   gl::RenderTarget target(size);
   target.target().bind();
@@ -226,7 +226,7 @@ TEST_F(EnvGl, CubeMapReflectionFollowsTheAnalyticReflectionVector) {
 
 TEST_F(EnvGl, SphereMapReflectionFollowsItOutsideTheSingularRim) {
   const gl::Texture cube = solidFaceCube(32);
-  const auto camera = render::Camera::orbit(vec3(0.0f), 3.5f, 0.7f, 0.3f, 45.0f, 1.0f);
+  const auto camera = glint::Camera::orbit(vec3(0.0f), 3.5f, 0.7f, 0.3f, 45.0f, 1.0f);
   gl::Texture sphereMap = renv::sphereMapFromCube(cube, {.size = 256, .worldToFrame = camera.rotation()});
   sphereMap.filtering(GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
   renv::Reflector mirror({.lookup = renv::Lookup::SphereMap});

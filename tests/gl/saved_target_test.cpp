@@ -8,7 +8,7 @@
 #include "glint/image/normalmap.h"
 #include "glint/post/effects.h"
 #include "glint/render/bump/height_to_normal.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/env/dynamic_cube.h"
 #include "glint/render/env/environment.h"
 #include "glint/render/post/chain.h"
@@ -70,7 +70,7 @@ TEST_F(GlTest, EveryOffscreenPassPutsTheCallersFramebufferAndViewportBack) {
          EXPECT_EQ(bound(), before) << "sphereMapFromCube alone";
        }},
       {"env::DynamicCubeMap::render",
-       [&] { render::env::DynamicCubeMap(8).render(vec3(0.0f), [](const render::Camera&) {}); }},
+       [&] { render::env::DynamicCubeMap(8).render(vec3(0.0f), [](const glint::Camera&) {}); }},
       {"water::WaveSimulation::addDrop",
        [&] { render::water::WaveSimulation({16, 16}).addDrop({.centre = vec2(8.0f)}); }},
       {"water::WaveSimulation::step", [&] { render::water::WaveSimulation({16, 16}).step(); }},

@@ -1,11 +1,11 @@
 // Split screens: gl::Target regions keep draws and clears inside their rectangle, and a
-// camera cropped to each rectangle (render::Camera::cropped) tiles the same picture the
+// camera cropped to each rectangle (glint::Camera::cropped) tiles the same picture the
 // whole camera draws into the whole frame.
 #include "support/gl_test.h"
 
 #include "glint/gl/render_target.h"
 #include "glint/mesh/mesh.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/raster_gl.h"
 #include "glint/render/state.h"
 
@@ -21,7 +21,7 @@ namespace {
 constexpr ivec2 kSize{161, 97};  // odd on purpose: the columns do not split evenly
 
 // An icosphere's triangles as clip-space vertices of `camera`, coloured by their normal.
-std::vector<raster::Vertex> sphereIn(const render::Camera& camera) {
+std::vector<raster::Vertex> sphereIn(const glint::Camera& camera) {
   const Mesh sphere = makeIcosphere(1.0f, 2);
   std::vector<raster::Vertex> out;
   for (std::uint32_t index : sphere.indices) {
@@ -31,7 +31,7 @@ std::vector<raster::Vertex> sphereIn(const render::Camera& camera) {
   return out;
 }
 
-Image draw(const gl::RenderTarget& rt, const std::vector<std::pair<gl::Target, render::Camera>>& parts) {
+Image draw(const gl::RenderTarget& rt, const std::vector<std::pair<gl::Target, glint::Camera>>& parts) {
   rt.target().bind();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, vec4(0.1f, 0.2f, 0.3f, 1.0f));
   for (const auto& [target, camera] : parts) {
@@ -67,10 +67,10 @@ TEST(TargetRegions, ColumnsAndCellsTileTheTarget) {
 
 TEST_F(GlTest, CroppedCamerasTileTheWholePicture) {
   const gl::RenderTarget rt(kSize, GL_RGBA8, "split");
-  const auto camera = render::Camera::orbit(vec3(0.0f), 3.0f, 0.4f, 0.3f, 50.0f, float(kSize.x) / float(kSize.y));
+  const auto camera = glint::Camera::orbit(vec3(0.0f), 3.0f, 0.4f, 0.3f, 50.0f, float(kSize.x) / float(kSize.y));
   const Image whole = draw(rt, {{rt.target(), camera}});
 
-  std::vector<std::pair<gl::Target, render::Camera>> columns;
+  std::vector<std::pair<gl::Target, glint::Camera>> columns;
   for (int i = 0; i < 3; ++i) {
     const gl::Target c = rt.target().column(i, 3);
     columns.push_back({c, camera.cropped(kSize, c.origin, c.size)});
@@ -84,7 +84,7 @@ TEST_F(GlTest, CroppedCamerasTileTheWholePicture) {
 
   // The same columns drawn with the uncropped camera squeeze the whole view into each
   // column: a control that the comparison above can fail.
-  std::vector<std::pair<gl::Target, render::Camera>> squeezed;
+  std::vector<std::pair<gl::Target, glint::Camera>> squeezed;
   for (const auto& [target, cropped] : columns) squeezed.push_back({target, camera});
   EXPECT_GT(double(compareImages(draw(rt, squeezed), whole).differingPixels) / double(whole.pixelCount()), 0.1);
 }

@@ -52,7 +52,7 @@ TEST(Install, AConsumerOfGlintRenderAloneBuildsOnAPrefixWithoutTheOptionalParts)
   ASSERT_EQ(configure.status, 0) << configure.output;
   const auto build = runShell(fmt::format("{} --build {} --target glint_render", cmake, shellQuote(glintBuild)));
   ASSERT_EQ(build.status, 0) << build.output;
-  for (const char* component : {"core", "farm", "image", "video", "post", "mesh", "pipedream", "sim", "gl", "render"}) {
+  for (const char* component : {"core", "image", "effects", "mesh", "pipedream", "shadows", "sim", "gl", "render"}) {
     const auto install = runShell(fmt::format("{} --install {} --prefix {} --component {}", cmake, shellQuote(glintBuild),
                                               shellQuote(prefix), component));
     ASSERT_EQ(install.status, 0) << install.output;
@@ -61,11 +61,13 @@ TEST(Install, AConsumerOfGlintRenderAloneBuildsOnAPrefixWithoutTheOptionalParts)
   for (const fs::path& file : {lib / "libglint_render.a", lib / "libglint_core.a", package / "glintConfig.cmake",
                                package / "glint-render-targets.cmake", prefix / GLINT_INSTALL_MODULE_DIR / "libglint_oiio.so",
                                prefix / GLINT_INSTALL_INCLUDEDIR / "glint/render/post/chain.h",
-                               prefix / GLINT_INSTALL_INCLUDEDIR / "glint/post/effects.h", lib / "libglint_post.a",
+                               prefix / GLINT_INSTALL_INCLUDEDIR / "glint/post/effects.h", lib / "libglint_effects.a",
                                package / "PeerDependencies.cmake"}) {
     EXPECT_TRUE(fs::is_regular_file(file)) << file << " is not installed";
   }
   for (const fs::path& file : {lib / "libglint_scenes.a", lib / "libglint_cut.a", lib / "libglint_bench.a",
+                               lib / "libglint_post.a", lib / "libglint_video.a", lib / "libglint_farm.a",
+                               prefix / GLINT_INSTALL_INCLUDEDIR / "glint/post/job.h",
                                prefix / GLINT_INSTALL_MODULE_DIR / "libglint_ffmpeg.so", package / "glint-cut-targets.cmake",
                                prefix / GLINT_INSTALL_INCLUDEDIR / "glint/cut", prefix / GLINT_INSTALL_BINDIR / "glint"}) {
     EXPECT_FALSE(fs::exists(file)) << file << " is installed";

@@ -60,9 +60,9 @@ rp::Renderer& renderer() {
   return r;
 }
 
-render::Camera camera(int index) { return pd::namedCamera(index, float(kSize.x) / float(kSize.y)); }
+glint::Camera camera(int index) { return pd::namedCamera(index, float(kSize.x) / float(kSize.y)); }
 
-rp::MachinePose poseAt(double time) { return rp::poseAt(stage().machine, stage().score, time); }
+glint::pipedream::MachinePose poseAt(double time) { return glint::pipedream::poseAt(stage().machine, stage().score, time); }
 
 Image readFloat(const gl::Texture& texture) { return gl::readTexture(texture, 0, 0, 4, PixelType::F32); }
 
@@ -87,7 +87,7 @@ struct Steps {
   std::vector<std::uint8_t> covered;
 };
 
-Steps renderSteps(const rp::MachinePose& pose, const render::Camera& cam) {
+Steps renderSteps(const glint::pipedream::MachinePose& pose, const glint::Camera& cam) {
   rp::Renderer& r = renderer();
   r.prepare(pose, cam, kSize, rp::Mode::Full);
   r.drawScene();
@@ -125,7 +125,7 @@ enum class Truth : std::uint8_t {
 /// Per light, per pixel (row 0 = top): lit or shadowed by the ray tracer, or excluded.
 class Oracle {
 public:
-  explicit Oracle(const rp::MachinePose& pose) {
+  explicit Oracle(const glint::pipedream::MachinePose& pose) {
     const InstrumentMachine& m = stage().machine;
     m_meshes.push_back(m.staticMesh);
     const auto place = [&](const Mesh& part, const mat4& model) {
@@ -140,7 +140,7 @@ public:
     for (const mat4& t : pose.mallets) place(m.mallet, t);
     // The balls cast what the renderer's volumes cast: an icosphere of the ball's radius.
     Mesh ball = makeIcosphere(1.0f, 2);
-    for (const rp::BallState& b : pose.balls)
+    for (const glint::pipedream::BallState& b : pose.balls)
       place(ball, glm::scale(glm::translate(mat4(1.0f), b.position), vec3(m.ballRadius)));
     for (Mesh& mesh : m_meshes)
       if (mesh.normals.empty()) computeNormals(mesh);
@@ -153,7 +153,7 @@ public:
   /// occluder (the static scene alone would leave them lit).
   /// `surface` (when given): pixels whose depth is the surface the pixel-centre ray hits
   /// (not a silhouette, not behind a translucent ball).
-  std::vector<std::vector<Truth>> classify(const Image& depth, const render::Camera& cam, std::size_t& dynamicOnly,
+  std::vector<std::vector<Truth>> classify(const Image& depth, const glint::Camera& cam, std::size_t& dynamicOnly,
                                            std::vector<bool>* surface = nullptr) const {
     const InstrumentMachine& m = stage().machine;
     const int w = depth.width(), h = depth.height();
@@ -243,8 +243,8 @@ const View kViews[] = {{2.1, 0}, {6.35, 1}, {9.8, 3}};
 TEST_F(GlTest, PipeDreamShadowsAgreeWithTheRayTracer) {
   std::size_t compared = 0, agree = 0, shadowed = 0, dynamicOnly = 0;
   for (const View& v : kViews) {
-    const rp::MachinePose pose = poseAt(v.time);
-    const render::Camera cam = camera(v.camera);
+    const glint::pipedream::MachinePose pose = poseAt(v.time);
+    const glint::Camera cam = camera(v.camera);
     const Steps s = renderSteps(pose, cam);
     std::size_t dyn = 0;
     // The renderer's camera has the infinite far plane its depth buffer was drawn with.
@@ -358,7 +358,7 @@ TEST_F(GlTest, PipeDreamRangeCullingChangesNoPixel) {
   gl::RenderTarget target(kSize);
   std::size_t culled = 0;
   for (const View& v : kViews) {
-    const rp::MachinePose pose = poseAt(v.time);
+    const glint::pipedream::MachinePose pose = poseAt(v.time);
     r.options().cullVolumes = true;
     r.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
     culled += r.stats().castersCulled;
@@ -390,14 +390,14 @@ TEST_F(GlTest, PipeDreamBoundedVolumesMatchVolumesToInfinity) {
   gl::RenderTarget target(kSize);
   std::size_t bounded = 0, differing = 0;
   std::uint64_t fillBounded = 0, fillInfinite = 0;
-  const render::Camera outside = render::Camera::lookAt({-30.0f, 40.0f, 60.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
+  const glint::Camera outside = glint::Camera::lookAt({-30.0f, 40.0f, 60.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
                                                         30.0f, float(kSize.x) / float(kSize.y));
-  std::vector<std::pair<double, render::Camera>> views;
+  std::vector<std::pair<double, glint::Camera>> views;
   for (const View& v : kViews) views.emplace_back(v.time, camera(v.camera));
   views.emplace_back(kViews[0].time, outside);
   for (const auto& [time, cam] : views)
     for (const rp::Mode mode : {rp::Mode::Full, rp::Mode::Naive}) {
-      const rp::MachinePose pose = poseAt(time);
+      const glint::pipedream::MachinePose pose = poseAt(time);
       r.options().boundVolumes = true;
       r.render(pose, cam, target.target(), mode);
       bounded += r.stats().castersBounded;
@@ -448,7 +448,7 @@ TEST_F(GlTest, PipeDreamClustersChangeNoPixel) {
   std::size_t culled = 0, drawn = 0;
   for (const View& v : kViews)
     for (const rp::Mode mode : {rp::Mode::Full, rp::Mode::Naive}) {
-      const rp::MachinePose pose = poseAt(v.time);
+      const glint::pipedream::MachinePose pose = poseAt(v.time);
       clustered.render(pose, camera(v.camera), target.target(), mode);
       culled += clustered.stats().staticCulled;
       drawn += clustered.stats().sceneTriangles;
@@ -479,7 +479,7 @@ TEST_F(GlTest, PipeDreamMatchesFullSceneVolumes) {
   rp::Renderer& r = renderer();
   gl::RenderTarget target(kSize);
   for (const View& v : kViews) {
-    const rp::MachinePose pose = poseAt(v.time);
+    const glint::pipedream::MachinePose pose = poseAt(v.time);
     r.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
     const Image full = readLinear(r.colorTexture());
     std::size_t dyn = 0;
@@ -524,7 +524,7 @@ TEST_F(GlTest, PipeDreamEightBitBuffersHalveTheFillAndKeepThePicture) {
   int worst = 0;
   std::size_t values = 0;
   for (const View& v : kViews) {
-    const rp::MachinePose pose = poseAt(v.time);
+    const glint::pipedream::MachinePose pose = poseAt(v.time);
     narrow.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
     const Image a = gl::readColor(target.framebuffer(), kSize);
     wide.render(pose, camera(v.camera), target.target(), rp::Mode::Full);
@@ -562,7 +562,7 @@ TEST_F(GlTest, PipeDreamEightBitBuffersHalveTheFillAndKeepThePicture) {
 TEST_F(GlTest, PipeDreamBallShaderStretchesAsTheReference) {
   // The vertex shader's world positions, captured by transform feedback, against
   // stretchVertex() — the arithmetic the unit tests check for length and closedness.
-  const rp::BlurBallMesh ball = rp::buildBlurBall(16, 8);
+  const glint::pipedream::BlurBallMesh ball = glint::pipedream::buildBlurBall(16, 8);
   std::vector<float> data;
   for (const vec3& p : ball.positions) data.insert(data.end(), {p.x, p.y, p.z});
   data.insert(data.end(), ball.rear.begin(), ball.rear.end());
@@ -576,7 +576,7 @@ TEST_F(GlTest, PipeDreamBallShaderStretchesAsTheReference) {
   const gl::Program program = gl::Program::fromFiles({"pipedream/ball.vert"}, {"CAPTURE"});
   const vec3 centre(0.5f, 2.0f, -1.0f), velocity(6.0f, 9.0f, -3.0f);
   const float radius = 0.12f, shutter = 1.0f / 30.0f;
-  program.set("uFrame", rp::ballFrame(velocity));
+  program.set("uFrame", glint::pipedream::ballFrame(velocity));
   program.set("uCentre", centre);
   program.set("uVelocity", velocity);
   program.set("uRadius", radius);
@@ -597,7 +597,7 @@ TEST_F(GlTest, PipeDreamBallShaderStretchesAsTheReference) {
   std::vector<vec3> out(ball.positions.size());
   glGetNamedBufferSubData(captured.id(), 0, GLsizeiptr(out.size() * sizeof(vec3)), out.data());
   for (std::size_t i = 0; i < out.size(); ++i) {
-    const vec3 expected = rp::stretchVertex(ball.positions[i], ball.rear[i], centre, velocity, radius, shutter);
+    const vec3 expected = glint::pipedream::stretchVertex(ball.positions[i], ball.rear[i], centre, velocity, radius, shutter);
     ASSERT_LT(glm::length(out[i] - expected), 1e-5f) << i;
   }
 }

@@ -5,8 +5,8 @@
 #include "glint/cut/cache.h"
 #include "glint/mesh/adjacency.h"
 #include "glint/pipedream/machine_room.h"
-#include "glint/render/pipedream/motion_blur.h"
-#include "glint/render/pipedream/score.h"
+#include "glint/pipedream/motion_blur.h"
+#include "glint/pipedream/score.h"
 #include "glint/scenes/pipedream.h"
 
 #include <gtest/gtest.h>
@@ -109,22 +109,22 @@ TEST(InstrumentMachine, PolygonsGrowWithDetail) {
 
 TEST(Score, BallsFlyExactParabolasFromLauncherToInstrumentToCollector) {
   const InstrumentMachine m = makeInstrumentMachine({.detail = 1});
-  const rp::Score score = rp::makeScore(m);
+  const glint::pipedream::Score score = glint::pipedream::makeScore(m);
   ASSERT_GE(score.flights.size(), 30u);
-  for (const rp::BallFlight& f : score.flights) {
+  for (const glint::pipedream::BallFlight& f : score.flights) {
     // Leaves from inside its launcher's mouth, strikes at `hit`, lands at `land`.
     const vec3 mouth = m.launchers[std::size_t(f.launcher)].mouth;
-    EXPECT_LT(glm::length(rp::ballAt(f, 0.0).position - mouth), m.ballRadius + 0.02f);
-    EXPECT_LT(glm::length(rp::ballAt(f, f.hit - f.launch - 1e-6).position - f.strike), 1e-3f);
-    EXPECT_LT(glm::length(rp::ballAt(f, f.land - f.launch).position - f.finish), 1e-3f);
+    EXPECT_LT(glm::length(glint::pipedream::ballAt(f, 0.0).position - mouth), m.ballRadius + 0.02f);
+    EXPECT_LT(glm::length(glint::pipedream::ballAt(f, f.hit - f.launch - 1e-6).position - f.strike), 1e-3f);
+    EXPECT_LT(glm::length(glint::pipedream::ballAt(f, f.land - f.launch).position - f.finish), 1e-3f);
     // Velocity is the derivative of position (central differences on both arcs).
     for (const double t : {0.2 * (f.hit - f.launch), 0.5 * (f.hit - f.launch), (f.hit - f.launch) + 0.3 * (f.land - f.hit)}) {
       const double h = 1e-3;
-      const vec3 d = (rp::ballAt(f, t + h).position - rp::ballAt(f, t - h).position) / float(2.0 * h);
-      EXPECT_LT(glm::length(d - rp::ballAt(f, t).velocity), 1e-2f * std::max(1.0f, glm::length(d)));
+      const vec3 d = (glint::pipedream::ballAt(f, t + h).position - glint::pipedream::ballAt(f, t - h).position) / float(2.0 * h);
+      EXPECT_LT(glm::length(d - glint::pipedream::ballAt(f, t).velocity), 1e-2f * std::max(1.0f, glm::length(d)));
     }
     // It ends inside its collector's tube: below the rim, within its radius.
-    const rp::BallState last = rp::ballAt(f, f.end - f.launch);
+    const glint::pipedream::BallState last = glint::pipedream::ballAt(f, f.end - f.launch);
     const MachineCollector& c = m.collectors[std::size_t(f.collector)];
     EXPECT_LT(last.position.y + m.ballRadius, c.top.y + 1e-3f);
     EXPECT_LT(glm::length(vec2(last.position.x - c.top.x, last.position.z - c.top.z)) + m.ballRadius, c.radius + 1e-3f);
@@ -133,9 +133,9 @@ TEST(Score, BallsFlyExactParabolasFromLauncherToInstrumentToCollector) {
 
 TEST(Score, PosesAreAFunctionOfTimeThatLoops) {
   const InstrumentMachine m = makeInstrumentMachine({.detail = 1});
-  const rp::Score score = rp::makeScore(m);
+  const glint::pipedream::Score score = glint::pipedream::makeScore(m);
   for (const double t : {0.0, 3.7, 6.35, 11.1}) {
-    const rp::MachinePose a = rp::poseAt(m, score, t), b = rp::poseAt(m, score, t), c = rp::poseAt(m, score, t + score.period);
+    const glint::pipedream::MachinePose a = glint::pipedream::poseAt(m, score, t), b = glint::pipedream::poseAt(m, score, t), c = glint::pipedream::poseAt(m, score, t + score.period);
     ASSERT_EQ(a.balls.size(), c.balls.size()) << t;
     for (std::size_t i = 0; i < a.balls.size(); ++i) {
       EXPECT_EQ(a.balls[i].position, b.balls[i].position);
@@ -149,15 +149,15 @@ TEST(Score, PosesAreAFunctionOfTimeThatLoops) {
   }
   // Balls are always in flight (the seed's stage is never still) and mallets move.
   std::size_t fewest = 1000;
-  for (double t = 0.0; t < score.period; t += 0.25) fewest = std::min(fewest, rp::poseAt(m, score, t).balls.size());
+  for (double t = 0.0; t < score.period; t += 0.25) fewest = std::min(fewest, glint::pipedream::poseAt(m, score, t).balls.size());
   EXPECT_GE(fewest, 2u);
-  EXPECT_NE(rp::poseAt(m, score, 0.1).mallets[0], rp::poseAt(m, score, 1.3).mallets[0]);
+  EXPECT_NE(glint::pipedream::poseAt(m, score, 0.1).mallets[0], glint::pipedream::poseAt(m, score, 1.3).mallets[0]);
 }
 
 // ------------------------------------------------------------------ motion blur
 
 TEST(MotionBlur, StretchIsSpeedTimesShutterAndTheBallStaysClosed) {
-  const rp::BlurBallMesh ball = rp::buildBlurBall(24, 12);
+  const glint::pipedream::BlurBallMesh ball = glint::pipedream::buildBlurBall(24, 12);
   EXPECT_EQ(ball.seamTriangles, 48u);
   const float radius = 0.12f, shutter = 1.0f / 30.0f;
   const vec3 centre(1.0f, 2.0f, 3.0f);
@@ -166,7 +166,7 @@ TEST(MotionBlur, StretchIsSpeedTimesShutterAndTheBallStaysClosed) {
     Mesh stretched;
     stretched.indices = ball.indices;
     for (std::size_t i = 0; i < ball.positions.size(); ++i)
-      stretched.positions.push_back(rp::stretchVertex(ball.positions[i], ball.rear[i], centre, velocity, radius, shutter));
+      stretched.positions.push_back(glint::pipedream::stretchVertex(ball.positions[i], ball.rear[i], centre, velocity, radius, shutter));
     // Closed at every speed: at rest the seam quads collapse (degenerate, no edges); moving,
     // they are the pill's sides.
     const EdgeMap edges = EdgeMap::build(stretched);
@@ -186,21 +186,21 @@ TEST(MotionBlur, StretchIsSpeedTimesShutterAndTheBallStaysClosed) {
     EXPECT_NEAR(hi, radius, 1e-5f);
     EXPECT_NEAR(hi - lo, 2.0f * radius + speed * shutter, 1e-4f) << speed;
     EXPECT_NEAR(across, radius, 1e-5f);
-    const rp::BallBlur blur = rp::blurOf(velocity, radius, shutter);
+    const glint::pipedream::BallBlur blur = glint::pipedream::blurOf(velocity, radius, shutter);
     EXPECT_NEAR(blur.stretch, speed * shutter, 1e-6f);
   }
   // Faster: more see-through and blurrier, never below the floor.
-  rp::BallBlur last = rp::blurOf(vec3(0.0f), radius, shutter);
+  glint::pipedream::BallBlur last = glint::pipedream::blurOf(vec3(0.0f), radius, shutter);
   EXPECT_EQ(last.opacity, 1.0f);
   EXPECT_EQ(last.lodBias, 0.0f);
   for (float speed = 1.0f; speed < 60.0f; speed *= 1.5f) {
-    const rp::BallBlur b = rp::blurOf(vec3(speed, 0.0f, 0.0f), radius, shutter);
+    const glint::pipedream::BallBlur b = glint::pipedream::blurOf(vec3(speed, 0.0f, 0.0f), radius, shutter);
     EXPECT_LE(b.opacity, last.opacity);
     EXPECT_GE(b.opacity, 0.25f);
     EXPECT_GT(b.lodBias, last.lodBias);
     last = b;
   }
-  EXPECT_THROW(rp::buildBlurBall(24, 11), Error);
+  EXPECT_THROW(glint::pipedream::buildBlurBall(24, 11), Error);
 }
 
 // ------------------------------------------------------------------ caches
@@ -330,7 +330,7 @@ TEST(Stage, TheDefaultFrameIsInTheSeedsRange) {
   // the build's cache/ under ctest).
   const auto stage = pd::loadStage({.progress = false});
   for (const double t : {0.0, 4.0, 6.35, 12.5}) {
-    const std::size_t n = stage->trianglesPerFrame(rp::poseAt(stage->machine, stage->score, t));
+    const std::size_t n = stage->trianglesPerFrame(glint::pipedream::poseAt(stage->machine, stage->score, t));
     EXPECT_GE(n, 400'000u) << t;
     EXPECT_LE(n, 550'000u) << t;
   }

@@ -114,7 +114,7 @@ TEST(PostJob, TheChecksComeBeforeAnythingIsOpened) {
   EXPECT_EQ(glint::testing::fileCount(d), 1u) << "nothing written";
 }
 
-// glint::post is GL-free: a program that hands runJob no GPU backend (render/post/gpu.h)
+// glint::post is GL-free: a program that hands runJob no GPU backend (scenes/post_gpu.h)
 // runs every effect on the CPU, and asking for the GPU is a usage error that says why.
 TEST(PostJob, WithoutAGpuBackendTheJobRunsOnTheCpuAndRefusesGpu) {
   const fs::path d = glint::testing::freshDir("post-job", "no-gpu");

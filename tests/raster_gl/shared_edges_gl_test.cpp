@@ -6,7 +6,7 @@
 // so a hole is a 0 and a doubly drawn pixel a 2.
 #include "cross_check.h"
 
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "support/gl_test.h"
 
 #include <algorithm>
@@ -89,7 +89,7 @@ std::vector<raster::Vertex> fan(dvec2 centre, double radius, int spokes) {
 /// A 20×20 ground grid on y = 0 seen by a low camera standing on it: the grid runs
 /// behind the eye, so triangles are cut by the near plane (and w < 0 vertices occur).
 std::vector<raster::Vertex> groundThroughTheEye() {
-  const auto camera = render::Camera::lookAt({0.3f, 0.4f, 0.0f}, {0.0f, 0.0f, -3.0f}, {0, 1, 0}, 70.0f,
+  const auto camera = glint::Camera::lookAt({0.3f, 0.4f, 0.0f}, {0.0f, 0.0f, -3.0f}, {0, 1, 0}, 70.0f,
                                              float(kWidth) / float(kHeight), 0.1f, 30.0f);
   const mat4 viewProj = camera.viewProjection();
   constexpr int n = 20;

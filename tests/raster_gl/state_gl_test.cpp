@@ -13,7 +13,7 @@
 #include "cross_check.h"
 
 #include "glint/mesh/mesh.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "support/gl_test.h"
 
 #include <algorithm>
@@ -157,7 +157,7 @@ TEST_F(GlTest, ShadowVolumeStencilCountsMatch) {
   // The technique this oracle exists for: a receiver (ground and a box) drawn with depth,
   // then closed volumes with colour and depth writes off, z-fail counting (back faces
   // GL_INCR_WRAP and front faces GL_DECR_WRAP on depth fail). Non-zero stencil = inside.
-  const auto camera = render::Camera::lookAt({2.5f, 3.0f, 5.0f}, {0.0f, 0.3f, 0.0f}, {0, 1, 0}, 50.0f,
+  const auto camera = glint::Camera::lookAt({2.5f, 3.0f, 5.0f}, {0.0f, 0.3f, 0.0f}, {0, 1, 0}, 50.0f,
                                              float(kWidth) / float(kHeight), 0.5f, 30.0f);
   const mat4 viewProj = camera.viewProjection();
   auto transformed = [&](Mesh mesh, const mat4& model, vec4 color) {

@@ -1,8 +1,8 @@
-// render::OrbitControl, the viewer's mouse camera, against geometry computed here: the
+// glint::OrbitControl, the viewer's mouse camera, against geometry computed here: the
 // identity leaves a camera bit for bit, yaw turns about world up keeping the distance,
 // pitch stops short of the poles, zoom scales the distance, pan moves eye and target
 // alike, and a drag there and back returns to the defined camera.
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <cstring>
 
 using namespace glint;
-using render::Camera;
-using render::OrbitControl;
+using glint::Camera;
+using glint::OrbitControl;
 
 namespace {
 

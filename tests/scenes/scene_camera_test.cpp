@@ -45,7 +45,7 @@ struct Frame {
   bool askedForCamera = false;
 };
 
-Frame renderFrame(scenes::Scene& scene, const scenes::VariantRef& ref, const render::OrbitControl& view) {
+Frame renderFrame(scenes::Scene& scene, const scenes::VariantRef& ref, const glint::OrbitControl& view) {
   gl::RenderTarget target(kSize);
   render::resetState();
   // An early time: the camera does not depend on it, and the water scenes simulate up to it.
@@ -85,7 +85,7 @@ TEST_P(SceneCamera, ThreeDViewsMoveWithTheViewAndTwoDViewsDoNot) {
   if (!contexts().available(desc.profile)) GTEST_SKIP() << contexts().unavailableReason(desc.profile);
   contexts().use(desc.profile);
   const auto errorsBefore = gl::debugErrorCount();
-  render::OrbitControl turned;
+  glint::OrbitControl turned;
   turned.yaw = 0.5f;
   turned.pitch = 0.15f;
   for (int v = 0; v < int(desc.variants.size()); ++v) {

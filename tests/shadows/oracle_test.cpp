@@ -45,7 +45,8 @@
 
 using namespace glint;
 using namespace glint::render::shadows;
-using glint::render::Camera;
+using namespace glint::shadows;
+using glint::Camera;
 using glint::testing::GlTest;
 
 namespace {
@@ -64,7 +65,7 @@ struct Comparison {
   }
 };
 
-// The scenes' own cameras (render/shadows/world.h), at the test's aspect.
+// The scenes' own cameras (shadows/world.h), at the test's aspect.
 Camera cameraFor(SceneView view, ivec2 size = kSize) { return sceneCamera(view, float(size.x) / float(size.y)); }
 
 /// The ray tracer's verdict per pixel (row 0 = top, like gl::read*), from a depth image.

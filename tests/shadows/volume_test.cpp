@@ -4,8 +4,8 @@
 // and a point — an independent computation of what the stencil buffer should hold.
 #include "glint/core/error.h"
 #include "glint/mesh/adjacency.h"
-#include "glint/render/shadows/volume.h"
-#include "glint/render/shadows/world.h"
+#include "glint/shadows/volume.h"
+#include "glint/shadows/world.h"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@
 #include <vector>
 
 using namespace glint;
-using namespace glint::render::shadows;
+using namespace glint::shadows;
 
 namespace {
 

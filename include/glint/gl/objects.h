@@ -159,6 +159,12 @@ public:
   /// Min/mag filter and wrap in one call.
   void filtering(GLenum minFilter, GLenum magFilter, GLenum wrap = GL_REPEAT) const;
   void bind(GLuint unit) const { glBindTextureUnit(unit, m_id); }
+  /// Binds to `unit` with no sampler object there, so the texture's own parameters apply
+  /// (and texelFetch, which ignores sampling state, reads a predictable unit).
+  void bindUnsampled(GLuint unit) const {
+    glBindTextureUnit(unit, m_id);
+    glBindSampler(unit, 0);
+  }
   /// glBindTexture(target(), ...) on the active texture unit: the fixed-function path's
   /// way, which glEnable(GL_TEXTURE_2D / CUBE_MAP) then reads. Prefer bind(unit).
   void bindToActiveUnit() const { glBindTexture(m_target, m_id); }

@@ -3,7 +3,7 @@
 // of a video, a camera or a lavfi source through an effect chain, or --frames parts joined),
 // with the command's checks, memory estimate, warnings and report. The command parses its
 // options into a PostJob and calls runJob and finishJob; so can any program (library
-// glint::post: GL-free; its GPU backend comes from glint::render, render/post/gpu.h, and is
+// glint::post: GL-free; its GPU backend comes from glint::scenes, scenes/post_gpu.h, and is
 // handed to runJob: a program without it runs the effects on the CPU).
 //
 /// ```cpp
@@ -30,6 +30,7 @@
 #include "glint/core/tool.h"
 #include "glint/post/cpu.h"
 #include "glint/post/effects.h"
+#include "glint/post/gpu_backend.h"
 #include "glint/video/sink.h"
 #include "glint/video/transcode.h"
 
@@ -171,31 +172,10 @@ struct PostStats {
   nlohmann::ordered_json toJson() const;
 };
 
-/// The GPU side of a job, which render/post provides (render::post::gpuBackend(),
-/// render/post/gpu.h): the job asks it about devices and hands it the frames, and stays
-/// free of GL itself.
-class GpuBackend {
-public:
-  virtual ~GpuBackend() = default;
-  /// Whether every device EGL lists is a software rasterizer (known without a context).
-  virtual bool onlySoftwareDevices() = 0;
-  /// Makes the headless context the work runs in (once; kept until the backend is
-  /// destroyed) and returns the GL renderer's name. Error(NoGpu) without OpenGL 4.5.
-  virtual std::string start(bool debug) = 0;
-  /// The largest texture side of the context.
-  virtual int maxTextureSize() = 0;
-  /// `frame` (U8 or F32 RGBA) through the effects; `described` gets the chain's description.
-  virtual Image runImage(const std::vector<Effect>& effects, const Image& frame, std::string& described) = 0;
-  /// A video's frames (U8 RGBA) through the effects, a few in flight, as the transcoder's
-  /// middle stage; `described` gets the chain's description.
-  virtual std::unique_ptr<video::FrameProcessor> videoProcessor(ivec2 size, const std::vector<Effect>& effects,
-                                                                std::string& described) = 0;
-};
-
 /// Runs the job: the checks above, then the work, with phases, progress and warnings on
 /// `run` (its cancel flag stops a video cleanly: a playable partial video; an image is then
-/// not written, Error(Interrupted)). `gpu`: the GPU backend (render/post/gpu.h's
-/// gpuBackend()), which makes its own headless context when used; null: the CPU only
+/// not written, Error(Interrupted)). `gpu`: the GPU backend (scenes/post_gpu.h's
+/// postGpuBackend()), which makes its own headless context when used; null: the CPU only
 /// (--backend gpu is then a usage error).
 PostStats runJob(const PostJob& job, ToolRun& run, GpuBackend* gpu = nullptr);
 

@@ -11,7 +11,7 @@
 //   NamedCamera, namedCameras, namedCamera   WWDC 2003 session 212's camera moves
 //
 // The stage is deterministic: the machine is generated in code (pipedream/machine_room.h), the
-// score is data (render/pipedream/score.h), and the cut is glint::cut's exact output for
+// score is data (pipedream/score.h), and the cut is glint::cut's exact output for
 // the machine's static geometry and lights. The cut takes seconds, so it is kept on disk
 // (cut/cache.h: named by a hash of the geometry, the lights and the cutter's version, so a
 // change to any of them cuts again, with a progress bar) and loaded in a fraction of that
@@ -22,16 +22,16 @@
 /// glint::render::pipedream::Renderer renderer(stage->machine, stage->geometry);
 /// const glint::gl::RenderTarget frame({1280, 720});
 /// const glint::gl::Target target = frame.target();
-/// const auto pose = glint::render::pipedream::poseAt(stage->machine, stage->score, 3.0);
+/// const auto pose = glint::pipedream::poseAt(stage->machine, stage->score, 3.0);
 /// renderer.render(pose, glint::scenes::pipedream::namedCamera(0, target.aspect()), target,
 ///                 glint::render::pipedream::Mode::Full);
 /// ```
 
 #include "glint/cut/cache.h"
 #include "glint/pipedream/machine_room.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/pipedream/renderer.h"
-#include "glint/render/pipedream/score.h"
+#include "glint/pipedream/score.h"
 
 #include <filesystem>
 #include <memory>
@@ -70,7 +70,7 @@ struct StageOptions {
 
 struct Stage {
   InstrumentMachine machine;
-  render::pipedream::Score score;
+  glint::pipedream::Score score;
   render::pipedream::StaticGeometry geometry;
   std::filesystem::path cutFile;  ///< the cached cut
   bool cutBuilt = false;          ///< this process cut it (false: loaded)
@@ -79,7 +79,7 @@ struct Stage {
   int detail = 0;
   /// Triangles drawn per frame by WWDC 2003 session 212's method at `pose`: the cut static scene, the
   /// dynamic parts and the balls.
-  std::size_t trianglesPerFrame(const render::pipedream::MachinePose& pose) const;
+  std::size_t trianglesPerFrame(const glint::pipedream::MachinePose& pose) const;
   /// One line: input triangles, cut polygons, triangles, masks, where the cut came from.
   std::string describe() const;
 };
@@ -101,6 +101,6 @@ struct NamedCamera {
 /// look at balls in flight).
 std::span<const NamedCamera> namedCameras();
 /// Camera `index` (clamped to the list) at `aspect`, near plane 0.3 m.
-render::Camera namedCamera(int index, float aspect);
+glint::Camera namedCamera(int index, float aspect);
 
 }  // namespace glint::scenes::pipedream

@@ -29,7 +29,7 @@
 #include "glint/core/math.h"
 #include "glint/gl/context.h"
 #include "glint/gl/render_target.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 
 #include <functional>
 #include <memory>
@@ -44,7 +44,7 @@ struct FrameInput {
   gl::Target target;     ///< where to draw, and its size
   double time = 0.0;     ///< seconds since the scene started; drives all animation
   double deltaTime = 0;  ///< seconds since the previous frame (0 for a single headless frame)
-  render::OrbitControl view{};  ///< the viewer user's orbit, pan and zoom; the identity everywhere else
+  glint::OrbitControl view{};  ///< the viewer user's orbit, pan and zoom; the identity everywhere else
 
   /// The scene's own camera as the user moved it: `view.apply(defined)`, which is `defined`
   /// itself in headless renders. Call it once per frame with the camera the scene defines
@@ -52,16 +52,16 @@ struct FrameInput {
   ///
   /// ```cpp
   /// const glint::scenes::FrameInput frame{};  // what Scene::render receives
-  /// const glint::render::Camera camera =
-  ///     frame.camera(glint::render::Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.35f, 45.0f, frame.target.aspect()));
+  /// const glint::Camera camera =
+  ///     frame.camera(glint::Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.35f, 45.0f, frame.target.aspect()));
   /// ```
-  render::Camera camera(const render::Camera& defined) const {
+  glint::Camera camera(const glint::Camera& defined) const {
     definedCamera = defined;
     return view.apply(defined);
   }
   /// Set by camera(): the camera the scene defined this frame. Empty after a frame of a
   /// 2D view — the viewer then leaves the mouse alone.
-  mutable std::optional<render::Camera> definedCamera;
+  mutable std::optional<glint::Camera> definedCamera;
 };
 
 /// A tweakable parameter a scene exposes. `value` points into the scene.

@@ -1,6 +1,8 @@
 #pragma once
-// glint/video/frame.h — what flows through glint's video layer: RGBA frames with their
-// timestamps, compressed packets passed through untouched (audio), and rationals.
+// glint/video/frame.h — what flows through glint's video layer: RGBA or YUV frames with
+// their timestamps, and rationals. Plain data, header-only (a module that works on frames,
+// post's CPU backend, uses it without linking the video layer); compressed packets are
+// video/packet.h's.
 //
 // The video layer (glint::video) is GL-free: FFmpeg's libraries read files, cameras (V4L2
 // through libavdevice) and lavfi sources, and write H.264 or FFV1 files; no FFmpeg type
@@ -10,9 +12,6 @@
 #include "glint/image/image.h"
 
 #include <cstdint>
-#include <memory>
-
-struct AVPacket;  // FFmpeg's; only pointers to it appear here
 
 namespace glint::video {
 
@@ -54,23 +53,5 @@ struct Frame {
   double seconds = 0.0;     ///< pts in seconds from the source's start (0 for its first frame)
 };
 
-/// A compressed packet (audio passed through without decoding). Move-only.
-class Packet {
-public:
-  Packet() = default;
-  /// Takes ownership of `packet` (freed with av_packet_free).
-  explicit Packet(AVPacket* packet);
-  ~Packet();
-  Packet(Packet&& other) noexcept;
-  Packet& operator=(Packet&& other) noexcept;
-  Packet(const Packet&) = delete;
-  Packet& operator=(const Packet&) = delete;
-
-  AVPacket* get() const { return m_packet; }
-  explicit operator bool() const { return m_packet != nullptr; }
-
-private:
-  AVPacket* m_packet = nullptr;
-};
 
 }  // namespace glint::video

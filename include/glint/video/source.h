@@ -40,6 +40,7 @@
 
 #include "glint/core/math.h"
 #include "glint/video/frame.h"
+#include "glint/video/packet.h"
 
 #include <cstdint>
 #include <deque>

@@ -69,7 +69,7 @@ public:
 /// A FrameProcessor around a pipelined stream with render/post's FrameStream interface —
 /// push(const Image&), pop(Image&), full(), empty() — keeping each frame's index and
 /// timestamps and reusing the input frames' images for the results. A template, so the
-/// video layer needs nothing of the GPU side (render/post/gpu.cpp runs glint post's
+/// video layer needs nothing of the GPU side (scenes/post/gpu_backend.cpp runs glint post's
 /// FrameStream through it):
 ///
 /// ```cpp

@@ -1,10 +1,13 @@
 // The Pipe Dream frame (render/pipedream/renderer.h): cut static shadows, GPU-extruded
 // dynamic volumes, the destination-alpha dim factor and one quad per light, blurred balls.
+// The debug views and measurements are debug_views.cpp's.
 #include "glint/render/pipedream/renderer.h"
+
+#include "renderer_parts.h"
 
 #include "glint/core/error.h"
 #include "glint/mesh/adjacency.h"
-#include "glint/render/shadows/volume.h"
+#include "glint/shadows/volume.h"
 #include "glint/render/shadows/world_renderer.h"
 #include "glint/render/state.h"
 
@@ -19,16 +22,9 @@
 
 namespace glint::render::pipedream {
 
-namespace {
+using detail::FramebufferSrgb;
 
-// While a step draws into the colour buffer (sRGB): blending in linear light, writes
-// encoded. Off again after, for whatever the application draws next.
-struct FramebufferSrgb {
-  FramebufferSrgb() { glEnable(GL_FRAMEBUFFER_SRGB); }
-  ~FramebufferSrgb() { glDisable(GL_FRAMEBUFFER_SRGB); }
-  FramebufferSrgb(const FramebufferSrgb&) = delete;
-  FramebufferSrgb& operator=(const FramebufferSrgb&) = delete;
-};
+namespace {
 
 float maxOf(const vec3& v) { return std::max({v.x, v.y, v.z}); }
 
@@ -42,8 +38,6 @@ const vec3 kSkinAlbedo{0.86f, 0.82f, 0.70f};
 const vec3 kCymbalAlbedo{0.85f, 0.66f, 0.26f};
 const vec3 kMalletAlbedo{0.55f, 0.42f, 0.30f};
 const vec3 kMarkerColor{1.6f, 1.45f, 1.0f};
-const vec4 kVolumeWire{0.20f, 0.38f, 1.0f, 1.0f};
-const vec4 kEdgeColor{0.015f, 0.015f, 0.02f, 1.0f};
 constexpr float kMarkerRadius = 0.12f;
 
 // Volumes are pushed away from the camera so that a caster's lit faces (its volume's near
@@ -152,7 +146,7 @@ Renderer::Renderer(const InstrumentMachine& machine, const StaticGeometry& geome
   m_marker = GpuMesh(makeIcosphere(kMarkerRadius, 2), {}, "pipedream-light-marker");
 
   // The blur ball: positions, then the rear flag, in one buffer.
-  const BlurBallMesh ball = buildBlurBall(32, 16);
+  const glint::pipedream::BlurBallMesh ball = glint::pipedream::buildBlurBall(32, 16);
   std::vector<float> data;
   for (const vec3& p : ball.positions) data.insert(data.end(), {p.x, p.y, p.z});
   data.insert(data.end(), ball.rear.begin(), ball.rear.end());
@@ -270,7 +264,7 @@ Renderer::Caster Renderer::makeCaster(const Mesh& mesh, const std::string& name)
   Caster c;
   // Closed parts cast the classic volume; anything else the thin two-sided shell.
   c.twoSided = !edges.isClosedManifold();
-  const shadows::ExtrusionMesh extrusion = shadows::buildExtrusionMesh(edges, c.twoSided);
+  const glint::shadows::ExtrusionMesh extrusion = glint::shadows::buildExtrusionMesh(edges, c.twoSided);
   std::vector<vec3> data(extrusion.positions);
   data.insert(data.end(), extrusion.faceNormals.begin(), extrusion.faceNormals.end());
   c.vertices = gl::Buffer(std::span<const vec3>(data), 0, name);
@@ -355,7 +349,7 @@ void Renderer::resize(ivec2 size) {
   m_compositeFbo.checkComplete();
 }
 
-void Renderer::prepare(const MachinePose& pose, const Camera& camera, ivec2 size, Mode mode) {
+void Renderer::prepare(const glint::pipedream::MachinePose& pose, const Camera& camera, ivec2 size, Mode mode) {
   resize(size);
   m_mode = mode;
   m_camera = camera;
@@ -371,10 +365,10 @@ void Renderer::prepare(const MachinePose& pose, const Camera& camera, ivec2 size
   for (const mat4& m : pose.mallets) m_dynamic.push_back({2, m, kMalletAlbedo});
   m_balls.clear();
   const vec3 forward = glm::normalize(camera.target - camera.position);
-  for (const BallState& b : pose.balls) {
+  for (const glint::pipedream::BallState& b : pose.balls) {
     BallDraw d{.state = b};
     if (mode != Mode::NoBlur)
-      d.blur = blurOf(b.velocity, m_machine.ballRadius, m_options.shutter, m_options.minOpacity, m_options.lodScale);
+      d.blur = glint::pipedream::blurOf(b.velocity, m_machine.ballRadius, m_options.shutter, m_options.minOpacity, m_options.lodScale);
     d.depth = glm::dot(b.position - camera.position, forward);
     m_balls.push_back(d);
   }
@@ -481,7 +475,7 @@ void Renderer::drawBalls(bool translucent) {
   m_cube.texture().bind(0);
   m_ballVao.bind();
   for (const BallDraw& b : m_balls) {
-    m_ball.set("uFrame", ballFrame(b.state.velocity));
+    m_ball.set("uFrame", glint::pipedream::ballFrame(b.state.velocity));
     m_ball.set("uCentre", b.state.position);
     m_ball.set("uVelocity", b.state.velocity);
     m_ball.set("uLodBias", translucent ? b.blur.lodBias : 0.0f);
@@ -680,31 +674,6 @@ void Renderer::present(const gl::Target& target) const {
   m_present.draw();
 }
 
-void Renderer::drawVolumeWireframe() {
-  const FramebufferSrgb srgb;
-  const FrameStats saved = m_stats;
-  m_compositeFbo.bind();
-  glViewport(0, 0, m_size.x, m_size.y);
-  PipelineState{.depthTest = true, .depthWrite = false, .polygonMode = GL_LINE}.apply();
-  m_extrude.set("uColor", scaled(kVolumeWire));
-  for (int light = 0; light < m_lights; ++light) drawVolumesOf(light, false);
-  PipelineState{}.apply();  // back to GL_FILL
-  m_stats = saved;
-}
-
-void Renderer::drawEdges() {
-  const FramebufferSrgb srgb;
-  if (m_edgeCount == 0) return;
-  m_compositeFbo.bind();
-  glViewport(0, 0, m_size.x, m_size.y);
-  PipelineState{.depthTest = true, .depthFunc = GL_LEQUAL, .depthWrite = false}.apply();
-  m_lit.set("uPass", 3);
-  m_lit.set("uEmissive", vec3(kEdgeColor));
-  m_lit.set("uModel", mat4(1.0f));
-  m_lit.use();
-  m_edges.draw(GL_LINES);
-}
-
 void Renderer::ensureNaiveCasters() {
   if (m_staticSolids.indexCount) return;
   // Built on first use: only the baseline needs volumes of the static scene.
@@ -759,7 +728,7 @@ void Renderer::renderNaive() {
   drawTranslucent();  // the balls as in Full
 }
 
-void Renderer::render(const MachinePose& pose, const Camera& camera, const gl::Target& target, Mode mode) {
+void Renderer::render(const glint::pipedream::MachinePose& pose, const Camera& camera, const gl::Target& target, Mode mode) {
   prepare(pose, camera, target.size, mode);
   if (mode == Mode::Naive) {
     renderNaive();
@@ -779,75 +748,6 @@ void Renderer::render(const MachinePose& pose, const Camera& camera, const gl::T
   }
   present(target);
   PipelineState{}.apply();
-}
-
-std::uint64_t Renderer::measureVolumeFill() {
-  const FrameStats saved = m_stats;
-  m_compositeFbo.bind();
-  glViewport(0, 0, m_size.x, m_size.y);
-  if (m_mode == Mode::Naive) ensureNaiveCasters();
-  PipelineState{.depthTest = false, .depthWrite = false, .colorMask = {false, false, false, false}}.apply();
-  gl::Query query(GL_SAMPLES_PASSED, "pipedream-volume-fill");
-  query.begin();
-  for (int light = 0; light < m_lights; ++light) drawVolumesOf(light, m_mode == Mode::Naive);
-  query.end();
-  PipelineState{}.apply();
-  m_stats = saved;
-  return query.result();
-}
-
-namespace {
-int bytesPerTexel(GLenum format) {
-  switch (format) {
-    case GL_R8: return 1;
-    case GL_RG8: return 2;
-    case GL_RGBA8:
-    case GL_SRGB8_ALPHA8:
-    case GL_DEPTH24_STENCIL8: return 4;
-    case GL_RGBA16F: return 8;
-    default: fail(ErrorKind::Internal, "pipedream: no texel size for format {:#x}", format);
-  }
-}
-}  // namespace
-
-std::vector<PassFill> Renderer::measureStaticFill(const gl::Target& target) {
-  const FrameStats saved = m_stats;
-  const Mode mode = m_mode;
-  m_mode = Mode::StaticOnly;
-  const std::uint64_t pixels = std::uint64_t(m_size.x) * std::uint64_t(m_size.y);
-  const int color = bytesPerTexel(m_color.internalFormat()), weights = bytesPerTexel(m_weights.internalFormat());
-  const int depth = bytesPerTexel(m_depthStencil.internalFormat());
-  std::vector<PassFill> out;
-  out.push_back({"clear", pixels, color + weights + depth});
-  gl::Query query(GL_SAMPLES_PASSED, "pipedream-static-fill");
-  const auto counted = [&](const auto& draw) {
-    query.begin();
-    draw();
-    query.end();
-    return query.result();
-  };
-  // The scene pass writes colour, weights and depth (the packed depth/stencil word).
-  out.push_back({"scene", counted([&] { drawScene(); }), color + weights + depth});
-  // The balls blend colour only (depth tested, not written).
-  out.push_back({"balls", counted([&] { drawTranslucent(); }), color});
-  out.push_back({"present", counted([&] { present(target); }), 4});
-  m_mode = mode;
-  m_stats = saved;
-  PipelineState{}.apply();
-  return out;
-}
-
-std::string Renderer::describe() const {
-  std::array<std::size_t, 1u << kMaxLights> byMask{};
-  std::size_t lit = 0;
-  for (std::size_t m = 0; m + 1 < m_maskStart.size(); ++m) {
-    byMask[m] = m_maskStart[m + 1] - m_maskStart[m];
-    if (m) lit += byMask[m];
-  }
-  return fmt::format("{} cut triangles on {} vertices ({} reached by no light: the cheap shader; {} lit), {} uncut on {} "
-                     "vertices; {} lights; {} dynamic casters, {} balls",
-                     m_staticTriangles, m_staticVertices, byMask[0], lit, m_uncutTriangles, m_uncutVertices, m_lights,
-                     m_stats.casters, m_stats.balls);
 }
 
 }  // namespace glint::render::pipedream

@@ -73,11 +73,6 @@ void imageBarrier() {
                   GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
 }
 
-void bindInput(const gl::Texture& texture, GLuint unit) {
-  texture.bind(unit);
-  gl::Sampler::unbind(unit);
-}
-
 void checkOutput(const char* pass, const gl::Texture& input, const gl::Texture& output) {
   if (input.width() != output.width() || input.height() != output.height()) {
     fail(ErrorKind::Usage, "{}: input {}x{} and output {}x{} must have the same size", pass, input.width(),
@@ -89,7 +84,7 @@ void checkOutput(const char* pass, const gl::Texture& input, const gl::Texture& 
 /// The forward transform's first step, shared by the spectrum and the filters: `load`
 /// (post/fft_load.comp) reads the input image into `fft`'s buffer 0.
 void loadFftInput(const gl::Program& load, const Fft2d& fft, const gl::Texture& input, ivec2 size) {
-  bindInput(input, 0);
+  input.bindUnsampled(0);
   load.use();
   load.set("uInput", 0);
   fft.buffer(0).bindBase(GL_SHADER_STORAGE_BUFFER, 1);
@@ -249,7 +244,7 @@ void RealFft2d::forwardRows(const gl::Texture& input) {
   p.set("uInput", 0);
   p.set("uSize", m_size);
   setLineUniforms(p, m_rowRadices);
-  bindInput(input, 0);
+  input.bindUnsampled(0);
   m_rowTwiddles.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
   m_data.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
   glDispatchCompute(GLuint(m_size.y), 1, 1);
@@ -308,7 +303,7 @@ void RealFft2d::inverseRows(const gl::Texture& input, const gl::Texture& output,
   p.set("uScale", float(1.0 / (double(m_size.x / 2) * double(m_size.y))));
   p.set("uOffset", offset);
   setLineUniforms(p, m_rowRadices);
-  bindInput(input, 0);
+  input.bindUnsampled(0);
   m_rowTwiddles.bindBase(GL_SHADER_STORAGE_BUFFER, 2);
   m_data.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
   output.bindImage(0, GL_WRITE_ONLY, output.internalFormat());
@@ -441,7 +436,7 @@ void FrequencyFilterPass::run(const gl::Texture& input, const gl::Texture& outpu
   store.use();
   store.set("uInput", 0);
   store.set("uOffset", filter.offset);
-  bindInput(input, 0);
+  input.bindUnsampled(0);
   m_fft->buffer(result).bindBase(GL_SHADER_STORAGE_BUFFER, 0);
   output.bindImage(0, GL_WRITE_ONLY, output.internalFormat());
   glDispatchCompute(groups(size.x, 8), groups(size.y, 8), 1);

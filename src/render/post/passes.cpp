@@ -29,11 +29,6 @@ void bindOutput(gl::Framebuffer& framebuffer, const gl::Texture& output) {
   PipelineState{.depthWrite = false}.apply();
 }
 
-void bindInput(const gl::Texture& texture, GLuint unit) {
-  texture.bind(unit);
-  gl::Sampler::unbind(unit);  // texelFetch ignores sampling state; keep the unit predictable
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -73,7 +68,7 @@ void SepiaPass::run(const gl::Texture& input, const gl::Texture& output, const S
   }
   const float big = std::numeric_limits<float>::max();
   const vec2 limits(least > 0 ? float(1.0 / least) : big, most > 0 ? float(1.0 / most) : big);
-  bindInput(input, 0);
+  input.bindUnsampled(0);
   const auto& program = m_fragment ? m_fragment->program() : m_compute.program(output);
   program.set("uInput", 0);
   program.set("uOffset", vec3(c));
@@ -92,7 +87,7 @@ SobelPass::SobelPass(PassStage stage)
 
 void SobelPass::run(const gl::Texture& input, const gl::Texture& output, const SobelOptions& options) {
   checkSizes("sobel", input, output);
-  bindInput(input, 0);
+  input.bindUnsampled(0);
   const auto& program = m_fragment ? m_fragment->program() : m_compute.program(output);
   program.set("uInput", 0);
   program.set("uOutput", int(options.output));
@@ -111,7 +106,7 @@ EdgesPass::EdgesPass(PassStage stage)
 
 void EdgesPass::run(const gl::Texture& input, const gl::Texture& output, const EdgesOptions& options) {
   checkSizes("edges", input, output);
-  bindInput(input, 0);
+  input.bindUnsampled(0);
   const auto& program = m_fragment ? m_fragment->program() : m_compute.program(output);
   program.set("uInput", 0);
   program.set("uScale", options.scale);
@@ -138,7 +133,7 @@ void KuwaharaPass::run(const gl::Texture& input, const gl::Texture& output, cons
   checkSizes("kuwahara", input, output);
   const int s = options.size;
   if (s < 2 || s > 8) fail(ErrorKind::Usage, "kuwahara: quadrant size must be 2..8, got {}", s);
-  bindInput(input, 0);
+  input.bindUnsampled(0);
   if (!m_stats) {  // one compute pass
     const gl::Program& program = m_compute.program(output);
     program.set("uInput", 0);
@@ -159,8 +154,8 @@ void KuwaharaPass::run(const gl::Texture& input, const gl::Texture& output, cons
   bindOutput(m_statsFramebuffer, m_statistics);
   m_stats->drawWithCurrentState();
   // Pass 2: four fetches, the calmest quadrant's mean.
-  bindInput(input, 0);
-  bindInput(m_statistics, 1);
+  input.bindUnsampled(0);
+  m_statistics.bindUnsampled(1);
   const gl::Program& select = m_select->program();
   select.set("uInput", 0);
   select.set("uStatistics", 1);

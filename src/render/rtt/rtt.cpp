@@ -1,7 +1,7 @@
 #include "glint/render/rtt/rtt.h"
 
 #include "glint/core/error.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/state.h"
 
 #include <string>

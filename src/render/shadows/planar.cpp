@@ -21,7 +21,7 @@ mat4 planarShadowMatrix(vec4 plane, vec3 light) {
   return m;
 }
 
-PlanarShadow::PlanarShadow(const World& world, const PlanarShadowOptions& options)
+PlanarShadow::PlanarShadow(const glint::shadows::World& world, const PlanarShadowOptions& options)
     : m_options(options),
       m_texture(GL_TEXTURE_2D, "planar-shadow"),
       m_fbo(gl::Framebuffer::create("planar-shadow")),
@@ -56,7 +56,7 @@ PlanarShadow::PlanarShadow(const World& world, const PlanarShadowOptions& option
   m_sampler.parameter(GL_TEXTURE_WRAP_T, GLint(GL_CLAMP_TO_EDGE));
 }
 
-void PlanarShadow::renderTexture(const World& world) {
+void PlanarShadow::renderTexture(const glint::shadows::World& world) {
   m_fbo.bind();
   glViewport(0, 0, m_options.size, m_options.size);
   // Flattened casters overlap and may be wound either way: no depth test, no culling.
@@ -64,10 +64,10 @@ void PlanarShadow::renderTexture(const World& world) {
   render::clear(GL_COLOR_BUFFER_BIT, vec4(1.0f, 1.0f, 1.0f, 1.0f));
   m_projectProgram.set("uShadowMatrix", planarShadowMatrix({0.0f, 1.0f, 0.0f, -world.groundHeight}, world.lightPosition));
   m_projectProgram.set("uGroundClip", m_groundClip);
-  m_scene.drawGeometry(world, mat4(1.0f), m_projectProgram, [](const WorldObject& o) { return o.castsShadow && !o.ground; });
+  m_scene.drawGeometry(world, mat4(1.0f), m_projectProgram, [](const glint::shadows::WorldObject& o) { return o.castsShadow && !o.ground; });
 }
 
-void PlanarShadow::render(const World& world, const Camera& camera, const gl::Target& target) {
+void PlanarShadow::render(const glint::shadows::World& world, const Camera& camera, const gl::Target& target) {
   renderTexture(world);
   target.bind();
   PipelineState{.depthTest = true}.apply();

@@ -12,10 +12,10 @@
 namespace glint::render::shadows {
 
 namespace {
-Bounds focusOf(const World& world) { return shadowFocus(world); }
+Bounds focusOf(const glint::shadows::World& world) { return shadowFocus(world); }
 }  // namespace
 
-ShadowMap::ShadowMap(const World& world, const ShadowMapOptions& options)
+ShadowMap::ShadowMap(const glint::shadows::World& world, const ShadowMapOptions& options)
     : m_options(options),
       m_focus(focusOf(world)),
       m_light(lightCamera(world, m_focus)),
@@ -53,7 +53,7 @@ ShadowMap::ShadowMap(const World& world, const ShadowMapOptions& options)
   m_depthView = DepthView(true, m_lightNear, m_lightFar);
 }
 
-void ShadowMap::renderMap(const World& world) {
+void ShadowMap::renderMap(const glint::shadows::World& world) {
   // Refit to where casters and their shadows are now (the demo sphere moves).
   m_focus = focusOf(world);
   m_light = lightCamera(world, m_focus);
@@ -68,7 +68,7 @@ void ShadowMap::renderMap(const World& world) {
   m_scene.drawGeometry(world, m_light.viewProjection(), m_depthProgram);
 }
 
-void ShadowMap::render(const World& world, const Camera& camera, const gl::Target& target) {
+void ShadowMap::render(const glint::shadows::World& world, const Camera& camera, const gl::Target& target) {
   renderMap(world);
   target.bind();
   PipelineState{.depthTest = true}.apply();

@@ -27,18 +27,18 @@ const char* countingName(StencilCounting c) {
   return "?";
 }
 
-const char* casterName(CasterMode m) {
+const char* casterName(glint::shadows::CasterMode m) {
   switch (m) {
-    case CasterMode::Auto: return "auto";
-    case CasterMode::Closed: return "closed";
-    case CasterMode::TwoSided: return "two-sided";
-    case CasterMode::Naive: return "naive";
+    case glint::shadows::CasterMode::Auto: return "auto";
+    case glint::shadows::CasterMode::Closed: return "closed";
+    case glint::shadows::CasterMode::TwoSided: return "two-sided";
+    case glint::shadows::CasterMode::Naive: return "naive";
   }
   return "?";
 }
 }  // namespace
 
-StencilShadows::StencilShadows(const World& world, const StencilShadowOptions& options)
+StencilShadows::StencilShadows(const glint::shadows::World& world, const StencilShadowOptions& options)
     : m_options(options),
       m_scene(world),
       m_volumeProgram(gl::Program::fromFiles({"shadows/volume.vert", "shadows/volume.frag"})),
@@ -50,14 +50,14 @@ StencilShadows::StencilShadows(const World& world, const StencilShadowOptions& o
     c.object = i;
     c.edges = EdgeMap::build(world.objects[i].mesh);
     // Parity counting cancels the doubled silhouettes of two-sided casters.
-    c.mode = options.counting == StencilCounting::InvertZPass && options.casters != CasterMode::Naive
-                 ? CasterMode::Closed
-                 : resolveCasterMode(options.casters, c.edges);
+    c.mode = options.counting == StencilCounting::InvertZPass && options.casters != glint::shadows::CasterMode::Naive
+                 ? glint::shadows::CasterMode::Closed
+                 : glint::shadows::resolveCasterMode(options.casters, c.edges);
     c.vao = gl::VertexArray::create(world.objects[i].name + "-volume");
     if (options.construction == VolumeConstruction::Gpu) {
       // Naive and Closed need a closed mesh on the GPU; anything else gets the thin shell.
-      const bool twoSided = c.mode == CasterMode::TwoSided || !c.edges.isClosedManifold();
-      const ExtrusionMesh mesh = buildExtrusionMesh(c.edges, twoSided);
+      const bool twoSided = c.mode == glint::shadows::CasterMode::TwoSided || !c.edges.isClosedManifold();
+      const glint::shadows::ExtrusionMesh mesh = glint::shadows::buildExtrusionMesh(c.edges, twoSided);
       const std::size_t n = mesh.positions.size() * sizeof(vec3);
       std::vector<vec3> data(mesh.positions);
       data.insert(data.end(), mesh.faceNormals.begin(), mesh.faceNormals.end());
@@ -83,7 +83,7 @@ bool StencilShadows::needsInfiniteFar(const StencilShadowOptions& options) {
 
 bool StencilShadows::usesCaps() const { return isZFail(m_options.counting); }
 
-void StencilShadows::update(const World& world) {
+void StencilShadows::update(const glint::shadows::World& world) {
   if (m_options.construction == VolumeConstruction::Gpu) return;
   const auto start = std::chrono::steady_clock::now();
   bool rebuilt = false;
@@ -91,7 +91,7 @@ void StencilShadows::update(const World& world) {
     const auto& object = world.objects.at(c.object);
     const vec3 light = vec3(glm::inverse(object.transform) * vec4(world.lightPosition, 1.0f));
     if (c.built && glm::all(glm::equal(light, c.builtForLight))) continue;
-    const ShadowVolume volume = buildShadowVolume(c.edges, light, c.mode, usesCaps());
+    const glint::shadows::ShadowVolume volume = glint::shadows::buildShadowVolume(c.edges, light, c.mode, usesCaps());
     const std::size_t bytes = volume.vertices.size() * sizeof(vec4);
     // Grow the buffer geometrically; otherwise overwrite in place.
     if (bytes > c.buffer.size() || !c.buffer) {
@@ -118,13 +118,13 @@ void StencilShadows::update(const World& world) {
   }
 }
 
-void StencilShadows::drawScene(const World& world, const Camera& camera, LightTerms terms) const {
+void StencilShadows::drawScene(const glint::shadows::World& world, const Camera& camera, LightTerms terms) const {
   PipelineState{.depthTest = true}.apply();
   render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.52f, 0.6f, 0.7f, 1.0f));
   m_scene.draw(world, camera, terms);
 }
 
-void StencilShadows::drawVolumes(const World& world, const Camera& camera, bool caps) const {
+void StencilShadows::drawVolumes(const glint::shadows::World& world, const Camera& camera, bool caps) const {
   const bool gpu = m_options.construction == VolumeConstruction::Gpu;
   const gl::Program& program = gpu ? m_extrudeProgram : m_volumeProgram;
   program.set("uViewProj", camera.viewProjection());
@@ -145,7 +145,7 @@ void StencilShadows::drawVolumes(const World& world, const Camera& camera, bool 
   glBindVertexArray(0);
 }
 
-void StencilShadows::countVolumes(const World& world, const Camera& camera) const {
+void StencilShadows::countVolumes(const glint::shadows::World& world, const Camera& camera) const {
   PipelineState state{.depthTest = true, .depthWrite = false,
                       .depthClamp = isZFail(m_options.counting) && m_options.depthClamp,
                       .colorMask = {false, false, false, false},
@@ -190,7 +190,7 @@ void StencilShadows::countVolumes(const World& world, const Camera& camera) cons
   }
 }
 
-void StencilShadows::composite(const World& world, const Camera& camera) const {
+void StencilShadows::composite(const glint::shadows::World& world, const Camera& camera) const {
   // Overlays touch each shadowed pixel once: the stencil is zeroed where they draw.
   const StencilState once{.enabled = true, .front = {.func = GL_NOTEQUAL, .ref = 0, .dppass = GL_ZERO}};
   const BlendState alpha{.enabled = true, .src = GL_SRC_ALPHA, .dst = GL_ONE_MINUS_SRC_ALPHA};
@@ -254,7 +254,7 @@ void StencilShadows::composite(const World& world, const Camera& camera) const {
   }
 }
 
-void StencilShadows::drawView(const World& world, const Camera& camera) const {
+void StencilShadows::drawView(const glint::shadows::World& world, const Camera& camera) const {
   if (m_options.view == VolumeView::None) return;
   PipelineState state{.depthTest = true, .depthWrite = false,
                       .depthClamp = isZFail(m_options.counting) && m_options.depthClamp,
@@ -292,7 +292,7 @@ void StencilShadows::drawView(const World& world, const Camera& camera) const {
   }
 }
 
-std::uint64_t StencilShadows::measureFill(const World& world, const Camera& camera) const {
+std::uint64_t StencilShadows::measureFill(const glint::shadows::World& world, const Camera& camera) const {
   PipelineState{.depthTest = false,
                 .depthWrite = false,
                 .depthClamp = isZFail(m_options.counting) && m_options.depthClamp,
@@ -306,7 +306,7 @@ std::uint64_t StencilShadows::measureFill(const World& world, const Camera& came
   return query.result();
 }
 
-void StencilShadows::render(const World& world, const Camera& camera, const gl::Target& target) {
+void StencilShadows::render(const glint::shadows::World& world, const Camera& camera, const gl::Target& target) {
   update(world);
   target.bind();
   const LightTerms terms = m_options.composite == ShadowComposite::MultiPass ? LightTerms::Ambient

@@ -8,18 +8,18 @@
 
 namespace glint::render::shadows {
 
-WorldRenderer::WorldRenderer(const World& world, const std::vector<std::string>& defines)
+WorldRenderer::WorldRenderer(const glint::shadows::World& world, const std::vector<std::string>& defines)
     : m_program(gl::Program::fromFiles({"shadows/scene.vert", "shadows/scene.frag"}, defines)) {
   m_program.label("shadows-scene");
   m_meshes.reserve(world.objects.size());
   for (const auto& o : world.objects) m_meshes.emplace_back(o.mesh, std::span<const vec4>{}, o.name);
 }
 
-void WorldRenderer::draw(const World& world, const Camera& camera, LightTerms terms) const {
+void WorldRenderer::draw(const glint::shadows::World& world, const Camera& camera, LightTerms terms) const {
   draw(world, camera, terms, m_program);
 }
 
-void WorldRenderer::draw(const World& world, const Camera& camera, LightTerms terms, const gl::Program& program) const {
+void WorldRenderer::draw(const glint::shadows::World& world, const Camera& camera, LightTerms terms, const gl::Program& program) const {
   program.set("uViewProj", camera.viewProjection());
   program.set("uEye", camera.position);
   program.set("uLightPos", world.lightPosition);
@@ -36,8 +36,8 @@ void WorldRenderer::draw(const World& world, const Camera& camera, LightTerms te
   }
 }
 
-void WorldRenderer::drawGeometry(const World& world, const mat4& viewProj, const gl::Program& program,
-                                 const std::function<bool(const WorldObject&)>& filter) const {
+void WorldRenderer::drawGeometry(const glint::shadows::World& world, const mat4& viewProj, const gl::Program& program,
+                                 const std::function<bool(const glint::shadows::WorldObject&)>& filter) const {
   program.set("uViewProj", viewProj);
   program.use();
   for (std::size_t i = 0; i < world.objects.size() && i < m_meshes.size(); ++i) {
@@ -47,7 +47,7 @@ void WorldRenderer::drawGeometry(const World& world, const mat4& viewProj, const
   }
 }
 
-Bounds shadowFocus(const World& world) {
+Bounds shadowFocus(const glint::shadows::World& world) {
   Bounds out{vec3(std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::lowest())};
   const vec3 l = world.lightPosition;
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
@@ -71,7 +71,7 @@ Bounds shadowFocus(const World& world) {
   return out;
 }
 
-Camera lightCamera(const World& world, const Bounds& focus, float aspect) {
+Camera lightCamera(const glint::shadows::World& world, const Bounds& focus, float aspect) {
   const vec3 centre = focus.center();
   const float radius = 0.5f * focus.diagonal();
   const float distance = std::max(glm::length(world.lightPosition - centre), 1e-3f);

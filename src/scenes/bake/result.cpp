@@ -9,7 +9,7 @@
 #include "glint/bake/baker.h"
 #include "glint/bake/samples.h"
 #include "glint/render/bump/textures.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/bump/normal_mapping.h"
 #include "glint/render/state.h"
 #include "glint/scenes/scene.h"
@@ -69,7 +69,7 @@ public:
       render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, kBackground);
       return cell;
     };
-    const auto camera = frame.camera(render::Camera::orbit(vec3(0.0f), 3.1f, 0.0f, m_elevation, 38.0f, frame.target.cell(0, 0, 2, 2, gap).aspect()));
+    const auto camera = frame.camera(glint::Camera::orbit(vec3(0.0f), 3.1f, 0.0f, m_elevation, 38.0f, frame.target.cell(0, 0, 2, 2, gap).aspect()));
     const float angle = float(frame.time) * m_spin / 60.0f * 2.0f * kPi + 0.4f;
     const mat4 model = glm::rotate(glm::rotate(mat4(1.0f), 0.35f, vec3(1, 0, 0)), angle, vec3(0, 1, 0));
     const render::bump::DirectionalLight lights[] = {{.direction = {0.5f, 0.8f, 0.6f}, .color = vec3(0.9f, 0.88f, 0.82f)},

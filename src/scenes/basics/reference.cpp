@@ -11,7 +11,7 @@
 
 #include "glint/core/error.h"
 #include "glint/raster/raster.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/gpu_mesh.h"
 #include "glint/render/raster_gl.h"
 #include "glint/scenes/scene.h"
@@ -89,7 +89,7 @@ ReferenceSetup stencilCount(ivec2 size) {
 ReferenceSetup perspective(ivec2 size) {
   ReferenceSetup s;
   s.clearColor = kClearColor;
-  const auto camera = render::Camera::lookAt({0.0f, 1.0f, 0.0f}, {0.0f, 0.6f, -4.0f}, {0, 1, 0}, 60.0f,
+  const auto camera = glint::Camera::lookAt({0.0f, 1.0f, 0.0f}, {0.0f, 0.6f, -4.0f}, {0, 1, 0}, 60.0f,
                                              float(size.x) / float(size.y), 0.1f, 40.0f);
   const mat4 viewProj = camera.viewProjection();
   auto clip = [&](vec3 p, vec4 color) { return raster::Vertex{viewProj * vec4(p, 1.0f), {color}}; };

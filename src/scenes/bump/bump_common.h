@@ -6,7 +6,7 @@
 #include "glint/image/heightfield.h"
 #include "glint/image/normalmap.h"
 #include "glint/render/bump/textures.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 
 #include <cmath>
 
@@ -53,8 +53,8 @@ inline vec3 circlingLight(double time, float radius, float height, float speed) 
 }
 
 /// The camera of the DOT3 scenes: looking at the origin from the front and a little above.
-inline render::Camera dot3Camera(ivec2 size, float distance = 2.9f) {
-  return render::Camera::lookAt({0.0f, 0.75f, distance}, {0.0f, -0.08f, 0.0f}, {0.0f, 1.0f, 0.0f}, 45.0f,
+inline glint::Camera dot3Camera(ivec2 size, float distance = 2.9f) {
+  return glint::Camera::lookAt({0.0f, 0.75f, distance}, {0.0f, -0.08f, 0.0f}, {0.0f, 1.0f, 0.0f}, 45.0f,
                                 float(size.x) / float(size.y));
 }
 

@@ -70,7 +70,7 @@ public:
     render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.05f, 0.06f, 0.08f, 1.0f));
     const bool twoUp = m_variant.normalization == Normalization::SideBySide;
-    const render::Camera camera = frame.camera(dot3Camera(frame.target.size, twoUp ? 4.4f : 2.9f));
+    const glint::Camera camera = frame.camera(dot3Camera(frame.target.size, twoUp ? 4.4f : 2.9f));
     const vec3 lightLocal = circlingLight(frame.time, m_lightRadius, m_lightHeight, m_lightSpeed);
     for (std::size_t i = 0; i < m_polygons.size(); ++i) {
       const render::bump::Dot3Polygon& polygon = m_polygons[i];

@@ -122,7 +122,7 @@ public:
       frame.target.bind();
       return;
     }
-    const auto camera = frame.camera(render::Camera::orbit({0.0f, 0.0f, 0.0f}, 3.3f, 0.0f, 0.55f, 40.0f, float(size.x) / float(size.y)));
+    const auto camera = frame.camera(glint::Camera::orbit({0.0f, 0.0f, 0.0f}, 3.3f, 0.0f, 0.55f, 40.0f, float(size.x) / float(size.y)));
     const float turn = 2.0f * kPi / 60.0f * m_spin * float(frame.time);
     const mat4 model = glm::rotate(glm::rotate(mat4(1.0f), turn, vec3(0, 1, 0)), glm::radians(25.0f), vec3(1, 0, 0));
     std::array<render::bump::PointLight, 2> lights;

@@ -13,7 +13,7 @@
 #include "glint/cut/cutter.h"
 #include "glint/cut/output.h"
 #include "glint/gl/shader.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/gpu_mesh.h"
 #include "glint/render/state.h"
 #include "glint/scenes/scene.h"
@@ -175,7 +175,7 @@ public:
   void render(const FrameInput& frame) override {
     frame.target.bind();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, kBackground);
-    const auto camera = frame.camera(render::Camera::lookAt(m_eye, m_target, m_up, m_fov, frame.target.aspect(), 0.1f, 50.0f));
+    const auto camera = frame.camera(glint::Camera::lookAt(m_eye, m_target, m_up, m_fov, frame.target.aspect(), 0.1f, 50.0f));
     m_program.use();
     m_program.set("uViewProjection", camera.viewProjection());
     m_program.set("uLight", m_lights.front().position);

@@ -64,7 +64,7 @@ public:
   void render(const FrameInput& frame) override {
     const float t = float(frame.time);
     // 1. The local scenery seen from the bubble's centre, into the six faces.
-    m_local.render(vec3(0.0f), [&](const render::Camera& face) { drawSurroundings(face, t); });
+    m_local.render(vec3(0.0f), [&](const glint::Camera& face) { drawSurroundings(face, t); });
     // 2. The frame: the same surroundings, then the bubble reflecting them.
     frame.target.bind();
     render::PipelineState{.depthTest = true}.apply();
@@ -74,7 +74,7 @@ public:
       return;
     }
     const ivec2 size = frame.target.size;
-    const auto camera = frame.camera(render::Camera::orbit(vec3(0.0f), 5.0f, 0.35f + 0.1f * t, 0.2f, 45.0f,
+    const auto camera = frame.camera(glint::Camera::orbit(vec3(0.0f), 5.0f, 0.35f + 0.1f * t, 0.2f, 45.0f,
                                                            float(size.x) / float(size.y)));
     drawSurroundings(camera, t);
     m_bubble.draw(m_sphere, glm::scale(mat4(1.0f), vec3(kBubbleRadius)), camera, m_local.texture(), t);
@@ -93,7 +93,7 @@ public:
   }
 
 private:
-  void drawSurroundings(const render::Camera& camera, float t) {
+  void drawSurroundings(const glint::Camera& camera, float t) {
     m_sky.draw(m_environment, camera);
     render::PipelineState{.depthTest = true, .cull = true}.apply();
     m_program.use();

@@ -47,7 +47,7 @@ public:
     frame.target.bind();
     render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    const render::Camera camera = frame.camera(viewCamera(m_variant.azimuth, frame.target.size));
+    const glint::Camera camera = frame.camera(viewCamera(m_variant.azimuth, frame.target.size));
     m_classic.drawSkybox(m_cube, camera);
     for (std::size_t i = 0; i < m_meshes.size(); ++i) {
       if (m_variant.sphere) m_classic.drawSphereMapped(m_meshes[i], m_models[i], camera, m_sphereMap);

@@ -3,7 +3,7 @@
 // the sphere-map figures quoted in the gallery. Private to src/scenes/env.
 #include "glint/image/envmap.h"
 #include "glint/mesh/mesh.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/env/environment.h"
 
 #include <fmt/format.h>
@@ -27,8 +27,8 @@ struct View {
   const char* description;
 };
 
-inline render::Camera viewCamera(float azimuth, ivec2 size) {
-  return render::Camera::orbit({0.0f, 0.0f, 0.0f}, kDistance, azimuth, kElevation, kFovY,
+inline glint::Camera viewCamera(float azimuth, ivec2 size) {
+  return glint::Camera::orbit({0.0f, 0.0f, 0.0f}, kDistance, azimuth, kElevation, kFovY,
                                float(size.x) / float(size.y));
 }
 

@@ -59,7 +59,7 @@ public:
     if (m_mode == Mode::Compare && !m_quality) m_quality = measureQuality();
     clearTarget(frame);
     const ivec2 size = frame.target.size;
-    const render::Camera camera = frame.camera(viewCamera(m_view.azimuth + m_spin * float(frame.time), size));
+    const glint::Camera camera = frame.camera(viewCamera(m_view.azimuth + m_spin * float(frame.time), size));
     if (m_mode == Mode::Compare) {
       // Split screen like the WWDC 2001 talk's demo: cube map on the left, sphere map on the right,
       // one camera over the whole frame (each half shows its half of the same view), and
@@ -100,7 +100,7 @@ private:
   std::pair<double, double> measureQuality() {
     const gl::Texture reference = loadEnvironmentCube(2 * kFaceSize);
     gl::RenderTarget target(kQualitySize, GL_RGBA8, "env-quality");
-    const render::Camera camera = viewCamera(m_view.azimuth, kQualitySize);
+    const glint::Camera camera = viewCamera(m_view.azimuth, kQualitySize);
     const auto ball = [&](Lookup lookup, const gl::Texture& environment) {
       target.target().bind();
       render::PipelineState{.depthTest = true}.apply();
@@ -124,7 +124,7 @@ private:
     return {std::sqrt(cubeSum / double(std::max<std::size_t>(n, 1))), std::sqrt(sphereSum / double(std::max<std::size_t>(n, 1)))};
   }
 
-  void drawHalf(const render::Camera& camera, Lookup lookup) {
+  void drawHalf(const glint::Camera& camera, Lookup lookup) {
     m_sky.draw(m_cube, camera);
     const render::env::Reflector& mirror = reflector(lookup);
     for (std::size_t i = 0; i < m_meshes.size(); ++i) {

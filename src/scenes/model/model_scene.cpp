@@ -207,7 +207,7 @@ public:
     }
     const auto [center, radius] = m_frame;
     const float distance = radius / std::sin(glm::radians(kFovY / 2.0f)) * 1.05f;
-    const render::Camera camera = frame.camera(render::Camera::orbit(
+    const glint::Camera camera = frame.camera(glint::Camera::orbit(
         center, distance * m_zoom, glm::radians(m_yaw), glm::radians(m_pitch), kFovY, frame.target.aspect(),
         distance * m_zoom / 100.0f, distance * m_zoom * 10.0f));
     const mat3 toWorld = glm::transpose(camera.rotation());

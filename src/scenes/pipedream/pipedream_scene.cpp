@@ -1,5 +1,5 @@
 // pipedream — WWDC 2003 session 212's Animusic "Pipe Dream" demo as a glint scene: an instrument machine
-// (pipedream/machine_room.h) playing its score (render/pipedream/score.h), static shadows cut in
+// (pipedream/machine_room.h) playing its score (pipedream/score.h), static shadows cut in
 // by glint::cut, dynamic ones from GPU-extruded volumes, joined through the destination-
 // alpha dim factor, motion-blurred balls (render/pipedream/renderer.h). Variants are WWDC
 // 2003 session 212's demo toggles; `camera` picks one of its camera moves, `detail` the polygon count.
@@ -17,6 +17,7 @@ namespace glint::scenes {
 namespace {
 
 namespace rp = render::pipedream;
+namespace pd = glint::pipedream;
 
 struct VariantSetup {
   rp::Mode mode;
@@ -86,8 +87,8 @@ public:
   void render(const FrameInput& frame) override {
     if (!m_stage || m_detail != m_stage->detail) load();
     m_renderer->options() = m_options;
-    const rp::MachinePose pose = rp::poseAt(m_stage->machine, m_stage->score, frame.time);
-    const render::Camera camera = frame.camera(pipedream::namedCamera(m_camera, frame.target.aspect()));
+    const pd::MachinePose pose = pd::poseAt(m_stage->machine, m_stage->score, frame.time);
+    const glint::Camera camera = frame.camera(pipedream::namedCamera(m_camera, frame.target.aspect()));
     m_renderer->render(pose, camera, frame.target, m_mode);
     const rp::FrameStats& s = m_renderer->stats();
     m_notes = fmt::format("{}. This frame ({}): {} triangles drawn ({} balls); {} volume triangles from {} of {} "

@@ -21,6 +21,7 @@
 namespace glint::scenes::pipedream {
 
 namespace rp = render::pipedream;
+namespace pd = glint::pipedream;
 using glm::dvec3;
 
 std::vector<cut::Light> cutLights(const InstrumentMachine& machine) {
@@ -99,15 +100,19 @@ Mesh cutEdges(const cut::CutTriangles& cut) {
   return out;
 }
 
-rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cut::CutTriangles& cut, bool edges) {
-  const Mesh& input = machine.staticMesh;
-  const int lights = int(machine.lights.size());
-  const std::size_t masks = std::size_t(1) << lights;
-  rp::StaticGeometry g;
-  g.lights = lights;
-  g.polygons = cut.polygonCount();
+namespace {
 
-  // Triangles grouped by light mask (a counting sort, stable: the cut's order within a group).
+/// One possible vertex of the cut mesh: a cut vertex as seen from one input triangle (its
+/// interpolated normal, the triangle's material).
+struct Candidate {
+  std::uint32_t vertex, material;
+  vec3 normal;
+};
+
+/// The cut's triangles grouped by light mask (a counting sort, stable: the cut's order within
+/// a group): their order, and each group's start in `g.maskStart`.
+std::vector<std::uint32_t> orderByMask(const cut::CutTriangles& cut, int lights, rp::StaticGeometry& g) {
+  const std::size_t masks = std::size_t(1) << lights;
   const std::size_t n = cut.triangleCount();
   g.maskStart.assign(masks + 1, 0);
   for (std::size_t t = 0; t < n; ++t) {
@@ -119,9 +124,17 @@ rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cu
   std::vector<std::uint32_t> order(n);
   std::vector<std::uint32_t> next(g.maskStart.begin(), g.maskStart.end() - 1);
   for (std::size_t t = 0; t < n; ++t) order[next[cut.mask(t)]++] = std::uint32_t(t);
+  return order;
+}
 
-  // Each corner's normal and albedo come from its source triangle: one candidate vertex per
-  // (cut vertex, input triangle), found by sorting the corners by that pair.
+/// Each corner's normal and albedo come from its source triangle: one candidate vertex per
+/// (cut vertex, input triangle), found by sorting the corners by that pair. `cornerCandidate`
+/// gets each corner's (corners in `order`).
+std::vector<Candidate> cornerCandidates(const InstrumentMachine& machine, const cut::CutTriangles& cut,
+                                        const std::vector<std::uint32_t>& order,
+                                        std::vector<std::uint32_t>& cornerCandidate) {
+  const Mesh& input = machine.staticMesh;
+  const std::size_t n = order.size();
   std::vector<std::pair<std::uint64_t, std::uint32_t>> corners(3 * n);  // (key, corner slot in output order)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t t = order[i];
@@ -131,12 +144,8 @@ rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cu
                                          std::uint32_t(3 * i + std::size_t(c))};
   }
   std::sort(corners.begin(), corners.end());
-  struct Candidate {
-    std::uint32_t vertex, material;
-    vec3 normal;
-  };
   std::vector<Candidate> candidates;
-  std::vector<std::uint32_t> cornerCandidate(3 * n);
+  cornerCandidate.assign(3 * n, 0);
   for (std::size_t i = 0; i < corners.size();) {
     const std::uint64_t key = corners[i].first;
     const std::uint32_t source = std::uint32_t(key >> 32), vertex = std::uint32_t(key & 0xFFFFFFFFu);
@@ -150,9 +159,14 @@ rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cu
     for (; i < corners.size() && corners[i].first == key; ++i)
       cornerCandidate[corners[i].second] = std::uint32_t(candidates.size() - 1);
   }
-  // Candidates at one cut vertex with one material and (to rounding) one normal are one
-  // vertex: a smooth surface's triangles meet with equal normals, so the cut mesh keeps the
-  // input's sharing and the vertex stage shades each point once, not once per triangle.
+  return candidates;
+}
+
+/// Candidates at one cut vertex with one material and (to rounding) one normal are one
+/// vertex: a smooth surface's triangles meet with equal normals, so the cut mesh keeps the
+/// input's sharing and the vertex stage shades each point once, not once per triangle.
+/// Each candidate's canonical one (the first earlier one with its normal).
+std::vector<std::uint32_t> canonicalCandidates(const std::vector<Candidate>& candidates) {
   std::vector<std::uint32_t> byKey(candidates.size());
   std::iota(byKey.begin(), byKey.end(), 0u);
   const auto keyOf = [&](std::uint32_t c) { return std::make_pair(candidates[c].vertex, candidates[c].material); };
@@ -170,6 +184,21 @@ rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cu
         break;
       }
   }
+  return canonical;
+}
+
+}  // namespace
+
+rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cut::CutTriangles& cut, bool edges) {
+  const int lights = int(machine.lights.size());
+  rp::StaticGeometry g;
+  g.lights = lights;
+  g.polygons = cut.polygonCount();
+  const std::vector<std::uint32_t> order = orderByMask(cut, lights, g);
+  const std::size_t n = order.size();
+  std::vector<std::uint32_t> cornerCandidate;
+  const std::vector<Candidate> candidates = cornerCandidates(machine, cut, order, cornerCandidate);
+  const std::vector<std::uint32_t> canonical = canonicalCandidates(candidates);
   // Vertices numbered by first use in draw order: what a vertex cache and fetch like best.
   std::vector<std::uint32_t> id(candidates.size(), ~0u);
   g.mesh.indices.resize(3 * n);
@@ -187,10 +216,10 @@ rp::StaticGeometry makeStaticGeometry(const InstrumentMachine& machine, const cu
   return g;
 }
 
-std::size_t Stage::trianglesPerFrame(const rp::MachinePose& pose) const {
+std::size_t Stage::trianglesPerFrame(const pd::MachinePose& pose) const {
   return geometry.mesh.triangleCount() + pose.skins.size() * machine.skin.triangleCount() +
          pose.cymbals.size() * machine.cymbal.triangleCount() + pose.mallets.size() * machine.mallet.triangleCount() +
-         pose.balls.size() * rp::buildBlurBall(32, 16).triangleCount();
+         pose.balls.size() * pd::buildBlurBall(32, 16).triangleCount();
 }
 
 std::string Stage::describe() const {
@@ -213,7 +242,7 @@ std::shared_ptr<const Stage> loadStage(const StageOptions& options) {
   auto stage = std::make_shared<Stage>();
   stage->detail = detail;
   stage->machine = makeInstrumentMachine({.detail = detail});
-  stage->score = rp::makeScore(stage->machine);
+  stage->score = pd::makeScore(stage->machine);
   const cut::CachedCut cut =
       cut::cachedCut(stage->machine.staticMesh, cutLights(stage->machine),
                      {.directory = options.cacheDirectory, .name = fmt::format("pipedream-detail{}", detail),
@@ -242,9 +271,9 @@ const NamedCamera kCameras[] = {
 
 std::span<const NamedCamera> namedCameras() { return kCameras; }
 
-render::Camera namedCamera(int index, float aspect) {
+glint::Camera namedCamera(int index, float aspect) {
   const NamedCamera& c = kCameras[std::size_t(std::clamp(index, 0, int(std::size(kCameras)) - 1))];
-  return render::Camera::lookAt(c.eye, c.target, {0.0f, 1.0f, 0.0f}, c.fovY, aspect, 0.3f, 100.0f);
+  return glint::Camera::lookAt(c.eye, c.target, {0.0f, 1.0f, 0.0f}, c.fovY, aspect, 0.3f, 100.0f);
 }
 
 }  // namespace glint::scenes::pipedream

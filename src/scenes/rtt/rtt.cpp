@@ -1,7 +1,7 @@
 // rtt/texture — render to texture, both ways of the VGP353 lecture: (a) draw into the window and
 // copy to a texture, (b) draw straight into the texture through a framebuffer object.
 // The texture then covers a spinning cube; both variants show the same picture.
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/rtt/rtt.h"
 #include "glint/render/state.h"
 #include "glint/scenes/scene.h"
@@ -48,7 +48,7 @@ public:
     render::PipelineState{.depthTest = true, .cull = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.32f, 0.34f, 0.38f, 1.0f));
     const ivec2 size = frame.target.size;
-    const auto camera = frame.camera(render::Camera::orbit(vec3(0.0f), 3.0f, 0.0f, 0.35f, 45.0f, float(size.x) / float(size.y)));
+    const auto camera = frame.camera(glint::Camera::orbit(vec3(0.0f), 3.0f, 0.0f, 0.35f, 45.0f, float(size.x) / float(size.y)));
     mat4 model = glm::rotate(mat4(1.0f), 0.5f * t + 0.6f, vec3(0.0f, 1.0f, 0.0f));
     model = glm::rotate(model, 0.3f, vec3(1.0f, 0.0f, 0.0f));
     m_program.set("uModel", model);

@@ -18,7 +18,7 @@ namespace glint::scenes {
 namespace shadows {
 namespace {
 
-using sh::CasterMode;
+using glint::shadows::CasterMode;
 using sh::StencilCounting;
 using sh::VolumeConstruction;
 
@@ -50,7 +50,7 @@ const BunnyVariant kVariants[] = {
 
 class BunnyScene final : public Scene {
 public:
-  explicit BunnyScene(const BunnyVariant& v) : m_world(sh::makeBunnyWorld(sh::loadBunny(), v.openBase)) {
+  explicit BunnyScene(const BunnyVariant& v) : m_world(glint::shadows::makeBunnyWorld(glint::shadows::loadBunny(), v.openBase)) {
     if (v.shadowMap) m_map.emplace(m_world, sh::ShadowMapOptions{});
     else m_volumes.emplace(m_world, v.options);
     m_light.position = m_world.lightPosition;
@@ -61,7 +61,7 @@ public:
   }
   void render(const FrameInput& frame) override {
     m_world.lightPosition = m_light.position;
-    render::Camera camera = frame.camera(sh::sceneCamera(SceneView::Bunny, aspectOf(frame)));
+    glint::Camera camera = frame.camera(glint::shadows::sceneCamera(SceneView::Bunny, aspectOf(frame)));
     if (m_map) {
       m_map->render(m_world, camera, frame.target);
       return;
@@ -80,7 +80,7 @@ public:
   }
 
 private:
-  sh::World m_world;
+  glint::shadows::World m_world;
   std::optional<sh::StencilShadows> m_volumes;
   std::optional<sh::ShadowMap> m_map;
   LightOptions m_light;

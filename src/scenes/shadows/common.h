@@ -1,17 +1,19 @@
 #pragma once
 // Pieces the shadow scenes share: the light options (their cameras are
-// render::shadows::sceneCamera, which the oracle tests use too).
-#include "glint/render/shadows/world.h"
+// glint::shadows::sceneCamera, which the oracle tests use too).
+#include "glint/shadows/world.h"
 #include "glint/scenes/scene.h"
 
 #include <string>
 #include <vector>
 
+namespace glint::render::shadows {}  // the GL techniques (render/shadows/*.h), which each scene includes
+
 namespace glint::scenes::shadows {
 
 namespace sh = glint::render::shadows;
 
-using sh::SceneView;
+using glint::shadows::SceneView;
 
 /// The light position as three options (light-x/-y/-z), so the viewer can move it.
 struct LightOptions {

@@ -24,13 +24,13 @@ struct MapVariant {
 
 class MapScene final : public Scene {
 public:
-  explicit MapScene(const MapVariant& v) : m_world(sh::makeDemoWorld()), m_map(m_world, v.options) {
+  explicit MapScene(const MapVariant& v) : m_world(glint::shadows::makeDemoWorld()), m_map(m_world, v.options) {
     m_light.position = m_world.lightPosition;
   }
   void render(const FrameInput& frame) override {
-    sh::animateDemoWorld(m_world, frame.time);
+    glint::shadows::animateDemoWorld(m_world, frame.time);
     m_world.lightPosition = m_light.position;
-    const render::Camera eye = sh::sceneCamera(SceneView::Demo, aspectOf(frame));
+    const glint::Camera eye = glint::shadows::sceneCamera(SceneView::Demo, aspectOf(frame));
     // The light's own views (light-view, light-depth) do not look through the eye: no camera to move.
     const sh::ShadowMapView view = m_map.options().view;
     const bool fromLight = view == sh::ShadowMapView::LightView || view == sh::ShadowMapView::LightDepth;
@@ -51,7 +51,7 @@ public:
   std::string notes() const override { return m_map.describe(); }
 
 private:
-  sh::World m_world;
+  glint::shadows::World m_world;
   sh::ShadowMap m_map;
   LightOptions m_light;
 };
@@ -65,13 +65,13 @@ void addMaps(Registry& registry, const char* name, const char* summary, std::vec
 
 class PlanarScene final : public Scene {
 public:
-  explicit PlanarScene(sh::PlanarView view) : m_world(sh::makeDemoWorld()), m_planar(m_world, {.view = view}) {
+  explicit PlanarScene(sh::PlanarView view) : m_world(glint::shadows::makeDemoWorld()), m_planar(m_world, {.view = view}) {
     m_light.position = m_world.lightPosition;
   }
   void render(const FrameInput& frame) override {
-    sh::animateDemoWorld(m_world, frame.time);
+    glint::shadows::animateDemoWorld(m_world, frame.time);
     m_world.lightPosition = m_light.position;
-    const render::Camera eye = sh::sceneCamera(SceneView::Demo, aspectOf(frame));
+    const glint::Camera eye = glint::shadows::sceneCamera(SceneView::Demo, aspectOf(frame));
     const bool texture = m_planar.options().view == sh::PlanarView::Texture;  // the texture alone: a 2D view
     m_planar.render(m_world, texture ? eye : frame.camera(eye), frame.target);
   }
@@ -83,7 +83,7 @@ public:
   std::string notes() const override { return m_planar.describe(); }
 
 private:
-  sh::World m_world;
+  glint::shadows::World m_world;
   sh::PlanarShadow m_planar;
   LightOptions m_light;
 };

@@ -18,7 +18,7 @@ namespace glint::scenes {
 namespace shadows {
 namespace {
 
-using sh::CasterMode;
+using glint::shadows::CasterMode;
 using sh::ShadowComposite;
 using sh::StencilCounting;
 using sh::StencilShadowOptions;
@@ -37,14 +37,14 @@ struct Variant {
 class VolumeScene final : public Scene {
 public:
   explicit VolumeScene(const Variant& v)
-      : m_variant(v), m_world(sh::makeDemoWorld(0.0, v.sphereCasts)), m_shadows(m_world, v.options) {
+      : m_variant(v), m_world(glint::shadows::makeDemoWorld(0.0, v.sphereCasts)), m_shadows(m_world, v.options) {
     m_light.position = m_world.lightPosition;
   }
 
   void render(const FrameInput& frame) override {
-    sh::animateDemoWorld(m_world, frame.time + m_variant.time);
+    glint::shadows::animateDemoWorld(m_world, frame.time + m_variant.time);
     m_world.lightPosition = m_light.position;
-    render::Camera camera = frame.camera(sh::sceneCamera(m_variant.view, aspectOf(frame)));
+    glint::Camera camera = frame.camera(glint::shadows::sceneCamera(m_variant.view, aspectOf(frame)));
     if (sh::StencilShadows::needsInfiniteFar(m_shadows.options()))
       camera.projection = sh::infiniteFarProjection(camera.projection);
     m_shadows.render(m_world, camera, frame.target);
@@ -66,7 +66,7 @@ public:
 
 private:
   Variant m_variant;
-  sh::World m_world;
+  glint::shadows::World m_world;
   sh::StencilShadows m_shadows;
   LightOptions m_light;
 };
@@ -86,8 +86,11 @@ constexpr StencilShadowOptions invert(ShadowComposite composite, float opacity =
 }  // namespace
 }  // namespace shadows
 
-void registerShadowVolumes(Registry& registry) {
-  using namespace shadows;
+namespace shadows {
+namespace {
+
+/// The WWDC 2001 talk's method: GL_INVERT parity, with its three composites.
+void registerInvert(Registry& registry) {
   add(registry, "shadows/zpass-invert",
       "Stencil shadow volumes the WWDC 2001 talk's way: scene, then the volume's back faces and front faces "
       "with colour and depth writes off and GL_INVERT where depth passes; the sphere moves in and out of the "
@@ -110,6 +113,10 @@ void registerShadowVolumes(Registry& registry) {
                       "inside the slab's shadow is crossed twice and comes out lit — why counting replaced it.",
            invert(ShadowComposite::MultiPass), SceneView::Demo, true, 6.0},
       });
+}
+
+/// Counting instead of parity: z-pass, z-fail, and both in one two-sided draw.
+void registerCounting(Registry& registry) {
   add(registry, "shadows/zpass",
       "Z-pass counting: front faces INCR_WRAP, back faces DECR_WRAP where the depth test passes, so "
       "overlapping volumes add up (the sphere now casts too).",
@@ -143,6 +150,10 @@ void registerShadowVolumes(Registry& registry) {
           {"zfail", "One-pass z-fail (back INCR_WRAP, front DECR_WRAP on depth fail).",
            {.counting = StencilCounting::TwoSidedZFail}},
       });
+}
+
+/// GPU extrusion, the debug views, and the camera inside a volume.
+void registerExtrusionAndViews(Registry& registry) {
   add(registry, "shadows/gpu-extrude",
       "GPU extrusion (WWDC 2003 session 212, ATI): a degenerate quad on every edge, the face normal in each vertex; the "
       "vertex shader sends faces turned from the light to infinity (w = 0), stretching the quads into sides.",
@@ -182,6 +193,15 @@ void registerShadowVolumes(Registry& registry) {
           {"zfail", "Z-fail from the same place: correct.", {.counting = StencilCounting::TwoSidedZFail},
            SceneView::Inside},
       });
+}
+
+}  // namespace
+}  // namespace shadows
+
+void registerShadowVolumes(Registry& registry) {
+  shadows::registerInvert(registry);
+  shadows::registerCounting(registry);
+  shadows::registerExtrusionAndViews(registry);
 }
 
 }  // namespace glint::scenes

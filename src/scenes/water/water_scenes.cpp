@@ -92,7 +92,7 @@ public:
     render::PipelineState{.depthTest = true}.apply();
     render::clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, vec4(0.0f, 0.0f, 0.0f, 1.0f));
     const ivec2 size = frame.target.size;
-    const auto camera = frame.camera(render::Camera::orbit(m_variant.lookAt, m_variant.cameraDistance,
+    const auto camera = frame.camera(glint::Camera::orbit(m_variant.lookAt, m_variant.cameraDistance,
                                                            0.35f + m_spin * float(frame.time), m_variant.cameraElevation,
                                                            45.0f, float(size.x) / float(size.y)));
     m_skybox->draw(m_sky.cube, camera);

@@ -31,7 +31,7 @@
 #include "glint/gl/objects.h"
 #include "glint/gl/shader.h"
 #include "glint/image/dot3.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 
 #include <cstdint>
 #include <span>

@@ -5,7 +5,7 @@
 
 #include "glint/gl/objects.h"
 #include "glint/gl/shader.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 
 namespace glint::render::bump {
 

@@ -34,7 +34,7 @@
 /// const glint::Image normals = glint::prepareNormalMap(glint::loadImage("baked.png"), "baked.png");  // checked
 /// const glint::gl::Texture map = bump::uploadImage(normals, {.label = "baked-normals"});
 /// const glint::mat4 model(1.0f);
-/// const auto camera = glint::render::Camera::orbit({0, 0, 0}, 3.0f, 0.5f, 0.3f, 45.0f, 16.0f / 9.0f);
+/// const auto camera = glint::Camera::orbit({0, 0, 0}, 3.0f, 0.5f, 0.3f, 45.0f, 16.0f / 9.0f);
 /// const bump::NormalMapping shader({.normal = bump::ShadingNormal::TangentMap});
 /// const bump::DirectionalLight sun{.direction = glm::normalize(glint::vec3(1, 2, 1))};
 /// shader.draw(lowMesh, model, camera, {&sun, 1}, {}, &map);
@@ -45,7 +45,7 @@
 
 #include "glint/gl/objects.h"
 #include "glint/gl/shader.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/gpu_mesh.h"
 
 #include <span>

@@ -21,7 +21,7 @@
 
 #include "glint/gl/objects.h"
 #include "glint/mesh/mesh.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 
 #include <string_view>
 

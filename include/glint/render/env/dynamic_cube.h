@@ -17,10 +17,10 @@
 /// const glint::render::GpuMesh sphere(glint::makeUvSphere());
 /// const glint::vec3 bubbleCentre(0.0f, 1.0f, 0.0f);
 /// const glint::mat4 model = glm::scale(glm::translate(glint::mat4(1.0f), bubbleCentre), glint::vec3(0.5f));
-/// const auto camera = glint::render::Camera::orbit(bubbleCentre, 3.0f, 0.0f, 0.2f, 45.0f, 16.0f / 9.0f);
+/// const auto camera = glint::Camera::orbit(bubbleCentre, 3.0f, 0.0f, 0.2f, 45.0f, 16.0f / 9.0f);
 /// const float time = 2.0f;
 /// env::DynamicCubeMap local(128);
-/// local.render(bubbleCentre, [&](const glint::render::Camera& face) { skybox.draw(sky, face); });
+/// local.render(bubbleCentre, [&](const glint::Camera& face) { skybox.draw(sky, face); });
 /// bubble.draw(sphere, model, camera, local.texture(), time);
 /// ```
 //
@@ -29,7 +29,7 @@
 // is drawn lands where a lookup by direction finds it.
 
 #include "glint/gl/objects.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 
 #include <functional>
 #include <string_view>

@@ -20,7 +20,7 @@
 /// namespace env = glint::render::env;
 /// const glint::gl::Texture cube = env::cubeFromEquirect(env::loadEquirect(env::findEnvironment("courtyard")));
 /// const glint::render::GpuMesh sphereMesh(glint::makeUvSphere());
-/// const auto camera = glint::render::Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.2f, 45.0f, 16.0f / 9.0f);
+/// const auto camera = glint::Camera::orbit({0, 0, 0}, 3.0f, 0.0f, 0.2f, 45.0f, 16.0f / 9.0f);
 /// const env::Skybox sky;
 /// const env::Reflector mirror({.lookup = env::Lookup::CubeMap});
 /// sky.draw(cube, camera);
@@ -29,7 +29,7 @@
 
 #include "glint/gl/objects.h"
 #include "glint/gl/shader.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/gpu_mesh.h"
 
 namespace glint::render::env {

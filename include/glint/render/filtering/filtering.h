@@ -26,7 +26,7 @@
 #include "glint/gl/objects.h"
 #include "glint/gl/shader.h"
 #include "glint/image/image.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/gpu_mesh.h"
 
 #include <span>

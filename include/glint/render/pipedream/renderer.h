@@ -66,8 +66,8 @@
 /// const auto stage = glint::scenes::pipedream::loadStage();  // machine, score and the cut geometry
 /// pipedream::Renderer renderer(stage->machine, stage->geometry);  // with a current 4.5 context
 /// const glint::gl::RenderTarget frame({1280, 720});
-/// const pipedream::MachinePose pose = pipedream::poseAt(stage->machine, stage->score, 3.0);
-/// const glint::render::Camera camera = glint::scenes::pipedream::namedCamera(0, frame.target().aspect());
+/// const glint::pipedream::MachinePose pose = glint::pipedream::poseAt(stage->machine, stage->score, 3.0);
+/// const glint::Camera camera = glint::scenes::pipedream::namedCamera(0, frame.target().aspect());
 /// renderer.render(pose, camera, frame.target(), pipedream::Mode::Full);
 /// ```
 
@@ -75,11 +75,11 @@
 #include "glint/gl/render_target.h"
 #include "glint/gl/shader.h"
 #include "glint/pipedream/machine_room.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/env/dynamic_cube.h"
 #include "glint/render/gpu_mesh.h"
-#include "glint/render/pipedream/motion_blur.h"
-#include "glint/render/pipedream/score.h"
+#include "glint/pipedream/motion_blur.h"
+#include "glint/pipedream/score.h"
 
 #include <cstdint>
 #include <span>
@@ -176,12 +176,12 @@ public:
 
   /// A whole frame of `mode` into `target`. `camera`'s projection (from glm::perspective)
   /// is given an infinite far plane here (z-fail's far caps); its near plane is kept.
-  void render(const MachinePose& pose, const Camera& camera, const gl::Target& target, Mode mode);
+  void render(const glint::pipedream::MachinePose& pose, const Camera& camera, const gl::Target& target, Mode mode);
 
   // ---- The steps of render() for Full and its debug modes (tests, benchmarks). They draw
   // into the renderer's own framebuffer (size from prepare()); present() copies it out.
   /// Sizes the framebuffers, takes the pose and the camera (infinite far plane); call first.
-  void prepare(const MachinePose& pose, const Camera& camera, ivec2 size, Mode mode);
+  void prepare(const glint::pipedream::MachinePose& pose, const Camera& camera, ivec2 size, Mode mode);
   /// Step 1: clears, draws the static groups and the dynamic parts (and opaque balls).
   void drawScene();
   /// Step 2: the translucent balls (nothing in NoBlur, where the scene pass drew them).
@@ -254,8 +254,8 @@ private:
   static std::vector<Cluster> clusterTriangles(Mesh& mesh, std::vector<vec4>& colors,
                                                std::span<const std::uint32_t> groupStart, float cell);
   struct BallDraw {
-    BallState state;
-    BallBlur blur;
+    glint::pipedream::BallState state;
+    glint::pipedream::BallBlur blur;
     float depth = 0.0f;  // view distance, for back-to-front order
   };
   Caster makeCaster(const Mesh& mesh, const std::string& name);

@@ -44,11 +44,11 @@ struct PlanarShadowOptions {
 class PlanarShadow {
 public:
   /// The texture covers the first ground object's bounds (World::objects with ground set).
-  PlanarShadow(const World& world, const PlanarShadowOptions& options);
+  PlanarShadow(const glint::shadows::World& world, const PlanarShadowOptions& options);
   /// Draws the casters into the shadow texture, then the options' view into `target`.
-  void render(const World& world, const Camera& camera, const gl::Target& target);
+  void render(const glint::shadows::World& world, const Camera& camera, const gl::Target& target);
   /// Only the first pass: the shadow texture.
-  void renderTexture(const World& world);
+  void renderTexture(const glint::shadows::World& world);
   const gl::Texture& texture() const { return m_texture; }
   /// World → shadow-texture coordinates (xy) for points on the ground.
   const mat4& textureMatrix() const { return m_textureMatrix; }

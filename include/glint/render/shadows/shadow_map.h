@@ -58,12 +58,12 @@ class ShadowMap {
 public:
   /// Creates the depth texture and FBO and compiles the passes. The light's frustum is
   /// fitted to `world`'s bounds (lightCamera()).
-  ShadowMap(const World& world, const ShadowMapOptions& options);
+  ShadowMap(const glint::shadows::World& world, const ShadowMapOptions& options);
 
   /// Draws the map, then the options' view into `target`.
-  void render(const World& world, const Camera& camera, const gl::Target& target);
+  void render(const glint::shadows::World& world, const Camera& camera, const gl::Target& target);
   /// Draws the light's view depth into the map (the first pass).
-  void renderMap(const World& world);
+  void renderMap(const glint::shadows::World& world);
 
   const gl::Texture& depthTexture() const { return m_depth; }
   /// The light's camera of the last renderMap().

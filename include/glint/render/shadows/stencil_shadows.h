@@ -34,7 +34,7 @@
 #include "glint/gl/objects.h"
 #include "glint/gl/render_target.h"
 #include "glint/render/gpu_mesh.h"
-#include "glint/render/shadows/volume.h"
+#include "glint/shadows/volume.h"
 #include "glint/render/shadows/world_renderer.h"
 
 #include <cstdint>
@@ -76,7 +76,7 @@ enum class VolumeView {
 struct StencilShadowOptions {
   StencilCounting counting = StencilCounting::ZFail;
   VolumeConstruction construction = VolumeConstruction::Cpu;
-  CasterMode casters = CasterMode::Auto;
+  glint::shadows::CasterMode casters = glint::shadows::CasterMode::Auto;
   ShadowComposite composite = ShadowComposite::MultiPass;
   VolumeView view = VolumeView::None;
   bool depthClamp = false;      ///< z-fail: GL_DEPTH_CLAMP instead of an infinite-far camera
@@ -101,29 +101,29 @@ struct VolumeStats {
 class StencilShadows {
 public:
   /// Builds edge maps (and for Gpu, extrusion meshes) of every caster in `world`.
-  StencilShadows(const World& world, const StencilShadowOptions& options);
+  StencilShadows(const glint::shadows::World& world, const StencilShadowOptions& options);
 
   /// Whether the camera needs an infinite-far projection (z-fail without depth clamp).
   static bool needsInfiniteFar(const StencilShadowOptions& options);
 
   /// A whole frame into `target` (cleared first): scene, volumes, composite, debug view.
-  void render(const World& world, const Camera& camera, const gl::Target& target);
+  void render(const glint::shadows::World& world, const Camera& camera, const gl::Target& target);
 
   // The steps of render(), for tests and custom frames. Each sets all state it uses.
   /// Rebuilds CPU volumes where the light moved relative to a caster (cheap otherwise).
-  void update(const World& world);
+  void update(const glint::shadows::World& world);
   /// Clears colour, depth (1) and stencil (0) of the bound target, draws the scene.
-  void drawScene(const World& world, const Camera& camera, LightTerms terms) const;
+  void drawScene(const glint::shadows::World& world, const Camera& camera, LightTerms terms) const;
   /// Counts the volumes into the stencil buffer; the depth buffer must hold the scene.
-  void countVolumes(const World& world, const Camera& camera) const;
+  void countVolumes(const glint::shadows::World& world, const Camera& camera) const;
   /// Turns the stencil into shadows with the options' composite.
-  void composite(const World& world, const Camera& camera) const;
+  void composite(const glint::shadows::World& world, const Camera& camera) const;
   /// Draws the options' debug view over the bound target.
-  void drawView(const World& world, const Camera& camera) const;
+  void drawView(const glint::shadows::World& world, const Camera& camera) const;
   /// Stencil fill: fragments the volumes rasterize in one stencil pass (both faces, caps
   /// when the counting uses them), counted with a GL_SAMPLES_PASSED query while drawing
   /// them with the depth test off and every write masked. Leaves the target untouched.
-  std::uint64_t measureFill(const World& world, const Camera& camera) const;
+  std::uint64_t measureFill(const glint::shadows::World& world, const Camera& camera) const;
   /// Forgets the CPU volumes so the next update() rebuilds them all (a moving light).
   void invalidate() {
     for (Caster& c : m_casters) c.built = false;
@@ -142,7 +142,7 @@ private:
   struct Caster {
     std::size_t object = 0;  // index in World::objects
     EdgeMap edges;
-    CasterMode mode = CasterMode::Closed;
+    glint::shadows::CasterMode mode = glint::shadows::CasterMode::Closed;
     // CPU: the volume of the last update, in object space.
     gl::Buffer buffer;
     gl::VertexArray vao;
@@ -153,7 +153,7 @@ private:
     gl::Buffer indices;
     GLsizei indexCount = 0;
   };
-  void drawVolumes(const World& world, const Camera& camera, bool caps) const;
+  void drawVolumes(const glint::shadows::World& world, const Camera& camera, bool caps) const;
   bool usesCaps() const;
 
   StencilShadowOptions m_options;

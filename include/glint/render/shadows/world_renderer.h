@@ -13,19 +13,19 @@
 //
 /// ```cpp
 /// #include <glint/render/state.h>
-/// namespace shadows = glint::render::shadows;
-/// glint::render::shadows::World world = shadows::makeDemoWorld();
-/// const shadows::WorldRenderer scene(world);  // with a current GL context
-/// const glint::render::Camera camera = shadows::sceneCamera(shadows::SceneView::Demo, 16.0f / 9.0f);
-/// shadows::animateDemoWorld(world, 1.5);  // moves objects: no re-upload
+/// namespace rs = glint::render::shadows;
+/// glint::shadows::World world = glint::shadows::makeDemoWorld();  // GL-free (shadows/world.h)
+/// const rs::WorldRenderer scene(world);  // with a current GL context
+/// const glint::Camera camera = glint::shadows::sceneCamera(glint::shadows::SceneView::Demo, 16.0f / 9.0f);
+/// glint::shadows::animateDemoWorld(world, 1.5);  // moves objects: no re-upload
 /// glint::render::PipelineState{.depthTest = true}.apply();
-/// scene.draw(world, camera, shadows::LightTerms::Full);
+/// scene.draw(world, camera, rs::LightTerms::Full);
 /// ```
 
 #include "glint/gl/shader.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/gpu_mesh.h"
-#include "glint/render/shadows/world.h"
+#include "glint/shadows/world.h"
 
 #include <functional>
 #include <string>
@@ -46,17 +46,17 @@ public:
   WorldRenderer() = default;
   /// Uploads the objects of `world` (their meshes; transforms are read at draw time) and
   /// compiles shaders/shadows/scene.{vert,frag} with `defines` (SHADOW_MAP, PLANAR_SHADOW).
-  explicit WorldRenderer(const World& world, const std::vector<std::string>& defines = {});
+  explicit WorldRenderer(const glint::shadows::World& world, const std::vector<std::string>& defines = {});
 
   /// Draws every object with the current pipeline state and the renderer's program.
-  void draw(const World& world, const Camera& camera, LightTerms terms) const;
+  void draw(const glint::shadows::World& world, const Camera& camera, LightTerms terms) const;
   /// The same with another program built from shaders/shadows/scene.vert (techniques that
   /// add a visibility term compile their own and set its extra uniforms first).
-  void draw(const World& world, const Camera& camera, LightTerms terms, const gl::Program& program) const;
+  void draw(const glint::shadows::World& world, const Camera& camera, LightTerms terms, const gl::Program& program) const;
   /// Positions only, with a caller's program that has uModel and uViewProj (depth passes,
   /// flat-coloured projections). `filter` picks objects (all when empty).
-  void drawGeometry(const World& world, const mat4& viewProj, const gl::Program& program,
-                    const std::function<bool(const WorldObject&)>& filter = {}) const;
+  void drawGeometry(const glint::shadows::World& world, const mat4& viewProj, const gl::Program& program,
+                    const std::function<bool(const glint::shadows::WorldObject&)>& filter = {}) const;
 
   const GpuMesh& mesh(std::size_t object) const { return m_meshes.at(object); }
   const gl::Program& program() const { return m_program; }
@@ -69,11 +69,11 @@ private:
 /// What a light frustum must see for shadows: every caster and where its shadow falls
 /// on the ground (its bounding box corners projected from the light onto y = groundHeight). Tighter
 /// than World::bounds() when the ground is large, so shadow-map texels are smaller.
-Bounds shadowFocus(const World& world);
+Bounds shadowFocus(const glint::shadows::World& world);
 
 /// A perspective camera at the world's light looking at the centre of `focus`, with a
 /// field of view just enclosing focus' bounding sphere (for shadow maps and the light's view).
-Camera lightCamera(const World& world, const Bounds& focus, float aspect = 1.0f);
+Camera lightCamera(const glint::shadows::World& world, const Bounds& focus, float aspect = 1.0f);
 
 /// `projection` with its far plane moved to infinity (Everitt & Kilgard's "tweaked"
 /// infinite projection): points at infinity (w = 0) land at window depth 1 − ε/2, just in

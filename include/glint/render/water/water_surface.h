@@ -16,7 +16,7 @@
 // two, so the water mirrors the sky at grazing angles and shows the floor looking down.
 
 #include "glint/gl/objects.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 #include "glint/render/gpu_mesh.h"
 
 #include <string>

@@ -1,6 +1,6 @@
 // The shadow worlds: plain data shared by the shadow scenes, the ray-traced oracle
 // tests and the benchmark.
-#include "glint/render/shadows/world.h"
+#include "glint/shadows/world.h"
 
 #include "glint/core/error.h"
 #include "glint/core/locations.h"
@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <cstdlib>
 
-namespace glint::render::shadows {
+namespace glint::shadows {
 
 Mesh World::worldMesh(std::size_t i) const {
   Mesh m = objects.at(i).mesh;
@@ -181,4 +181,4 @@ Mesh loadBunny() {
   return mesh;
 }
 
-}  // namespace glint::render::shadows
+}  // namespace glint::shadows

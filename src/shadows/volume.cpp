@@ -1,6 +1,6 @@
 // Shadow volume construction: CPU silhouettes by edge multiplicity, and the static
 // mesh for GPU extrusion (see volume.h for the method).
-#include "glint/render/shadows/volume.h"
+#include "glint/shadows/volume.h"
 
 #include "glint/core/error.h"
 
@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <utility>
 
-namespace glint::render::shadows {
+namespace glint::shadows {
 
 CasterMode resolveCasterMode(CasterMode mode, const EdgeMap& map) {
   if (mode != CasterMode::Auto) return mode;
@@ -75,17 +75,16 @@ ShadowVolume buildShadowVolume(const EdgeMap& map, vec3 light, CasterMode reques
   return volume;
 }
 
-ExtrusionMesh buildExtrusionMesh(const EdgeMap& map, bool twoSided) {
-  if (!twoSided && !map.isClosedManifold())
-    fail(ErrorKind::Input, "GPU extrusion without two-sided casters needs a closed 2-manifold mesh "
-                           "({} open, {} non-manifold, {} inconsistent edges)",
-         map.count(EdgeKind::Open), map.count(EdgeKind::NonManifold), map.count(EdgeKind::Inconsistent));
-  ExtrusionMesh mesh;
-  mesh.twoSided = twoSided;
+namespace {
+
+/// Every face's three vertices with its normal (vertex of face f's corner k: 3·slot(f) + k;
+/// the reversed copy's vertices follow all faces, with the normal negated). Returns the
+/// faces' slots (kNone for a face without edges) and sets `used` to how many faces have one.
+std::vector<std::uint32_t> addFaces(const EdgeMap& map, bool twoSided, ExtrusionMesh& mesh, std::uint32_t& used) {
   const std::size_t faces = map.faceCount();
   // Vertex of face f's corner k: 3·slot(f) + k; the reversed copy's vertices follow all faces.
   std::vector<std::uint32_t> slot(faces, EdgeMap::kNone);
-  std::uint32_t used = 0;
+  used = 0;
   for (std::uint32_t f = 0; f < faces; ++f)
     if (map.faceEdges(f)[0] != EdgeMap::kNone) slot[f] = used++;
   const int copies = twoSided ? 2 : 1;
@@ -110,8 +109,14 @@ ExtrusionMesh buildExtrusionMesh(const EdgeMap& map, bool twoSided) {
       mesh.indices.insert(mesh.indices.end(), {r, r + 2, r + 1});
     }
   }
-  mesh.faceTriangles = mesh.indices.size() / 3;
+  return slot;
+}
 
+/// A degenerate quad on every edge between the two faces that share it (a manifold edge;
+/// the reversed sheet's too), or between a face and its reversed copy (any other edge,
+/// reached only when two-sided).
+void addQuads(const EdgeMap& map, bool twoSided, const std::vector<std::uint32_t>& slot, std::uint32_t used,
+              ExtrusionMesh& mesh) {
   // The vertex of (copy of) face f at welded vertex w.
   const auto vertexOf = [&](std::uint32_t f, std::uint32_t w, bool reversed) {
     const auto c = map.corners(f);
@@ -144,14 +149,15 @@ ExtrusionMesh buildExtrusionMesh(const EdgeMap& map, bool twoSided) {
            vertexOf(f.face, to, true));
     }
   }
-  mesh.quadTriangles = mesh.indices.size() / 3 - mesh.faceTriangles;
+}
 
-  // For the vertex cache: each quad right after the later of its two faces, so that the
-  // four vertices it uses were shaded a few triangles before (vertices are numbered by
-  // face, faces keep the mesh's order). Counting in the stencil is order-free; the picture
-  // is the same. Without this the quads come after every face and re-shade each vertex.
+/// For the vertex cache: each quad right after the later of its two faces, so that the
+/// four vertices it uses were shaded a few triangles before (vertices are numbered by
+/// face, faces keep the mesh's order). Counting in the stencil is order-free; the picture
+/// is the same. Without this the quads come after every face and re-shade each vertex.
+void orderForVertexCache(std::uint32_t used, ExtrusionMesh& mesh) {
   const std::size_t triangles = mesh.indices.size() / 3;
-  if (used == 0) return mesh;
+  if (used == 0) return;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> order(triangles);  // (face slot, triangle)
   for (std::size_t t = 0; t < triangles; ++t) {
     std::uint32_t face = 0;
@@ -163,7 +169,24 @@ ExtrusionMesh buildExtrusionMesh(const EdgeMap& map, bool twoSided) {
   for (std::size_t i = 0; i < triangles; ++i)
     for (int k = 0; k < 3; ++k) indices[3 * i + std::size_t(k)] = mesh.indices[3 * std::size_t(order[i].second) + std::size_t(k)];
   mesh.indices = std::move(indices);
+}
+
+}  // namespace
+
+ExtrusionMesh buildExtrusionMesh(const EdgeMap& map, bool twoSided) {
+  if (!twoSided && !map.isClosedManifold())
+    fail(ErrorKind::Input, "GPU extrusion without two-sided casters needs a closed 2-manifold mesh "
+                           "({} open, {} non-manifold, {} inconsistent edges)",
+         map.count(EdgeKind::Open), map.count(EdgeKind::NonManifold), map.count(EdgeKind::Inconsistent));
+  ExtrusionMesh mesh;
+  mesh.twoSided = twoSided;
+  std::uint32_t used = 0;
+  const std::vector<std::uint32_t> slot = addFaces(map, twoSided, mesh, used);
+  mesh.faceTriangles = mesh.indices.size() / 3;
+  addQuads(map, twoSided, slot, used, mesh);
+  mesh.quadTriangles = mesh.indices.size() / 3 - mesh.faceTriangles;
+  orderForVertexCache(used, mesh);
   return mesh;
 }
 
-}  // namespace glint::render::shadows
+}  // namespace glint::shadows

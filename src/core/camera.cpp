@@ -1,10 +1,10 @@
-// The orbit control's math (include/glint/render/camera.h).
-#include "glint/render/camera.h"
+// The orbit control's math (include/glint/core/camera.h).
+#include "glint/core/camera.h"
 
 #include <algorithm>
 #include <utility>
 
-namespace glint::render {
+namespace glint {
 
 namespace {
 
@@ -55,4 +55,4 @@ void OrbitControl::panBy(vec2 fraction, const Camera& defined) {
   pan += height * (fraction.x * axes[0] + fraction.y * axes[1]);
 }
 
-}  // namespace glint::render
+}  // namespace glint

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/shadows/world.h — what every shadow technique draws: objects, a ground
+// glint/shadows/world.h — what every shadow technique draws: objects, a ground
 // and one point light, as plain data (no GL), plus the worlds the shadow scenes,
 // tests and benchmarks share.
 //
@@ -19,13 +19,13 @@
 
 #include "glint/core/math.h"
 #include "glint/mesh/mesh.h"
-#include "glint/render/camera.h"
+#include "glint/core/camera.h"
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
-namespace glint::render::shadows {
+namespace glint::shadows {
 
 struct WorldObject {
   std::string name;
@@ -77,8 +77,8 @@ enum class SceneView {
 /// scenes draw with (z-fail scenes then move the far plane to infinity):
 ///
 /// ```cpp run
-/// using namespace glint::render::shadows;
-/// const glint::render::Camera camera = sceneCamera(SceneView::Demo, 16.0f / 9.0f);
+/// using namespace glint::shadows;
+/// const glint::Camera camera = sceneCamera(SceneView::Demo, 16.0f / 9.0f);
 /// ```
 Camera sceneCamera(SceneView view, float aspect);
 
@@ -88,4 +88,4 @@ std::filesystem::path bunnyPath();
 /// Loads the bunny from bunnyPath() with winding checked (outward). Error(Input) as bunnyPath().
 Mesh loadBunny();
 
-}  // namespace glint::render::shadows
+}  // namespace glint::shadows

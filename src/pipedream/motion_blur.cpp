@@ -1,12 +1,12 @@
 // The motion-blur ball's mesh and the CPU side of its vertex shader (motion_blur.h).
-#include "glint/render/pipedream/motion_blur.h"
+#include "glint/pipedream/motion_blur.h"
 
 #include "glint/core/error.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace glint::render::pipedream {
+namespace glint::pipedream {
 
 BlurBallMesh buildBlurBall(int segments, int rings) {
   if (segments < 3 || rings < 2 || rings % 2 != 0)
@@ -88,4 +88,4 @@ vec3 stretchVertex(vec3 position, float rear, vec3 centre, vec3 velocity, float 
   return centre + ballFrame(velocity) * (radius * position) - rear * shutter * velocity;
 }
 
-}  // namespace glint::render::pipedream
+}  // namespace glint::pipedream

@@ -1,5 +1,6 @@
 #pragma once
-// glint/render/camera.h — a perspective camera as the matrices shaders need.
+// glint/core/camera.h — a perspective camera as the matrices shaders need (no GL: the
+// renderers, the CPU pipeline, the shadow worlds and the viewer share it).
 //
 // A Camera is plain data: view and projection matrices, the eye position in world space
 // and the point it looks at. Build one with lookAt() or orbit() (both right-handed, GL
@@ -7,7 +8,7 @@
 //
 /// ```cpp
 /// #include <glint/gl/shader.h>
-/// const auto cam = glint::render::Camera::orbit({0, 0, 0}, 4.5f, 0.0f, 0.15f, 45.0f, 16.0f / 9.0f);
+/// const auto cam = glint::Camera::orbit({0, 0, 0}, 4.5f, 0.0f, 0.15f, 45.0f, 16.0f / 9.0f);
 /// const auto program = glint::gl::Program::fromFiles({"filtering/ground.vert", "filtering/ground.frag"});
 /// program.set("uViewProj", cam.viewProjection());
 /// ```
@@ -17,19 +18,18 @@
 // and target together. The identity control changes nothing, bit for bit:
 //
 /// ```cpp run
-/// namespace render = glint::render;
-/// const auto cam = render::Camera::orbit({0, 0, 0}, 4.5f, 0.0f, 0.15f, 45.0f, 16.0f / 9.0f);
-/// render::OrbitControl view;      // identity
+/// const auto cam = glint::Camera::orbit({0, 0, 0}, 4.5f, 0.0f, 0.15f, 45.0f, 16.0f / 9.0f);
+/// glint::OrbitControl view;       // identity
 /// view.orbitBy(0.3f, 0.1f, cam);  // 0.3 rad around world up, eye 0.1 rad higher
 /// view.zoomBy(0.5f);              // half the distance to the target
-/// const render::Camera moved = view.apply(cam);
+/// const glint::Camera moved = view.apply(cam);
 /// ```
 
 #include "glint/core/math.h"
 
 #include <cmath>
 
-namespace glint::render {
+namespace glint {
 
 struct Camera {
   mat4 view{1.0f};
@@ -113,4 +113,4 @@ struct OrbitControl {
   void panBy(vec2 fraction, const Camera& defined);
 };
 
-}  // namespace glint::render
+}  // namespace glint

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/shadows/volume.h — shadow volume geometry from an edge map (no GL).
+// glint/shadows/volume.h — shadow volume geometry from an edge map (no GL).
 //
 // Contents
 //   CasterMode          how a caster's triangles bound its volume (closed, two-sided, naive)
@@ -44,7 +44,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace glint::render::shadows {
+namespace glint::shadows {
 
 enum class CasterMode {
   Auto,      ///< Closed for closed 2-manifold meshes, TwoSided for anything else
@@ -93,4 +93,4 @@ struct ExtrusionMesh {
 /// are skipped.
 ExtrusionMesh buildExtrusionMesh(const EdgeMap& map, bool twoSided);
 
-}  // namespace glint::render::shadows
+}  // namespace glint::shadows

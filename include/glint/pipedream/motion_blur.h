@@ -1,6 +1,7 @@
 #pragma once
-// glint/render/pipedream/motion_blur.h — WWDC 2003 session 212's motion-blurred balls (WWDC 2003 session 212, the
-// end of the "Pipe Dream" talk): a ball split at a seam, stretched in the vertex shader.
+// glint/pipedream/motion_blur.h — WWDC 2003 session 212's motion-blurred balls (the end of
+// its "Pipe Dream" part): a ball split at a seam, stretched in the vertex shader (no GL:
+// the mesh, the blur amounts and the shader's arithmetic on the CPU).
 //
 // Contents
 //   BlurBallMesh      a unit sphere cut at its equator, the two halves joined by degenerate
@@ -26,8 +27,8 @@
 //
 /// ```cpp run
 /// const glint::vec3 velocity(4.0f, 1.0f, 0.0f);  // metres per second
-/// const glint::render::pipedream::BlurBallMesh mesh = glint::render::pipedream::buildBlurBall(32, 16);
-/// const glint::render::pipedream::BallBlur blur = glint::render::pipedream::blurOf(velocity, 0.12f, 1.0f / 30.0f);
+/// const glint::pipedream::BlurBallMesh mesh = glint::pipedream::buildBlurBall(32, 16);
+/// const glint::pipedream::BallBlur blur = glint::pipedream::blurOf(velocity, 0.12f, 1.0f / 30.0f);
 /// ```
 
 #include "glint/core/math.h"
@@ -35,7 +36,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace glint::render::pipedream {
+namespace glint::pipedream {
 
 struct BlurBallMesh {
   std::vector<vec3> positions;        ///< on the unit sphere; the seam is the circle z = 0
@@ -68,4 +69,4 @@ mat3 ballFrame(vec3 velocity);
 /// for the rear half minus velocity · shutter.
 vec3 stretchVertex(vec3 position, float rear, vec3 centre, vec3 velocity, float radius, float shutter);
 
-}  // namespace glint::render::pipedream
+}  // namespace glint::pipedream

@@ -1,5 +1,5 @@
-// The instrument machine's score and poses (render/pipedream/score.h).
-#include "glint/render/pipedream/score.h"
+// The instrument machine's score and poses (pipedream/score.h).
+#include "glint/pipedream/score.h"
 
 #include "glint/core/hash.h"
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
-namespace glint::render::pipedream {
+namespace glint::pipedream {
 
 namespace {
 
@@ -223,4 +223,4 @@ MachinePose poseAt(const InstrumentMachine& m, const Score& score, double time) 
   return pose;
 }
 
-}  // namespace glint::render::pipedream
+}  // namespace glint::pipedream

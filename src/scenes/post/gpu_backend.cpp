@@ -1,18 +1,24 @@
-// glint post's GPU backend (render/post/gpu.h): the job's GL side.
-#include "glint/render/post/gpu.h"
+// glint post's GPU backend (scenes/post_gpu.h): the job's GL side.
+#include "glint/scenes/post_gpu.h"
 
 #include "glint/core/error.h"
 #include "glint/gl/context.h"
 #include "glint/render/post/chain.h"
+#include "glint/render/post/effects.h"
 #include "glint/video/transcode.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace glint::render::post {
+namespace glint::scenes {
 
 namespace {
+
+using glint::post::Effect;
+using render::post::Chain;
+using render::post::FrameStream;
 
 // A FrameStream owned together with the processor that drives it.
 class OwnedStream final : public video::FrameProcessor {
@@ -62,6 +68,6 @@ private:
 
 }  // namespace
 
-std::unique_ptr<glint::post::GpuBackend> gpuBackend() { return std::make_unique<Backend>(); }
+std::unique_ptr<glint::post::GpuBackend> postGpuBackend() { return std::make_unique<Backend>(); }
 
-}  // namespace glint::render::post
+}  // namespace glint::scenes

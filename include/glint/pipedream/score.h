@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/pipedream/score.h — what the instrument machine plays: the score as data,
+// glint/pipedream/score.h — what the instrument machine plays: the score as data,
 // and where every moving part is at a given time (no GL).
 //
 // Contents
@@ -21,10 +21,10 @@
 /// ```cpp run
 /// #include <algorithm>
 /// const glint::InstrumentMachine machine = glint::makeInstrumentMachine({.detail = 1});
-/// const glint::render::pipedream::Score score = glint::render::pipedream::makeScore(machine);
-/// const glint::render::pipedream::MachinePose pose = glint::render::pipedream::poseAt(machine, score, 3.25);
+/// const glint::pipedream::Score score = glint::pipedream::makeScore(machine);
+/// const glint::pipedream::MachinePose pose = glint::pipedream::poseAt(machine, score, 3.25);
 /// float fastest = 0.0f;
-/// for (const glint::render::pipedream::BallState& ball : pose.balls)
+/// for (const glint::pipedream::BallState& ball : pose.balls)
 ///   fastest = std::max(fastest, glm::length(ball.velocity));  // ball.position: where to draw it
 /// ```
 
@@ -34,7 +34,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace glint::render::pipedream {
+namespace glint::pipedream {
 
 constexpr float kGravity = 9.81f;  ///< m/s², along −y
 
@@ -92,4 +92,4 @@ MachinePose poseAt(const InstrumentMachine& machine, const Score& score, double 
 /// A ball's state `t` seconds after its launch (t in [0, end − launch]).
 BallState ballAt(const BallFlight& flight, double t);
 
-}  // namespace glint::render::pipedream
+}  // namespace glint::pipedream
