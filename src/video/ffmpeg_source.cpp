@@ -148,14 +148,14 @@ FfmpegSource::Input FfmpegSource::chooseInput(const std::string& name) {
     info.kind = SourceKind::Camera;
     input.format = av_find_input_format("video4linux2");
     if (!input.format) fail(ErrorKind::Input, "this FFmpeg has no V4L2 input (libavdevice without video4linux2)");
+    std::error_code ec;  // (checked before the options are made: an error here leaves nothing to free)
+    if (!std::filesystem::exists(name, ec)) fail(ErrorKind::Input, "no camera at '{}' (no such device)", name);
     if (options.size.x > 0) {
       av_dict_set(&input.options, "video_size", fmt::format("{}x{}", options.size.x, options.size.y).c_str(), 0);
     }
     if (options.frameRate > 0) {
       av_dict_set(&input.options, "framerate", fmt::format("{}", options.frameRate).c_str(), 0);
     }
-    std::error_code ec;
-    if (!std::filesystem::exists(name, ec)) fail(ErrorKind::Input, "no camera at '{}' (no such device)", name);
   } else if (name.starts_with(kLavfiPrefix)) {
     info.kind = SourceKind::Lavfi;
     input.url = name.substr(kLavfiPrefix.size());

@@ -3,6 +3,8 @@
 #include "glint/core/error.h"
 #include "glint/render/state.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <limits>
@@ -52,13 +54,30 @@ void ComputePass::dispatch(const gl::Texture& output) {
 }
 
 // ---------------------------------------------------------------------------
-SepiaPass::SepiaPass(PassStage stage)
-    : m_stage(stage), m_compute("post/sepia.comp"), m_framebuffer(gl::Framebuffer::create("post-sepia")) {
-  if (stage == PassStage::Fragment) m_fragment.emplace("post/sepia.frag");
+TexelPass::TexelPass(const char* name, PassStage stage)
+    : m_name(name), m_stage(stage), m_compute(fmt::format("post/{}.comp", name)),
+      m_framebuffer(gl::Framebuffer::create(fmt::format("post-{}", name))) {
+  if (stage == PassStage::Fragment) m_fragment.emplace(fmt::format("post/{}.frag", name));
 }
 
+const gl::Program& TexelPass::begin(const gl::Texture& input, const gl::Texture& output) {
+  checkSizes(m_name, input, output);
+  input.bindUnsampled(0);
+  const gl::Program& program = m_fragment ? m_fragment->program() : m_compute.program(output);
+  program.set("uInput", 0);
+  return program;
+}
+
+void TexelPass::finish(const gl::Texture& output) {
+  if (!m_fragment) return m_compute.dispatch(output);
+  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
+  bindOutput(m_framebuffer, output);
+  m_fragment->drawWithCurrentState();
+}
+
+// ---------------------------------------------------------------------------
 void SepiaPass::run(const gl::Texture& input, const gl::Texture& output, const SepiaOptions& options) {
-  checkSizes("sepia", input, output);
+  const gl::Program& program = m_pass.begin(input, output);
   const dvec3 c = sepiaOffset(options);
   // t·c must stay in [0, 1] − Y per channel: t ≤ Y / max(−c_k) and t ≤ (1 − Y) / max(c_k).
   double most = 0.0, least = 0.0;
@@ -68,53 +87,23 @@ void SepiaPass::run(const gl::Texture& input, const gl::Texture& output, const S
   }
   const float big = std::numeric_limits<float>::max();
   const vec2 limits(least > 0 ? float(1.0 / least) : big, most > 0 ? float(1.0 / most) : big);
-  input.bindUnsampled(0);
-  const auto& program = m_fragment ? m_fragment->program() : m_compute.program(output);
-  program.set("uInput", 0);
   program.set("uOffset", vec3(c));
   program.set("uLimits", limits);
-  if (!m_fragment) return m_compute.dispatch(output);
-  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
-  bindOutput(m_framebuffer, output);
-  m_fragment->drawWithCurrentState();
-}
-
-// ---------------------------------------------------------------------------
-SobelPass::SobelPass(PassStage stage)
-    : m_stage(stage), m_compute("post/sobel.comp"), m_framebuffer(gl::Framebuffer::create("post-sobel")) {
-  if (stage == PassStage::Fragment) m_fragment.emplace("post/sobel.frag");
+  m_pass.finish(output);
 }
 
 void SobelPass::run(const gl::Texture& input, const gl::Texture& output, const SobelOptions& options) {
-  checkSizes("sobel", input, output);
-  input.bindUnsampled(0);
-  const auto& program = m_fragment ? m_fragment->program() : m_compute.program(output);
-  program.set("uInput", 0);
+  const gl::Program& program = m_pass.begin(input, output);
   program.set("uOutput", int(options.output));
   program.set("uScale", options.scale);
-  if (!m_fragment) return m_compute.dispatch(output);
-  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
-  bindOutput(m_framebuffer, output);
-  m_fragment->drawWithCurrentState();
-}
-
-// ---------------------------------------------------------------------------
-EdgesPass::EdgesPass(PassStage stage)
-    : m_stage(stage), m_compute("post/edges.comp"), m_framebuffer(gl::Framebuffer::create("post-edges")) {
-  if (stage == PassStage::Fragment) m_fragment.emplace("post/edges.frag");
+  m_pass.finish(output);
 }
 
 void EdgesPass::run(const gl::Texture& input, const gl::Texture& output, const EdgesOptions& options) {
-  checkSizes("edges", input, output);
-  input.bindUnsampled(0);
-  const auto& program = m_fragment ? m_fragment->program() : m_compute.program(output);
-  program.set("uInput", 0);
+  const gl::Program& program = m_pass.begin(input, output);
   program.set("uScale", options.scale);
   program.set("uThreshold", options.threshold);
-  if (!m_fragment) return m_compute.dispatch(output);
-  const SavedTarget saved;  // the caller's framebuffer and viewport, put back on return
-  bindOutput(m_framebuffer, output);
-  m_fragment->drawWithCurrentState();
+  m_pass.finish(output);
 }
 
 // ---------------------------------------------------------------------------

@@ -10,6 +10,7 @@
 // (tests/post/gpu_test.cpp: PostGpu.ComputeAndFragmentPassesGiveTheSameTexels).
 //
 // Contents
+//   TexelPass      what the texel-wise passes share: compute or fragment, sizes checked
 //   SepiaPass      "a dot product and an add" (shaders/post/sepia.glsl)
 //   SobelPass      the two 3×3 kernels, eight texel fetches (sobel.glsl)
 //   EdgesPass      Sobel lines composited over the image (edges.glsl)
@@ -72,43 +73,57 @@ private:
   gl::Program m_rgba8, m_rgba32f;
 };
 
-class SepiaPass {
+/// What the texel-wise passes (sepia, Sobel, edges) share: the pass as a compute shader
+/// (post/<name>.comp) or, for PassStage::Fragment, the full-screen fragment shader
+/// (post/<name>.frag) into a framebuffer of its own. A pass's run() is begin(), its
+/// uniforms, finish().
+class TexelPass {
 public:
-  explicit SepiaPass(PassStage stage = PassStage::Compute);
-  void run(const gl::Texture& input, const gl::Texture& output, const SepiaOptions& options = {});
+  TexelPass(const char* name, PassStage stage);
   PassStage stage() const { return m_stage; }
+  /// Checks that `input` and `output` have one size (Error(Usage) naming the pass), binds
+  /// `input` to unit 0 (uniform uInput) and returns the program for the pass's uniforms.
+  const gl::Program& begin(const gl::Texture& input, const gl::Texture& output);
+  /// Runs the pass into `output`: a dispatch, or a draw that puts the caller's framebuffer
+  /// and viewport back.
+  void finish(const gl::Texture& output);
 
 private:
+  const char* m_name;
   PassStage m_stage;
   ComputePass m_compute;
   std::optional<FullscreenPass> m_fragment;  ///< PassStage::Fragment only
   gl::Framebuffer m_framebuffer;
+};
+
+class SepiaPass {
+public:
+  explicit SepiaPass(PassStage stage = PassStage::Compute) : m_pass("sepia", stage) {}
+  void run(const gl::Texture& input, const gl::Texture& output, const SepiaOptions& options = {});
+  PassStage stage() const { return m_pass.stage(); }
+
+private:
+  TexelPass m_pass;
 };
 
 class SobelPass {
 public:
-  explicit SobelPass(PassStage stage = PassStage::Compute);
+  explicit SobelPass(PassStage stage = PassStage::Compute) : m_pass("sobel", stage) {}
   void run(const gl::Texture& input, const gl::Texture& output, const SobelOptions& options = {});
-  PassStage stage() const { return m_stage; }
+  PassStage stage() const { return m_pass.stage(); }
 
 private:
-  PassStage m_stage;
-  ComputePass m_compute;
-  std::optional<FullscreenPass> m_fragment;  ///< PassStage::Fragment only
-  gl::Framebuffer m_framebuffer;
+  TexelPass m_pass;
 };
 
 class EdgesPass {
 public:
-  explicit EdgesPass(PassStage stage = PassStage::Compute);
+  explicit EdgesPass(PassStage stage = PassStage::Compute) : m_pass("edges", stage) {}
   void run(const gl::Texture& input, const gl::Texture& output, const EdgesOptions& options = {});
-  PassStage stage() const { return m_stage; }
+  PassStage stage() const { return m_pass.stage(); }
 
 private:
-  PassStage m_stage;
-  ComputePass m_compute;
-  std::optional<FullscreenPass> m_fragment;  ///< PassStage::Fragment only
-  gl::Framebuffer m_framebuffer;
+  TexelPass m_pass;
 };
 
 class KuwaharaPass {
