@@ -17,6 +17,7 @@
 //   - the ball's vertex shader against stretchVertex (transform feedback).
 // A small stage (detail 1: ~11k input triangles, ~80k cut) keeps it quick on llvmpipe; the
 // cut is cached in the build tree like the scene's.
+#include "support/classified.h"
 #include "support/depth_rays.h"
 #include "support/gl_test.h"
 
@@ -212,22 +213,7 @@ private:
 
 /// Classified and not within kBand pixels of a pixel classified the other way.
 std::vector<bool> awayFromEdges(const std::vector<Truth>& truth, int w, int h) {
-  std::vector<bool> out(truth.size(), false);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const Truth t = truth[std::size_t(y * w + x)];
-      if (t != Truth::Lit && t != Truth::Shadowed) continue;
-      bool nearEdge = false;
-      for (int dy = -kBand; dy <= kBand && !nearEdge; ++dy)
-        for (int dx = -kBand; dx <= kBand && !nearEdge; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
-          const Truth n = truth[std::size_t(yy * w + xx)];
-          nearEdge = (n == Truth::Lit || n == Truth::Shadowed) && n != t;
-        }
-      out[std::size_t(y * w + x)] = !nearEdge;
-    }
-  return out;
+  return glint::testing::awayFromEdges(truth, w, h, kBand, [](Truth t) { return t == Truth::Lit || t == Truth::Shadowed; });
 }
 
 struct View {

@@ -21,6 +21,7 @@
 // as `glint render` does, with the scenes' own cameras, sizes, times and options) and
 // check their colours where the ray tracer says lit or shadowed: no false shadow (acne)
 // on lit surfaces, and the seed's compositing opacities in shadow.
+#include "support/classified.h"
 #include "support/depth_rays.h"
 #include "support/gl_test.h"
 
@@ -124,23 +125,7 @@ private:
 /// Whether each pixel is compared: classified by the ray tracer and not within kBand
 /// pixels of a pixel it classifies the other way.
 std::vector<bool> awayFromEdges(const std::vector<Truth>& truth, int w, int h) {
-  std::vector<bool> out(truth.size(), false);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const Truth t = truth[std::size_t(y * w + x)];
-      if (t == Truth::Excluded) continue;
-      bool nearEdge = false;
-      for (int dy = -kBand; dy <= kBand && !nearEdge; ++dy)
-        for (int dx = -kBand; dx <= kBand && !nearEdge; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
-          const Truth n = truth[std::size_t(yy * w + xx)];
-          nearEdge = n != Truth::Excluded && n != t;
-        }
-      out[std::size_t(y * w + x)] = !nearEdge;
-    }
-  }
-  return out;
+  return glint::testing::awayFromEdges(truth, w, h, kBand, [](Truth t) { return t != Truth::Excluded; });
 }
 
 /// Compares a GPU mask (true = shadowed, top row first) with the ray-traced truth.
