@@ -163,16 +163,6 @@ private:
   std::mt19937 m_rng;
 };
 
-/// Counts every fragment in the stencil buffer; depth GL_ALWAYS so the last fragment's
-/// depth is stored; no culling.
-raster::State countingState() {
-  const raster::StencilFace count{.func = raster::CompareFunc::Always, .dppass = raster::StencilOp::IncrWrap};
-  return raster::State{.depthTest = true,
-                       .depthFunc = raster::CompareFunc::Always,
-                       .stencilTest = true,
-                       .stencilFront = count,
-                       .stencilBack = count};
-}
 
 std::size_t allowedCoverageMismatches(std::size_t pixels) {
   static const bool llvmpipe = test::isLlvmpipe();
@@ -208,7 +198,7 @@ TEST_P(RasterCoverage, MatchesOpenGLPixelForPixel) {
     ref.clear(vec4(0.0f), 1.0f, 0);
     test::ReferenceRecorder recorder(ref);
     for (int t = 0; t < kTilesPerSide * kTilesPerSide; ++t) {
-      raster::State state = countingState();
+      raster::State state = test::countingState();
       state.viewport = raster::Viewport{(t % kTilesPerSide) * kTile, (t / kTilesPerSide) * kTile, kTile, kTile};
       const auto stats = recorder.draw(state, std::span(vertices).subspan(std::size_t(t) * 3, 3));
       clipped += stats.clipped;

@@ -20,6 +20,17 @@
 
 namespace glint::test {
 
+/// Counts every fragment in the stencil buffer; depth GL_ALWAYS so the last fragment's
+/// depth is stored; no culling.
+inline raster::State countingState() {
+  const raster::StencilFace count{.func = raster::CompareFunc::Always, .dppass = raster::StencilOp::IncrWrap};
+  return raster::State{.depthTest = true,
+                       .depthFunc = raster::CompareFunc::Always,
+                       .stencilTest = true,
+                       .stencilFront = count,
+                       .stencilBack = count};
+}
+
 /// What OpenGL drew, bottom row first like raster::Framebuffer's spans.
 struct GlBuffers {
   int width = 0, height = 0;

@@ -28,14 +28,6 @@ constexpr int kWidth = 256, kHeight = 192;
 // Depth: see cross_check.h. Colour: see coverage_gl_test.cpp.
 constexpr double kColorTolerance = 2.0 / 255.0;
 
-raster::State countingState() {
-  const raster::StencilFace count{.func = raster::CompareFunc::Always, .dppass = raster::StencilOp::IncrWrap};
-  return raster::State{.depthTest = true,
-                       .depthFunc = raster::CompareFunc::Always,
-                       .stencilTest = true,
-                       .stencilFront = count,
-                       .stencilBack = count};
-}
 
 vec4 windowToClip(dvec2 window, double z, double w) {
   const dvec2 ndc{window.x / (kWidth / 2.0) - 1.0, window.y / (kHeight / 2.0) - 1.0};
@@ -116,9 +108,9 @@ void drawBoth(Drawn& d, const std::vector<raster::Vertex>& vertices) {
   test::GlCanvas canvas({kWidth, kHeight}, GL_DEPTH32F_STENCIL8);
   canvas.clear(vec4(0.0f), 1.0f, 0);
   const render::RasterTriangles gpu(vertices, "shared-edges");
-  canvas.draw(countingState(), gpu);
+  canvas.draw(test::countingState(), gpu);
   d.gl = canvas.read();
-  d.stats = d.recorder.draw(countingState(), vertices);
+  d.stats = d.recorder.draw(test::countingState(), vertices);
 }
 
 std::size_t count(std::span<const std::uint8_t> values, std::uint8_t v) {
