@@ -1,5 +1,5 @@
 // The shadow cutter against independent computations: Embree shadow rays, areas per
-// input triangle, the edge topology of the result; the seed's hard cases.
+// input triangle, the edge topology of the result; WWDC 2003 session 212's hard cases.
 #include "glint/core/error.h"
 #include "glint/cut/cutter.h"
 #include "glint/pipedream/machine_room.h"
@@ -86,7 +86,7 @@ TEST(Cut, BoxOverFloorAgreesWithShadowRays) {
 }
 
 /// Three long triangles, each passing over the next one and under the previous one: no
-/// order sorts them (the seed's "root of all evil"), over a closed floor slab.
+/// order sorts them (WWDC 2003 session 212's "root of all evil"), over a closed floor slab.
 Mesh cyclicTriangles() {
   Mesh scene = makeBox({-4, -1, -4}, {4, 0, 4});
   for (int i = 0; i < 3; ++i) {

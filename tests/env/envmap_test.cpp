@@ -1,5 +1,5 @@
 // Environment-map geometry (image/envmap.h) against the OpenGL spec's cube map table,
-// the GL_SPHERE_MAP texgen formula and the seed's figures (000: "about 20%" wasted,
+// the GL_SPHERE_MAP texgen formula and the WWDC 2001 talk's figures ("about 20%" wasted,
 // "roughly 40%" for each half of the environment).
 #include "glint/core/error.h"
 #include "glint/image/envmap.h"
@@ -110,7 +110,7 @@ TEST(SphereMap, TexgenFormulaAndItsInverseAgree) {
 
 TEST(SphereMap, WastesAboutAFifthAndSplitsTheRestEvenly) {
   const SphereMapCoverage c = sphereMapCoverage(512);
-  EXPECT_NEAR(c.wastedFraction, 1.0 - M_PI / 4.0, 2e-3);  // the seed: "about 20%"
+  EXPECT_NEAR(c.wastedFraction, 1.0 - M_PI / 4.0, 2e-3);  // the WWDC 2001 talk: "about 20%"
   EXPECT_NEAR(c.frontFraction, M_PI / 8.0, 2e-3);         // "roughly 40%" front
   EXPECT_NEAR(c.backFraction, M_PI / 8.0, 2e-3);          // and 40% back
   EXPECT_NEAR(c.wastedFraction + c.frontFraction + c.backFraction, 1.0, 1e-12);

@@ -1,5 +1,5 @@
 // Texture filtering (render/filtering/filtering.h) measured against a 16×16-supersampled truth:
-// the order seed 000 describes, and the anisotropy limit.
+// the order the WWDC 2001 talk describes, and the anisotropy limit.
 #include "../support/gl_test.h"
 
 #include "glint/core/error.h"

@@ -3,11 +3,11 @@
 //   - the dim factor: after the quads every pixel is its scene-pass colour times
 //     1 − Σ (weights of the lights whose volumes cover it); pixels no light reaches are
 //     left exactly as they were (no double darkening), and a pixel in one light's dynamic
-//     shadow is the seed's "dest colour × dest alpha";
+//     shadow is WWDC 2003 session 212's "dest colour × dest alpha";
 //   - translucent balls leave destination alpha alone;
 //   - culling by light range changes no pixel (the shadows it skips fall where the light
 //     is already zero);
-//   - the seed's method against the naive method (full-scene volumes, no cut): the same
+//   - WWDC 2003 session 212's method against the naive method (full-scene volumes, no cut): the same
 //     picture away from shadow edges;
 //   - the oracle: Embree rays from each visible pixel's surface point to each light,
 //     against static and dynamic occluders, decide lit or shadowed; the frame's own
@@ -220,7 +220,7 @@ struct View {
   double time;
   int camera;
 };
-// Several times and the seed's camera moves: the whole stage, the drum machine from above,
+// Several times and WWDC 2003 session 212's camera moves: the whole stage, the drum machine from above,
 // across the machine from the side.
 const View kViews[] = {{2.1, 0}, {6.35, 1}, {9.8, 3}};
 
@@ -299,7 +299,7 @@ TEST_F(GlTest, PipeDreamDimFactorNeverDarkensTwice) {
           }
         }
         if (covered && any == 0.0f) ++untouched;
-        // One light's shadow: the seed's quad, dest colour × dest alpha.
+        // One light's shadow: WWDC 2003 session 212's quad, dest colour × dest alpha.
         if (covered == 1u && s.weights.at(x, y, 0) > 0.05f) {
           ++singles;
           // One rounding into the buffer (half a step) by the GL's own sRGB encoding, which
@@ -484,7 +484,7 @@ TEST_F(GlTest, PipeDreamMatchesFullSceneVolumes) {
         if (!compared[std::size_t(y * kSize.x + x)]) continue;
         bool close = true;
         // Within 2 steps of 8-bit sRGB: each method rounds into the 8-bit buffer (the naive
-        // one once a pass), the seed's dim factor and weights are 8-bit.
+        // one once a pass), WWDC 2003 session 212's dim factor and weights are 8-bit.
         for (int c = 0; c < 3; ++c) close &= srgbSteps(full.at(x, y, c), naive.at(x, y, c)) <= 2.0f;
         ++count;
         same += close;
@@ -589,7 +589,7 @@ TEST_F(GlTest, PipeDreamBallShaderStretchesAsTheReference) {
 }
 
 TEST_F(GlTest, PipeDreamViewerKeysSwitchViewsWithoutAReload) {
-  // The scene as the viewer holds it: keys toggle the seed's views and pick cameras.
+  // The scene as the viewer holds it: keys toggle WWDC 2003 session 212's views and pick cameras.
   const auto ref = scenes::Registry::builtin().resolve("pipedream/full");
   std::unique_ptr<scenes::Scene> scene = ref.scene->create(ref.variant);
   scenes::setOption(*scene, fmt::format("detail={}", kDetail));

@@ -147,7 +147,7 @@ TEST(Score, PosesAreAFunctionOfTimeThatLoops) {
     for (std::size_t i = 0; i < a.mallets.size(); ++i)
       EXPECT_LT(glm::length(vec3(a.mallets[i][3]) - vec3(c.mallets[i][3])), 1e-4f);
   }
-  // Balls are always in flight (the seed's stage is never still) and mallets move.
+  // Balls are always in flight (the talk's stage is never still) and mallets move.
   std::size_t fewest = 1000;
   for (double t = 0.0; t < score.period; t += 0.25) fewest = std::min(fewest, glint::pipedream::poseAt(m, score, t).balls.size());
   EXPECT_GE(fewest, 2u);

@@ -46,7 +46,7 @@ TEST(PostReference, YiqMatricesAreInverseAndGrayStaysGray) {
       EXPECT_NEAR(s, i == j ? 1.0 : 0.0, 1e-12);
     }
   // The I and Q rows sum to zero, so the inverse's first column is (1, 1, 1): with I and Q
-  // fixed, RGB' = Y·(1,1,1) + c. That is the seed's "dot product and an add".
+  // fixed, RGB' = Y·(1,1,1) + c. That is WWDC 2003 session 212's "dot product and an add".
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(inv[std::size_t(i)][0], 1.0, 1e-12);
   const dvec3 c = sepiaOffset({});
   EXPECT_NEAR(c.r, 0.1912, 5e-4);

@@ -1,4 +1,4 @@
-// The basics scenes against the lecture's own arithmetic (seeds/004), computed here
+// The basics scenes against the lecture's own arithmetic (the OpenGL III lecture), computed here
 // independently of the renderer.
 #include "support/gl_test.h"
 

@@ -20,7 +20,7 @@
 // The last tests take the gallery's pictures themselves (registered variants rendered
 // as `glint render` does, with the scenes' own cameras, sizes, times and options) and
 // check their colours where the ray tracer says lit or shadowed: no false shadow (acne)
-// on lit surfaces, and the seed's compositing opacities in shadow.
+// on lit surfaces, and the WWDC 2001 talk's compositing opacities in shadow.
 #include "support/classified.h"
 #include "support/depth_rays.h"
 #include "support/gl_test.h"
@@ -73,7 +73,7 @@ Camera cameraFor(SceneView view, ivec2 size = kSize) { return sceneCamera(view, 
 class Oracle {
 public:
   explicit Oracle(const World& world) : m_world(world) {
-    // Primary rays see every object; shadow rays are blocked by casters only (the seed's
+    // Primary rays see every object; shadow rays are blocked by casters only (the WWDC 2001 talk's
     // sphere can be a receiver that casts nothing).
     std::vector<Mesh> meshes, casters;
     for (std::size_t i = 0; i < world.objects.size(); ++i) {
@@ -191,7 +191,7 @@ TEST_F(GlTest, EveryStencilCountingMethodAgreesWithTheRayTracer) {
       {"GPU extrusion z-pass", {.counting = StencilCounting::ZPass, .construction = VolumeConstruction::Gpu}},
       {"two-sided casters z-fail", {.counting = StencilCounting::ZFail, .casters = CasterMode::TwoSided}},
   };
-  // INVERT counts parity, so its world has one caster (the seed's: the sphere only
+  // INVERT counts parity, so its world has one caster (the WWDC 2001 talk's: the sphere only
   // receives); the others have the sphere casting inside the slab's volume (t = 6 s),
   // where volumes overlap.
   const World single = makeDemoWorld(0.0, false);
@@ -424,7 +424,7 @@ TEST_F(GlTest, GalleryShadowMapsDoNotShadowLitSurfaces) {
 }
 
 TEST_F(GlTest, VolumeCompositesDarkenShadowsByTheirOpacity) {
-  // seeds/000 draws the volume again "with an 85% opaque alpha blend" (black): a shadowed
+  // The WWDC 2001 talk draws the volume again "with an 85% opaque alpha blend" (black): a shadowed
   // pixel keeps 15% of its lit colour; at 50% opacity it keeps 50% — "much more
   // noticeable" diffuse and specular light through the shadow, "but if you use 85%,
   // it's not too bad". Measured on the ground where the ray tracer says shadowed,
@@ -438,7 +438,7 @@ TEST_F(GlTest, VolumeCompositesDarkenShadowsByTheirOpacity) {
   int k = 0;
   for (const Case& c : {Case{"shadows/zpass-invert/volume-85", 0.15}, Case{"shadows/zpass-invert/volume-50", 0.5}}) {
     const GalleryFrame f = renderGallery(c.name, SceneView::Demo);
-    const World world = makeDemoWorld(f.time, false);  // the seed's: only the slab casts
+    const World world = makeDemoWorld(f.time, false);  // the WWDC 2001 talk's: only the slab casts
     const Image lit = renderUnshadowed(world, f.camera, f.size);
     const std::vector<Truth> truth = Oracle(world).classify(f.depth, f.camera, 0);  // the ground
     const std::vector<bool> compared = awayFromEdges(truth, f.size.x, f.size.y);
