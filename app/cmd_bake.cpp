@@ -7,12 +7,13 @@
 
 #include "glint/bake/job.h"
 #include "glint/core/error.h"
+#include "glint/scenes/bake_gpu.h"
 
 #include <memory>
 
 namespace glint::app {
 
-Command bakeCommand(CLI::App& app, const GlobalOptions&) {
+Command bakeCommand(CLI::App& app, const GlobalOptions& global) {
   auto a = std::make_shared<bake::BakeJob>();
   auto request = std::make_shared<bake::BatchRequest>();
   auto* cmd = app.add_subcommand("bake", "Bake a high-poly mesh's detail into a normal map (and AO, height, curvature, "
@@ -28,7 +29,7 @@ Command bakeCommand(CLI::App& app, const GlobalOptions&) {
   auto describe = std::make_shared<bool>(false);
   cmd->add_flag("--describe", *describe, "Print the options and maps as JSON (names, help, defaults, the sample counts "
                 "--samples takes): what a front end such as the Blender add-on builds its panel from; bake nothing");
-  return Command{.run = [a, request, cmd, batch, job, list, describe] {
+  return Command{.run = [a, request, cmd, batch, job, list, describe, &global] {
                    if (*describe) {
                      std::fputs(jsonText(bake::describe()).c_str(), stdout);
                      return 0;
@@ -41,12 +42,17 @@ Command bakeCommand(CLI::App& app, const GlobalOptions&) {
                      // The options given with --batch apply to every job (--json is the batch's own report).
                      request->overrides = bake::givenOptions(*cmd, {batch, job, list, cmd->get_option("--json")});
                      request->tool = a->tool;
+                     const auto gpu = scenes::bakeGpuBackend();  // (its context only when a job takes the GPU)
+                     request->gpu = gpu.get();
+                     request->glDebug = global.glDebug;
                      return bake::runBatch(*request);
                    }
                    for (const char* name : {"low", "high", "--output"})
                      if (cmd->get_option(name)->count() == 0) fail(ErrorKind::Usage, "{} is required (see --help)", name);
                    ToolRun run("bake", a->tool);
-                   bake::runJob(*a, run);
+                   a->glDebug = global.glDebug;
+                   const auto gpu = scenes::bakeGpuBackend();
+                   bake::runJob(*a, run, nullptr, gpu.get());
                    run.finish();
                    return 0;
                  },

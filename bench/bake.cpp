@@ -26,6 +26,7 @@
 #include "glint/core/file.h"
 #include "glint/core/log.h"
 #include "glint/raytrace/raytracer.h"
+#include "glint/scenes/bake_gpu.h"
 
 #include "embree.h"  // src/raytrace: Embree 3 or 4, the same seam as glint::raytrace
 #include <fmt/format.h>
@@ -33,6 +34,7 @@
 #include <sys/resource.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -506,6 +508,125 @@ void throughput(Recorder& r, const Mesh& low, const Mesh& high, int size, int sa
             .ratioTo = "plain rtcIntersect1 wall", .note = "wall clock: depends on the machine's other load"});
 }
 
+/// (i) the GPU bake (issue 48) against glint's own CPU path, in the same run: rays per
+/// second (the trace phase's rays over its wall time: sample placement, shading and storing
+/// included) for the normal map and for AO with 16 and 256 rays; the whole command (normal +
+/// AO with 16 rays) against the CPU path and Blender's Cycles; 256-ray AO at 4096². On a
+/// software renderer (llvmpipe) the sizes shrink so the rows exist in minutes, and the rows a
+/// GPU's targets are about say they were not run.
+void gpuVersusCpu(Recorder& r, const fs::path& dir) {
+  const std::string group = "i: GPU vs CPU, studded torus";
+  const auto backend = scenes::bakeGpuBackend();
+  bake::GpuInfo info;
+  try {
+    info = backend->start(false);
+  } catch (const Error& e) {
+    r.record({.group = group, .name = "GPU", .value = std::nan(""), .unit = "Mrays/s",
+              .note = fmt::format("no GPU: {}", e.what())});
+    return;
+  }
+  // GLINT_BENCH_QUICK (scripts/gpu-check's own test): the smallest sizes, one run each.
+  const bool software = info.software, fast = quick();
+  const Mesh low = lowPoly();
+  const Mesh high = highPoly(fast ? 16384 : 262144);
+  const std::string where = fmt::format("{}{}", info.renderer, software ? " (software: smaller sizes)" : "");
+  const int shrink = fast ? 8 : 1;
+  struct Case {
+    const char* name;
+    int size, aoSamples;
+  };
+  const Case cases[] = {{"normal map", (software ? 1024 : 2048) / shrink, 0},
+                        {"AO 16 rays", (software ? 512 : 2048) / shrink, 16},
+                        {"AO 256 rays", (software ? 128 : 2048) / shrink, 256}};
+  for (const Case& c : cases) {
+    bake::BakeOptions options = bakeOptions(c.size, 1);
+    if (c.aoSamples) {
+      options.maps.add(bake::Map::Ao);
+      options.aoSamples = c.aoSamples;
+    }
+    const auto rate = [&](const bake::BakeStats& s) {
+      return double(c.aoSamples ? s.aoRays : s.rays) / s.traceSeconds / 1e6;
+    };
+    std::vector<double> cpu, gpu;
+    // Alternating; 256-ray AO once each on a GPU (a billion rays: most of the CPU path's minute).
+    const int repeats = fast || (c.aoSamples == 256 && !software) ? 1 : kThroughputRepeats;
+    for (int i = 0; i < repeats; ++i) {
+      options.device = bake::Device::Cpu;
+      options.gpu = nullptr;
+      cpu.push_back(rate(bake::bake(low, high, options).stats));
+      options.device = bake::Device::Gpu;
+      options.gpu = backend.get();
+      gpu.push_back(rate(bake::bake(low, high, options).stats));
+    }
+    const std::string cpuName = fmt::format("{} {}², CPU", c.name, c.size);
+    r.record({.group = group, .name = cpuName, .value = median(cpu), .unit = "Mrays/s",
+              .note = fmt::format("Embree, {} threads; medians of {} alternating runs", tbb::this_task_arena::max_concurrency(), cpu.size())});
+    r.record({.group = group, .name = fmt::format("{} {}², GPU", c.name, c.size), .value = median(gpu), .unit = "Mrays/s",
+              .ratioTo = cpuName,
+              .note = c.aoSamples ? fmt::format("{}; target ≥ 1000 Mrays/s on an H100/H200", where) : where});
+  }
+
+  if (fast) {
+    for (const char* name : {"normal + AO 16, command, GPU", "AO 256 rays 4096², GPU (target < 10 s)"})
+      r.record({.group = group, .name = name, .value = std::nan(""), .unit = "s",
+                .note = "GLINT_BENCH_QUICK: the whole runs take minutes"});
+    return;
+  }
+  // The whole command, normal + AO (16 rays): GPU, CPU and Cycles, alternating.
+  const int size = software ? 1024 : 2048;
+  if (!fs::exists(dir / "low.obj")) bake::writeObj(low, dir / "low.obj");
+  if (!fs::exists(dir / "high.obj")) bake::writeObj(high, dir / "high.obj");
+  const auto command = [&](const char* device) {
+    return fmt::format("{} bake {} {} -o {} --ao {} --size {}x{} --samples 1 --max-front 0.06 --max-rear 0.06 "
+                       "--ao-samples 16 --ao-distance 0.1 --device {} -q", shellQuote(self()), shellQuote(dir / "low.obj"),
+                       shellQuote(dir / "high.obj"), shellQuote(dir / "gpu-n.png"), shellQuote(dir / "gpu-ao.png"), size,
+                       size, device);
+  };
+  const bool blender = blenderAvailable();
+  const fs::path script = fs::path(GLINT_SOURCE_DIR) / "bench" / "peers" / "blender_bake.py";
+  std::vector<double> gpuRuns, cpuRuns, cyclesRuns;
+  for (int i = 0; i < kPeerRepeats; ++i) {
+    gpuRuns.push_back(timeCommand(command("gpu")));
+    cpuRuns.push_back(timeCommand(command("cpu")));
+    if (gpuRuns.back() < 0 || cpuRuns.back() < 0) fail(ErrorKind::Internal, "bench bake: `glint bake --device` failed");
+    if (blender) {
+      cyclesRuns.push_back(timeCommand(fmt::format(
+          "blender -b --factory-startup --python-exit-code 1 --python {} -- {} {} {} {} 1 0.06 normal,ao 16 0.1 >/dev/null 2>&1",
+          shellQuote(script), shellQuote(dir / "low.obj"), shellQuote(dir / "high.obj"), shellQuote(dir / "cycles-n.png"),
+          size)));
+    }
+  }
+  const std::string whole = fmt::format("normal + AO 16, {}², command", size);
+  r.record({.group = group, .name = whole + ", CPU", .value = median(cpuRuns), .unit = "s",
+            .note = fmt::format("whole runs, medians of {} alternating", cpuRuns.size())});
+  r.record({.group = group, .name = whole + ", GPU", .value = median(gpuRuns), .unit = "s",
+            .note = "speed-up over the CPU path: target ≥ 25× on an H100/H200's machine"});
+  r.record({.group = group, .name = "  CPU / GPU", .value = median(cpuRuns) / median(gpuRuns), .unit = "×"});
+  const bool cycles = blender && !cyclesRuns.empty() && *std::min_element(cyclesRuns.begin(), cyclesRuns.end()) >= 0;
+  r.record({.group = group, .name = whole + ", Blender Cycles", .value = cycles ? median(cyclesRuns) : std::nan(""),
+            .unit = "s", .note = cycles ? "the same files, normal then AO (16 samples)" : "peer unavailable or failed"});
+  r.record({.group = group, .name = "  Cycles / GPU (target ≥ 50)", .value = cycles ? median(cyclesRuns) / median(gpuRuns) : std::nan(""),
+            .unit = "×"});
+
+  // 256-ray AO at 4096²: 4.3 G rays, the GPU's alone (the CPU path would take tens of minutes).
+  if (software) {
+    r.record({.group = group, .name = "AO 256 rays 4096², GPU (target < 10 s)", .value = std::nan(""), .unit = "s",
+              .note = "not run on a software renderer (4.3 G rays)"});
+    return;
+  }
+  bake::BakeOptions options = bakeOptions(4096, 1);
+  options.maps.add(bake::Map::Ao);
+  options.aoSamples = 256;
+  options.device = bake::Device::Gpu;
+  options.gpu = backend.get();
+  const auto start = Clock::now();
+  const bake::BakeStats s = bake::bake(low, high, options).stats;
+  r.record({.group = group, .name = "AO 256 rays 4096², GPU (target < 10 s)", .value = secondsSince(start), .unit = "s",
+            .note = fmt::format("{:.2f} G AO rays, {:.0f} Mrays/s over the trace; {} dispatches, the longest {:.0f} ms",
+                                double(s.aoRays) / 1e9, double(s.aoRays) / s.traceSeconds / 1e6, s.gpuDispatches,
+                                s.gpuLongestDispatchMs)});
+}
+
 /// (d) scaling with the high poly.
 void scaling(Recorder& r) {
   const Mesh low = lowPoly();
@@ -552,6 +673,7 @@ void runBakeSuite(Recorder& r) {
     if (part('f')) everyMapVersusBlender(r, dir);
     if (part('g')) addonVersusBlender(r, dir);
     if (part('h')) pythonOverhead(r, dir);
+    if (part('i')) gpuVersusCpu(r, dir);
   } catch (...) {
     fs::remove_all(dir);
     log::setLevel(level);

@@ -21,6 +21,7 @@
 #include "glint/mesh/mesh.h"
 #include "glint/post/effects.h"
 #include "glint/post/job.h"
+#include "glint/scenes/bake_gpu.h"
 #include "glint/scenes/post_gpu.h"
 #include "glint/scenes/model.h"
 #include "glint/scenes/runner.h"
@@ -337,7 +338,9 @@ py::tuple bakeIntoArrays(bake::BakeJob& job, const py::object& progress, int thr
   const nlohmann::ordered_json report = runReleased(progress, [&](const std::atomic<bool>* cancel) {
     job.tool = settingsFor(cancel, threads, job.tool);  // keeps max_memory: the command's refusal
     ToolRun run("bake", job.tool);
-    bake::runJob(job, run);
+    // Made on this worker thread, which bakes: a GPU context is current on the thread that made it.
+    const auto gpu = scenes::bakeGpuBackend();
+    bake::runJob(job, run, nullptr, gpu.get());
     return run.finish();
   });
   py::dict out;

@@ -69,6 +69,13 @@ def settings_class(table):
         annotations["ao_samples"] = bpy.props.IntProperty(
             name="AO rays", default=int(core.default(table, "ao-samples", 16)), min=ao["min"], max=ao["max"],
             description=_help(table, "ao-samples"))
+        if "device" in table["options"]:  # a glint that can bake on the GPU
+            annotations["device"] = bpy.props.EnumProperty(
+                name="Device", default=str(core.default(table, "device", "auto")),
+                items=[("auto", "Auto", "The GPU when it is hardware and the bake fits its memory, else the CPU"),
+                       ("cpu", "CPU", "Every core"),
+                       ("gpu", "GPU", "The GPU, or an error without one")],
+                description=_help(table, "device"))
         annotations["max_front"] = bpy.props.StringProperty(
             name="Max front", default=str(core.default(table, "max-front", "5%")), description=_help(table, "max-front"))
         annotations["max_rear"] = bpy.props.StringProperty(
@@ -311,6 +318,8 @@ def draw_settings(layout, context):
     layout.prop(settings, "samples")
     if any(getattr(settings, "bake_" + name, False) for name in ("ao", "bent_normal", "thickness")):
         layout.prop(settings, "ao_samples")
+    if hasattr(settings, "device"):
+        layout.prop(settings, "device")
     row = layout.row()
     row.prop(settings, "max_front")
     row.prop(settings, "max_rear")

@@ -234,12 +234,15 @@ class Bake:
         self.options = {"samples": int(settings.samples), "max_front": settings.max_front, "max_rear": settings.max_rear}
         if "ao" in self.maps or "bent_normal" in self.maps or "thickness" in self.maps:
             self.options["ao_samples"] = settings.ao_samples
+        if hasattr(settings, "device"):
+            self.options["device"] = settings.device
         self.pairs = bake_pairs(context, settings)
         self.backend = "module" if self.glint is not None else "command"
         self.seconds = {"export": 0.0, "bake": 0.0, "import": 0.0, "wire": 0.0}
         self.cancel = threading.Event()
         self.progress = {"label": "starting", "done": 0, "total": 1, "pair": 0}
         self.results = []
+        self.devices = []  # where each pair's rays were traced ("cpu" or "gpu"), from glint's report
         self.folder = None  # the command's files
         self.threads = 0  # every core; the panel's bake leaves one to Blender (Bake.leave_a_core)
 
@@ -298,6 +301,7 @@ class Bake:
                                 bits=32 if self.float_maps else 8, threads=self.threads, **self.options)
         except glint.Error as error:
             raise BakeError(f"glint: {error}") from None
+        self.devices.append(result.report.get("device", "cpu"))
         return dict(result)
 
     def bake_with_command(self, index, low_file, high_file, uv_name):
@@ -332,6 +336,7 @@ class Bake:
             raise BakeError(lines[-1] if lines else f"glint: glint bake failed (exit {process.returncode})")
         with open(report_path) as f:
             report = json.load(f)
+        self.devices.append(report.get("device", "cpu"))
         tiles = [t["tile"] for t in report.get("udim_tiles", [])]
         baked = {}
         for m in self.maps:
@@ -366,7 +371,8 @@ class Bake:
             if self.wire:
                 wire_material(low, images, inputs[0][4] if self.glint is not None else inputs[2])
             report["pairs"].append({"low": low.name, "high": [h.name for h in highs], "maps": sorted(images),
-                                    "images": {k: v.name for k, v in images.items()}})
+                                    "images": {k: v.name for k, v in images.items()},
+                                    "device": self.devices[len(report["pairs"])]})
         self.seconds["wire"] += time.perf_counter() - start
         names = ", ".join(p["low"] for p in report["pairs"])
         report["summary"] = (f"glint baked {', '.join(self.maps)} at {self.size}² for {names} in "

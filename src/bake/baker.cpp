@@ -240,20 +240,53 @@ void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleRe
   ctx.covered[p.texel] = 1;
 }
 
-void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<raytrace::Ray>* rayLog) {
-  // Counted on the stack, stored once: neighbouring tiles' counters share cache lines, and
-  // two threads incrementing them per sample would pass those lines back and forth.
-  Counters counters;
+/// A tile's covered texels, row by row: `texel(index, conservative, slots)` for each, its
+/// samples' slots at `slots` (ctx.root² of them; tri < 0: not on the low poly).
+template <typename Texel>
+void forEachTexel(const Context& ctx, int tileIndex, Counters& counters, const Texel& texel) {
   const int W = ctx.options.width, H = ctx.options.height, k = ctx.root, S = k * k;
   const int x0 = (tileIndex % ctx.tilesX) * kTile, y0 = (tileIndex / ctx.tilesX) * kTile;
   const int tw = std::min(kTile, W - x0), th = std::min(kTile, H - y0);
   // Reused per thread: a fresh 32×32×36 buffer per tile would cost page faults and zeroing.
   thread_local std::vector<Slot> slots;
   slots.assign(std::size_t(tw * th * S), Slot{});
-  int prediction = 0;  // which side of the low poly the hits are on (see traceGroup)
   const auto& bin = ctx.bins[std::size_t(tileIndex)];
   placeSamples(ctx, x0, y0, tw, th, bin, slots, counters);
+  for (int y = y0; y < y0 + th; ++y) {
+    for (int x = x0; x < x0 + tw; ++x) {
+      Slot* texelSlots = &slots[std::size_t(((y - y0) * tw + (x - x0)) * S)];
+      bool any = false;
+      for (int s = 0; s < S && !any; ++s) any = texelSlots[s].tri >= 0;
+      if (!any && !conservativeSample(ctx, bin, x, y, texelSlots[0])) continue;
+      texel(std::size_t(y) * std::size_t(W) + std::size_t(x), !any, texelSlots);
+    }
+  }
+}
 
+/// A texel's samples as trace inputs, written at `out` (in place, field by field: see
+/// traceGroup); returns how many.
+std::size_t texelInputs(const Context& ctx, std::size_t texel, const Slot* texelSlots, detail::SampleInput* out) {
+  const int W = ctx.options.width, H = ctx.options.height, S = ctx.root * ctx.root;
+  std::size_t count = 0;
+  for (int s = 0; s < S; ++s) {
+    if (texelSlots[s].tri < 0) continue;
+    const UvTriangle& t = ctx.tris[std::size_t(texelSlots[s].tri)];
+    const vec2 w = texelSlots[s].w;
+    // The UV is only read for painted detail: skip the arithmetic otherwise.
+    const vec2 p = ctx.options.detail ? (1.0f - w.x - w.y) * t.a + w.x * t.b + w.y * t.c : vec2(0.0f);
+    detail::SampleInput& in = out[count++];
+    in.slot = texelSlots[s];
+    in.uv = vec2(p.x / float(W), p.y / float(H));
+    in.seed = texel * 4096u + std::uint64_t(s);
+  }
+  return count;
+}
+
+void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<raytrace::Ray>* rayLog) {
+  // Counted on the stack, stored once: neighbouring tiles' counters share cache lines, and
+  // two threads incrementing them per sample would pass those lines back and forth.
+  Counters counters;
+  int prediction = 0;  // which side of the low poly the hits are on (see traceGroup)
   // Texels are gathered until they hold at least kGroup samples, which are then traced
   // together (coherent groups for Embree's packets, whatever the sample count), and the
   // results averaged back per texel. One group's samples, results and texels are on the
@@ -271,29 +304,12 @@ void bakeTile(Context& ctx, int tileIndex, Counters& tileCounters, std::vector<r
     for (const Pending& p : std::span(pending).first(pendingCount)) storeTexel(ctx, p, results, counters);
     pendingCount = inputCount = 0;
   };
-  for (int y = y0; y < y0 + th; ++y) {
-    for (int x = x0; x < x0 + tw; ++x) {
-      Slot* texelSlots = &slots[std::size_t(((y - y0) * tw + (x - x0)) * S)];
-      bool any = false;
-      for (int s = 0; s < S && !any; ++s) any = texelSlots[s].tri >= 0;
-      if (!any && !conservativeSample(ctx, bin, x, y, texelSlots[0])) continue;
-      const std::size_t texel = std::size_t(y) * std::size_t(W) + std::size_t(x);
-      const std::size_t first = inputCount;
-      for (int s = 0; s < S; ++s) {
-        if (texelSlots[s].tri < 0) continue;
-        const UvTriangle& t = ctx.tris[std::size_t(texelSlots[s].tri)];
-        const vec2 w = texelSlots[s].w;
-        // The UV is only read for painted detail: skip the arithmetic otherwise.
-        const vec2 p = ctx.options.detail ? (1.0f - w.x - w.y) * t.a + w.x * t.b + w.y * t.c : vec2(0.0f);
-        detail::SampleInput& in = inputs[inputCount++];  // in place, field by field (see traceGroup)
-        in.slot = texelSlots[s];
-        in.uv = vec2(p.x / float(W), p.y / float(H));
-        in.seed = texel * 4096u + std::uint64_t(s);
-      }
-      pending[pendingCount++] = {texel, first, inputCount - first, !any};
-      if (inputCount >= kGroup) flush();
-    }
-  }
+  forEachTexel(ctx, tileIndex, counters, [&](std::size_t texel, bool conservative, const Slot* texelSlots) {
+    const std::size_t first = inputCount;
+    inputCount += texelInputs(ctx, texel, texelSlots, &inputs[inputCount]);
+    pending[pendingCount++] = {texel, first, inputCount - first, conservative};
+    if (inputCount >= kGroup) flush();
+  });
   if (inputCount > 0) flush();
   tileCounters = counters;
 }
@@ -415,6 +431,64 @@ void binTriangles(Context& ctx) {
   }
 }
 
+/// The samples a GPU wave takes at most: enough rays to keep a large GPU busy for a few
+/// dispatches (2^26), between 2^16 samples (1,024 rays each) and 2^19 (~128 MiB of the CPU's
+/// per-sample state).
+std::size_t waveSamples(const BakeOptions& options) {
+  const double raysPerSample = 1.0 + (options.maps.needs(kHemisphereRays) ? double(options.aoSamples) : 0.0) +
+                               (options.maps.needs(kInwardRays) ? double(options.aoSamples) : 0.0) +
+                               (options.maps.needs(kCurvatureRays) ? 8.0 : 0.0);
+  return std::clamp(std::size_t(double(std::size_t(1) << 26) / raysPerSample), std::size_t(1) << 16, std::size_t(1) << 19);
+}
+
+/// The tiles on the GPU (ctx.gpu), in slabs of consecutive tiles a wave each (traceWave):
+/// samples placed per tile in parallel, traced together, stored per tile. Progress and
+/// Ctrl-C between slabs.
+void bakeSlabs(Context& ctx, std::vector<Counters>& tileCounters, Progress* progress, std::atomic<bool>& cancelled) {
+  const BakeOptions& options = ctx.options;
+  const std::size_t tileCount = ctx.bins.size();
+  const std::size_t perTile = std::size_t(kTile * kTile * ctx.root * ctx.root), most = waveSamples(options);
+  for (std::size_t t0 = 0; t0 < tileCount;) {
+    if (options.cancel && options.cancel->load()) {
+      cancelled = true;
+      return;
+    }
+    std::size_t t1 = t0;
+    for (std::size_t estimate = 0; t1 < tileCount && (t1 == t0 || estimate + perTile <= most); ++t1) {
+      if (!ctx.bins[t1].empty()) estimate += perTile;
+    }
+    const std::size_t tiles = t1 - t0;
+    std::vector<std::vector<detail::SampleInput>> inputs(tiles);
+    std::vector<std::vector<Pending>> pending(tiles);
+    tbb::parallel_for(std::size_t(0), tiles, [&](std::size_t k) {
+      if (ctx.bins[t0 + k].empty()) return;
+      std::vector<detail::SampleInput>& in = inputs[k];
+      in.resize(perTile);
+      std::size_t count = 0;
+      forEachTexel(ctx, int(t0 + k), tileCounters[t0 + k], [&](std::size_t texel, bool conservative, const Slot* texelSlots) {
+        const std::size_t first = count;
+        count += texelInputs(ctx, texel, texelSlots, &in[count]);
+        pending[k].push_back({texel, first, count - first, conservative});
+      });
+      in.resize(count);
+    });
+    std::vector<std::size_t> base(tiles + 1, 0);
+    for (std::size_t k = 0; k < tiles; ++k) base[k + 1] = base[k] + inputs[k].size();
+    std::vector<detail::SampleInput> all(base[tiles]);
+    for (std::size_t k = 0; k < tiles; ++k) std::copy(inputs[k].begin(), inputs[k].end(), all.begin() + std::ptrdiff_t(base[k]));
+    std::vector<detail::SampleResult> results(all.size());
+    detail::traceWave(ctx, all, results, tileCounters[t0]);  // the wave's rays counted with its first tile
+    tbb::parallel_for(std::size_t(0), tiles, [&](std::size_t k) {
+      for (Pending p : pending[k]) {
+        p.first += base[k];
+        storeTexel(ctx, p, results, tileCounters[t0 + k]);
+      }
+    });
+    if (progress) progress->advance(tiles);
+    t0 = t1;
+  }
+}
+
 /// Every tile with triangles, in parallel; their counters summed into `stats`, their rays
 /// appended to options.rayLog in tile order. Error(Interrupted) when cancelled.
 void bakeTiles(Context& ctx, BakeStats& stats) {
@@ -426,7 +500,8 @@ void bakeTiles(Context& ctx, BakeStats& stats) {
   {
     Progress progress(options.progressLabel, tileCount);
     const bool showProgress = options.progress;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tileCount, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    if (ctx.gpu) bakeSlabs(ctx, tileCounters, showProgress ? &progress : nullptr, cancelled);
+    else tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tileCount, 1), [&](const tbb::blocked_range<std::size_t>& r) {
       const FlushDenormals flush;
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
         if (cancelled.load(std::memory_order_relaxed) || (options.cancel && options.cancel->load())) {
@@ -590,11 +665,41 @@ float groupEpsilon(const GroupMatch& match, const Mesh& low, const raytrace::Sce
   return 1e-5f * std::max(b.diagonal(), scene.bounds().diagonal());
 }
 
+/// The high poly's scene on the GPU (--device gpu), one at a time (a bake group each);
+/// what the scenes held and did is summed into the stats.
+class GpuUpload {
+public:
+  GpuUpload(const BakeOptions& options, BakeStats& stats) : m_options(options), m_stats(stats) {}
+  ~GpuUpload() { account(); }
+  GpuUpload(const GpuUpload&) = delete;
+  GpuUpload& operator=(const GpuUpload&) = delete;
+  GpuScene* upload(const Mesh& mesh, const vec3* cornerNormals) {
+    account();
+    m_scene.reset();  // the last one's memory is free before the next is made
+    m_scene = m_options.gpu->upload(mesh, cornerNormals);
+    m_stats.gpuBytes = std::max(m_stats.gpuBytes, m_scene->bytes());
+    return m_scene.get();
+  }
+  /// The current scene's dispatches into the stats (once).
+  void account() {
+    if (!m_scene) return;
+    m_stats.gpuDispatches += m_scene->dispatches() - m_counted;
+    m_counted = m_scene->dispatches();
+    m_stats.gpuLongestDispatchMs = std::max(m_stats.gpuLongestDispatchMs, m_scene->longestDispatchMs());
+  }
+
+private:
+  const BakeOptions& m_options;
+  BakeStats& m_stats;
+  std::unique_ptr<GpuScene> m_scene;
+  std::size_t m_counted = 0;
+};
+
 /// Bake groups: each group's low triangles against its own high parts' BVH, built in turn
 /// into `scene` (which `ctx` refers to; group 0's is built already, from `groupMesh`).
 void bakeGroups(Context& ctx, BakeStats& stats, const GroupMatch& match, const Mesh& high, const Mesh& low,
                 raytrace::Scene& scene, Mesh& groupMesh, std::vector<std::uint32_t>& groupIds,
-                const std::function<raytrace::SceneOptions(const Mesh&)>& sceneOptions) {
+                const std::function<raytrace::SceneOptions(const Mesh&)>& sceneOptions, GpuUpload& gpu) {
   const std::vector<std::vector<int>> allBins = ctx.bins;
   for (std::uint32_t g = 0; g < match.groups.size(); ++g) {
     if (g > 0) {
@@ -608,6 +713,7 @@ void bakeGroups(Context& ctx, BakeStats& stats, const GroupMatch& match, const M
       ctx.epsilon = groupEpsilon(match, low, scene, g);
       ctx.vertexCache = detail::buildVertexCache(ctx, groupMesh);
       stats.bvhBytes = std::max(stats.bvhBytes, scene.memoryBytes());
+      if (ctx.gpu) ctx.gpu = gpu.upload(groupMesh, ctx.highCornerNormals);
     }
     for (std::size_t i = 0; i < allBins.size(); ++i) {
       ctx.bins[i].clear();
@@ -683,6 +789,14 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
     ctx.highTriangleIds = groupIds.data();
   }
   ctx.vertexCache = detail::buildVertexCache(ctx, match ? groupMesh : *in.high);
+  const detail::DeviceChoice device = detail::chooseDevice(options, in.high->triangleCount());
+  stats.device = device.gpu ? "gpu" : "cpu";
+  stats.deviceReason = device.reason;
+  stats.gpuRenderer = device.info.renderer;
+  stats.gpuFreeBytes = device.info.freeBytes.value_or(0);
+  GpuUpload gpu(options, stats);
+  if (device.gpu) ctx.gpu = gpu.upload(match ? groupMesh : *in.high, ctx.highCornerNormals);
+  log::debug("bake: rays on the {} ({})", stats.device, stats.deviceReason);
   const double setupSeconds = secondsSince(setupStart);
   stats.prepareSeconds = secondsSince(start);  // the phases cover the whole of bake()
 
@@ -693,8 +807,9 @@ BakeResult detail::bakeWith(const Mesh& low, const Mesh& high, const BakeOptions
     bakeTiles(ctx, stats);
   } else {
     bakeGroups(ctx, stats, *match, *in.high, in.low, scene, groupMesh, groupIds,
-               [&](const Mesh& mesh) { return sceneOptions(mesh.triangleCount()); });
+               [&](const Mesh& mesh) { return sceneOptions(mesh.triangleCount()); }, gpu);
   }
+  gpu.account();
   stats.traceSeconds = secondsSince(start);
   stats.traceCpuSeconds = processCpuSeconds() - cpuStart;
   warnAboutSamples(ctx, stats, result.warnings);

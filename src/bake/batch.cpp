@@ -293,8 +293,8 @@ void listJobs(const std::vector<BatchJob>& jobs, const std::vector<int>& selecte
 /// One job after another (each bake already uses every core), their high meshes shared:
 /// each job's outcome and report entry. A failed job is said and the batch goes on; Ctrl-C
 /// stops it (Error(Interrupted), no partial file). `firstFailure`: the first failed job's kind.
-std::vector<Outcome> runSelected(const std::vector<BatchJob>& jobs, const std::vector<int>& selected, Json& reports,
-                                 std::optional<ErrorKind>& firstFailure) {
+std::vector<Outcome> runSelected(const BatchRequest& request, const std::vector<BatchJob>& jobs,
+                                 const std::vector<int>& selected, Json& reports, std::optional<ErrorKind>& firstFailure) {
   std::vector<Outcome> outcomes;
   HighMeshCache highCache;  // jobs sharing a high poly read it and build its BVH once
   for (int i : selected) ++highCache.usesLeft[jobs[std::size_t(i)].job.high];
@@ -309,7 +309,9 @@ std::vector<Outcome> runSelected(const std::vector<BatchJob>& jobs, const std::v
     ToolRun run("bake", job.job.tool);
     try {
       highCache.progressLabel = "bake " + step;
-      runJob(job.job, run, &highCache);
+      BakeJob withGpu = job.job;
+      withGpu.glDebug = withGpu.glDebug || request.glDebug;
+      runJob(withGpu, run, &highCache, request.gpu);
       entry["status"] = "ok";
       entry.update(run.finish());
     } catch (const Error& e) {
@@ -393,7 +395,7 @@ int runBatch(const BatchRequest& request) {
   std::optional<ErrorKind> firstFailure;
   std::vector<Outcome> outcomes;
   try {
-    outcomes = runSelected(jobs, selected, reports, firstFailure);
+    outcomes = runSelected(request, jobs, selected, reports, firstFailure);
   } catch (...) {
     log::setLevel(level);
     throw;

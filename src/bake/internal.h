@@ -22,6 +22,16 @@ struct Prepared {
 Prepared prepareInputs(const Mesh& low, const Mesh& high, const BakeOptions& options, BakeStats& stats,
                        std::vector<std::string>& warnings);
 
+/// Where a bake's rays go (device.cpp): the GPU or the CPU, why, and the GPU it started.
+struct DeviceChoice {
+  bool gpu = false;
+  std::string reason;
+  GpuInfo info;
+};
+/// BakeOptions::device for a high poly of `triangles` triangles: starts options.gpu when it
+/// may be used; Error(NoGpu) when Device::Gpu cannot be had.
+DeviceChoice chooseDevice(const BakeOptions& options, std::size_t triangles);
+
 /// Bilinear, wrapping sample of channel 0 of a height map at UV (v up).
 float sampleHeight(const Image& height, vec2 uv);
 /// Tangent-space normal of the height map at uv (central differences, one texel apart).

@@ -328,9 +328,10 @@ BakeResult bakeTile(const UdimTile& tile, bool udim, const LoadedMeshes& m, cons
 
 }  // namespace
 
-void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache) {
+void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache, GpuBackend* gpu) {
   BakePlan plan = prepare(a, run);
   BakeOptions& options = plan.options;
+  options.gpu = gpu;
   if (cache) options.progressLabel = cache->progressLabel;
   options.progress = run.showProgress();
   options.cancel = &run.cancelFlag();

@@ -147,6 +147,10 @@ void addOptions(CLI::App& cmd, BakeJob& a, Meshes meshes) {
   cmd.add_option("--max-front", a.maxFront, "How far in front of the low poly rays look: 0.2 (scene units) or 5% "
                  "(of its bounding-box diagonal)")->capture_default_str();
   cmd.add_option("--max-rear", a.maxRear, "How far behind the low poly rays look (negative rays)")->capture_default_str();
+  cmd.add_option("--device", a.device, "Where the rays are traced: auto (the GPU when its renderer is hardware and the "
+                 "bake fits its memory, else the CPU; the report says which and why), cpu, or gpu (an error without "
+                 "one; a software renderer such as llvmpipe counts)")
+      ->check(CLI::IsMember({"auto", "cpu", "gpu"}))->capture_default_str();
   cmd.add_flag("--front-first", a.frontFirst, "Prefer hits in front of the low poly; default: the closest hit either way");
   cmd.add_option("--cage", a.cage, "Cage mesh: the low poly with vertices pushed outwards (same vertices and "
                  "triangles); rays then go from the cage inwards")->type_name(kFile);
@@ -264,6 +268,8 @@ BakeOptions optionsOf(const BakeJob& a) {
   options.aoDistance = parseDistance(a.aoDistance, "--ao-distance");
   options.thicknessDistance = parseDistance(a.thicknessDistance, "--thickness-distance");
   options.curvatureRadius = parseDistance(a.curvatureRadius, "--curvature-radius");
+  options.device = a.device == "cpu" ? Device::Cpu : a.device == "gpu" ? Device::Gpu : Device::Auto;
+  options.gpuDebug = a.glDebug;
   return options;
 }
 

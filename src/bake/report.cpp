@@ -79,6 +79,15 @@ nlohmann::ordered_json toJson(const BakeStats& s) {
   report["rays_per_second"] = s.traceSeconds > 0 ? double(s.rays + s.aoRays + s.thicknessRays + s.curvatureRays) / s.traceSeconds : 0.0;
   report["bvh_mib"] = double(s.bvhBytes) / (1024.0 * 1024.0);
   report["bvh_quality"] = s.lowQualityBvh ? "low" : "medium";
+  report["device"] = s.device;
+  report["device_reason"] = s.deviceReason;
+  if (!s.gpuRenderer.empty()) report["gpu_renderer"] = s.gpuRenderer;
+  if (s.device == "gpu") {
+    report["gpu_mib"] = double(s.gpuBytes) / (1024.0 * 1024.0);
+    if (s.gpuFreeBytes) report["gpu_free_mib"] = double(s.gpuFreeBytes) / (1024.0 * 1024.0);
+    report["gpu_dispatches"] = s.gpuDispatches;
+    report["gpu_longest_dispatch_ms"] = s.gpuLongestDispatchMs;
+  }
   if (s.bvhReused) report["bvh_reused"] = true;
   return report;
 }

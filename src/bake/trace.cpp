@@ -2,6 +2,7 @@
 // hit counts (closest |t|, front first, or through the cage), and what is stored.
 #include "trace.h"
 
+#include "glint/bake/gpu_backend.h"
 #include "glint/core/error.h"
 #include "glint/mesh/tangents.h"
 
@@ -25,14 +26,10 @@ namespace {
 /// Per-texel random streams that do not depend on scheduling: core/hash.h's hash64.
 constexpr std::uint64_t mix(std::uint64_t x) { return hash64(x); }
 constexpr float toUnit(std::uint64_t x) { return unitFloat(x); }
-float radicalInverse(std::uint32_t i) {
-  i = (i << 16u) | (i >> 16u);
-  i = ((i & 0x55555555u) << 1u) | ((i & 0xAAAAAAAAu) >> 1u);
-  i = ((i & 0x33333333u) << 2u) | ((i & 0xCCCCCCCCu) >> 2u);
-  i = ((i & 0x0F0F0F0Fu) << 4u) | ((i & 0xF0F0F0F0u) >> 4u);
-  i = ((i & 0x00FF00FFu) << 8u) | ((i & 0xFF00FF00u) >> 8u);
-  return float(i) * 2.3283064365386963e-10f;
-}
+/// The random streams of thickness, curvature and a vertex's measurement: each sample's seed
+/// mixed with one of these.
+constexpr std::uint64_t kThicknessStream = 0x7468696E6B6E6573ull, kCurvatureStream = 0x6375727661747572ull,
+                        kVertexStream = 0x766572746578ull;
 
 /// The low poly at a sample: position, interpolated frame, ray direction.
 struct Geometry {
@@ -120,21 +117,23 @@ public:
     }
   }
 
-  Found frontFirst(const Geometry& g) const {
+  /// `given`: the first ray's hit, traced elsewhere (the GPU: firstRay's ray); null: cast here.
+  Found frontFirst(const Geometry& g, const std::optional<raytrace::Hit>* given = nullptr) const {
     Found f;
     const raytrace::Ray front{g.position, g.dir, 0.0f, m_ctx.front};
-    if (m_ctx.front > 0.0f && ((f.hit = cast(front)) || (f.hit = retry(front, g)))) {
+    if (m_ctx.front > 0.0f && ((f.hit = given ? *given : cast(front)) || (f.hit = retry(front, g)))) {
       f.ray = front;
       f.signedT = f.hit->t;
     } else if (m_ctx.rear > 0.0f) {
       f.ray = {g.position, -g.dir, 0.0f, m_ctx.rear};
-      if ((f.hit = cast(f.ray)) || (f.hit = retry(f.ray, g))) f.signedT = -f.hit->t;
+      if ((f.hit = given && m_ctx.front <= 0.0f ? *given : cast(f.ray)) || (f.hit = retry(f.ray, g))) f.signedT = -f.hit->t;
     }
     return f;
   }
 
-  /// From the cage towards the low poly, first hit, up to maxRear beyond it.
-  Found fromCage(const Geometry& g, const Slot& slot) const {
+  /// From the cage towards the low poly: the ray, and its length to the low poly (0: the
+  /// cage touches it there, and the ray is the rear one).
+  raytrace::Ray cageRay(const Geometry& g, const Slot& slot, float& toLowLength) const {
     const auto& ci = m_ctx.in.originalIndices;
     const auto& cp = m_ctx.options.cage->positions;
     const std::size_t base = 3 * std::size_t(slot.tri);
@@ -142,11 +141,18 @@ public:
     const vec3 toLow = g.position - origin;
     const float len = glm::length(toLow);
     const bool apart = len > 1e-7f * m_ctx.in.diagonal;
+    toLowLength = apart ? len : 0.0f;
+    return apart ? raytrace::Ray{origin, toLow / len, 0.0f, len + m_ctx.rear} : raytrace::Ray{g.position, -g.dir, 0.0f, m_ctx.rear};
+  }
+
+  /// From the cage towards the low poly, first hit, up to maxRear beyond it.
+  Found fromCage(const Geometry& g, const Slot& slot, const std::optional<raytrace::Hit>* given = nullptr) const {
     Found f;
-    f.ray = apart ? raytrace::Ray{origin, toLow / len, 0.0f, len + m_ctx.rear} : raytrace::Ray{g.position, -g.dir, 0.0f, m_ctx.rear};
-    f.hit = cast(f.ray);
+    float len = 0.0f;
+    f.ray = cageRay(g, slot, len);
+    f.hit = given ? *given : cast(f.ray);
     if (!f.hit) f.hit = retry(f.ray, g);
-    if (f.hit) f.signedT = apart ? len - f.hit->t : -f.hit->t;
+    if (f.hit) f.signedT = len > 0.0f ? len - f.hit->t : -f.hit->t;
     return f;
   }
 
@@ -156,23 +162,9 @@ private:
   std::vector<raytrace::Ray>* m_log;
 };
 
-/// cos and sin of 2π·radicalInverse(i) for the first 4096 i (the most AO samples a bake
-/// takes, and the most a vertex's thickness takes): the turns of a Hammersley set's second coordinate, computed once.
-struct BaseTurns {
-  static constexpr std::uint32_t kCount = 4096;
-  std::array<float, kCount> cosine, sine;
-  BaseTurns() {
-    for (std::uint32_t i = 0; i < kCount; ++i) {
-      const float phi = 2.0f * kPi * radicalInverse(i);
-      cosine[i] = std::cos(phi);
-      sine[i] = std::sin(phi);
-    }
-  }
-};
-const BaseTurns& baseTurns() {
-  static const BaseTurns turns;
-  return turns;
-}
+/// The turns of the hemisphere sets, shared with the GPU's (raytrace/jobs.h).
+using BaseTurns = raytrace::HemisphereTurns;
+const BaseTurns& baseTurns() { return raytrace::hemisphereTurns(); }
 
 /// A stratified set of `count` cosine-weighted directions around `axis`: a Hammersley set
 /// rotated by the random offsets (r1, r2) of one sample's stream (deterministic). The
@@ -191,6 +183,11 @@ public:
     m_b = c * b - s * t;
   }
   int size() const { return m_k; }
+  /// The set as a GPU job (bake/gpu_backend.h): its frame, offset and count.
+  HemisphereJob job(const vec3& origin, const vec3& mirror, float distance, bool closest) const {
+    return {.origin = origin, .r1 = m_r1, .tangent = m_t, .distance = distance, .bitangent = m_b,
+            .count = std::uint32_t(m_k), .axis = m_n, .closest = closest ? 1u : 0u, .mirror = mirror};
+  }
   vec3 operator[](int i) const {
     float u1 = (float(i) + 0.5f) / float(m_k) + m_r1;
     if (u1 >= 1.0f) u1 -= 1.0f;
@@ -251,7 +248,7 @@ Occlusion ambientOcclusion(const Context& ctx, const Found& f, const vec3& norma
 float thicknessFrom(const Context& ctx, const vec3& point, const vec3& inward, const vec3& normal, std::uint64_t seed,
                     int samples, Counters& counters) {
   const vec3 p = point + ctx.epsilon * inward;
-  const CosineSet set(-normal, mix(seed ^ 0x7468696E6B6E6573ull), samples);
+  const CosineSet set(-normal, mix(seed ^ kThicknessStream), samples);
   const int k = set.size();
   const float cap = ctx.thicknessDistance;
   float sum = 0.0f;
@@ -291,17 +288,24 @@ vec3 highNormal(const Context& ctx, const raytrace::Hit& hit) {
 /// (κ1 + κ2) / 2 whatever the turn.
 constexpr int kCurvaturePoints = 8;
 
+/// The plane curvatureFrom measures in (t, b: unit, around `normal`) and its turn.
+float curvatureFrame(const vec3& normal, std::uint64_t seed, vec3& t, vec3& b) {
+  const vec3 a = std::fabs(normal.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0);
+  t = glm::normalize(glm::cross(a, normal));
+  b = glm::cross(normal, t);
+  // A random turn per sample (its own stream): detail finer than the radius averages out
+  // instead of printing the same 8 directions' pattern into every texel.
+  return toUnit(mix(seed ^ kCurvatureStream)) * (2.0f * kPi / float(kCurvaturePoints));
+}
+
 /// Signed mean curvature at a point p of the high poly with unit normal `normal`, at the
 /// scale ctx.curvatureRadius (baker.h, "Maps"): points around p in its tangent plane
 /// dropped onto the high poly, each giving the normal curvature towards it from the normals
 /// at both ends.
 float curvatureFrom(const Context& ctx, const vec3& p, const vec3& normal, std::uint64_t seed, Counters& counters) {
-  const vec3 a = std::fabs(normal.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0);
-  const vec3 t = glm::normalize(glm::cross(a, normal)), b = glm::cross(normal, t);
-  // A random turn per sample (its own stream): detail finer than the radius averages out
-  // instead of printing the same 8 directions' pattern into every texel.
+  vec3 t, b;
+  const float turn = curvatureFrame(normal, seed, t, b);
   const float step = 2.0f * kPi / float(kCurvaturePoints);
-  const float turn = toUnit(mix(seed ^ 0x6375727661747572ull)) * step;
   float sum = 0.0f;
   int found = 0;
   std::uint64_t rays = 0;
@@ -379,7 +383,7 @@ float interpolatedAtHit(const Context& ctx, const VertexCache::Values& values, c
     corner[k] = cachedAtVertex(values, v, counters, [&] {
       const std::uint32_t c = cache.cornerOfVertex[v];
       const vec3 n = glm::normalize(ctx.highCornerNormals[c]);
-      return measure(cache.position(c), n, mix(std::uint64_t(v) ^ 0x766572746578ull));
+      return measure(cache.position(c), n, mix(std::uint64_t(v) ^ kVertexStream));
     });
   }
   return (1.0f - hit.u - hit.v) * corner[0] + hit.u * corner[1] + hit.v * corner[2];
@@ -461,7 +465,10 @@ void encodeLanes(EncodeLanes& l, std::size_t count) {
   }
 }
 
-SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const SampleInput& in, Counters& counters) {
+/// `deferred`: the hit's own rays (AO, bent normal, thickness, curvature) are left to the
+/// GPU's wave (traceWave), which also stores the bent normal.
+SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const SampleInput& in, Counters& counters,
+                   bool deferred = false) {
   SampleResult result;
   vec3 objectNormal = g.dir;  // a miss keeps the low poly's own normal
   vec3 bent = g.dir;
@@ -472,19 +479,19 @@ SampleResult shade(const Context& ctx, const Geometry& g, const Found& f, const 
     result.inward = glm::dot(objectNormal, g.normal) < 0.0f;
     result.triangle = std::int32_t(f.hit->triangle);
     result.hitUv = vec2(f.hit->u, f.hit->v);
-    if (ctx.hemisphere) {
+    if (ctx.hemisphere && !deferred) {
       const Occlusion o = ambientOcclusion(ctx, f, objectNormal, in.seed, counters);
       result.ao = o.open;
       bent = o.bent;
     }
-    if (ctx.baking(Map::Thickness)) result.thickness = thicknessOf(ctx, f, objectNormal, in.seed, counters);
-    if (ctx.baking(Map::Curvature)) result.curvature = curvatureOf(ctx, f, objectNormal, in.seed, counters);
+    if (ctx.baking(Map::Thickness) && !deferred) result.thickness = thicknessOf(ctx, f, objectNormal, in.seed, counters);
+    if (ctx.baking(Map::Curvature) && !deferred) result.curvature = curvatureOf(ctx, f, objectNormal, in.seed, counters);
     if (ctx.baking(Map::Position)) result.position = f.ray.at(f.hit->t);
   } else if (ctx.baking(Map::Position)) {
     result.position = g.position;
   }
   store(ctx, g, objectNormal, in, result);
-  if (ctx.baking(Map::BentNormal)) result.bent = inSpace(ctx, g, bent);
+  if (ctx.baking(Map::BentNormal) && !deferred) result.bent = inSpace(ctx, g, bent);
   return result;
 }
 
@@ -624,6 +631,239 @@ void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::s
     }
   }
   if (front + rear > 0) prediction = front >= rear ? 1 : -1;
+}
+
+
+// ------------------------------------------------------------------ the GPU's waves
+
+namespace {
+
+/// The GPU's share of one sample's hit work: the jobs that hold its answers (-1: none).
+struct WaveWork {
+  std::int32_t ao = -1, thickness = -1, curvature = -1;
+};
+
+/// What one chunk of a wave hands the GPU: its samples' jobs, then the vertices it claimed
+/// for the vertex cache (VertexCache: measured once, by the chunk that first needs them).
+struct WaveJobs {
+  std::vector<HemisphereJob> hemisphere;
+  std::vector<CurvatureJob> curvature;
+  std::vector<std::uint32_t> thicknessVertices, curvatureVertices;
+};
+
+constexpr std::size_t kWaveChunk = 2048;  ///< samples a task of a wave's CPU stages takes
+
+/// AO's rays at a hit, as ambientOcclusion casts them.
+HemisphereJob aoJob(const Context& ctx, const Found& f, const vec3& normal, std::uint64_t seed) {
+  const vec3 facet = outwardFacet(*f.hit, normal);
+  const vec3 p = f.ray.at(f.hit->t) + ctx.epsilon * facet;
+  return CosineSet(normal, seed, ctx.options.aoSamples).job(p, facet, ctx.aoDistance, false);
+}
+
+/// Thickness's rays, as thicknessFrom casts them.
+HemisphereJob thicknessJob(const Context& ctx, const vec3& point, const vec3& inward, const vec3& normal, std::uint64_t seed,
+                           int samples) {
+  const vec3 p = point + ctx.epsilon * inward;
+  return CosineSet(-normal, mix(seed ^ kThicknessStream), samples).job(p, inward, ctx.thicknessDistance, true);
+}
+
+/// Curvature's points, as curvatureFrom drops them.
+CurvatureJob curvatureJob(const Context& ctx, const vec3& p, const vec3& normal, std::uint64_t seed) {
+  CurvatureJob job{.point = p, .radius = ctx.curvatureRadius, .normal = normal};
+  job.turn = curvatureFrame(normal, seed, job.tangent, job.bitangent);
+  return job;
+}
+
+/// Claims for measurement the vertices of a hit's triangle no one has claimed yet.
+void claimVertices(const VertexCache& cache, const VertexCache::Values& values, std::uint32_t triangle,
+                   std::vector<std::uint32_t>& claimed) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::uint32_t v = cache.vertexOfCorner[3 * std::size_t(triangle) + k];
+    std::uint8_t now = kUnmeasured;
+    if (values.state[v].load(std::memory_order_relaxed) == kUnmeasured &&
+        values.state[v].compare_exchange_strong(now, kMeasuring, std::memory_order_relaxed))
+      claimed.push_back(v);
+  }
+}
+
+/// A cached map's value at a hit: its (measured) corners interpolated.
+float cachedAtHit(const VertexCache& cache, const VertexCache::Values& values, const raytrace::Hit& hit) {
+  float corner[3];
+  for (std::size_t k = 0; k < 3; ++k) corner[k] = values.value[cache.vertexOfCorner[3 * std::size_t(hit.triangle) + k]];
+  return (1.0f - hit.u - hit.v) * corner[0] + hit.u * corner[1] + hit.v * corner[2];
+}
+
+/// Stage 1 of a wave: each sample's low-poly geometry and first ray (closest: the sweep
+/// towards the front; front first: the front ray, else the rear one; a cage: the cage's
+/// ray). A sample without one gets an empty ray (tfar < tnear), which hits nothing.
+void firstRays(const Context& ctx, std::span<const SampleInput> samples, std::size_t begin, std::size_t end,
+               std::span<Geometry> geometry, std::span<raytrace::Ray> rays, const Caster& caster) {
+  const bool closest = !ctx.options.cage && ctx.options.selection == HitSelection::Closest;
+  for (std::size_t i = begin; i < end; ++i) {
+    geometryAt(ctx, samples[i].slot, geometry[i]);
+    const Geometry& g = geometry[i];
+    raytrace::Ray& ray = rays[i];
+    ray = {g.position, g.dir, 1.0f, 0.0f};
+    float toLow = 0.0f;
+    if (ctx.options.cage) ray = caster.cageRay(g, samples[i].slot, toLow);
+    else if (!closest && ctx.front > 0.0f) ray = {g.position, g.dir, 0.0f, ctx.front};
+    else if (!closest && ctx.rear > 0.0f) ray = {g.position, -g.dir, 0.0f, ctx.rear};
+    else if (closest && ctx.front + ctx.rear > 0.0f) ray = {g.position - ctx.rear * g.dir, g.dir, 0.0f, ctx.front + ctx.rear};
+    if (ray.tnear <= ray.tfar) caster.note(ray);
+  }
+}
+
+}  // namespace
+
+void traceWave(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results, Counters& counters) {
+  if (!ctx.gpu) fail(ErrorKind::Internal, "bake: a GPU wave without a GPU scene");
+  const std::size_t n = samples.size();
+  const std::size_t chunks = (n + kWaveChunk - 1) / kWaveChunk;
+  std::vector<Counters> chunkCounters(chunks);
+  const auto forChunks = [&](const auto& body) {
+    tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+      body(c, c * kWaveChunk, std::min(n, (c + 1) * kWaveChunk), Caster(ctx, chunkCounters[c], nullptr));
+    });
+  };
+  // 1–2. First rays, traced on the GPU.
+  std::vector<Geometry> geometry(n);
+  std::vector<raytrace::Ray> rays(n);
+  forChunks([&](std::size_t, std::size_t begin, std::size_t end, const Caster& caster) {
+    firstRays(ctx, samples, begin, end, geometry, rays, caster);
+  });
+  std::vector<std::optional<raytrace::Hit>> hits(n);
+  ctx.gpu->closest(rays, hits);
+
+  // 3. Each sample's hit settled as the CPU settles it (the rare second rays — behind P, a
+  // retry — on the CPU's BVH), the sample shaded, and its hit work written as GPU jobs.
+  const bool closest = !ctx.options.cage && ctx.options.selection == HitSelection::Closest;
+  const VertexCache* cache = ctx.vertexCache.get();
+  const bool thickness = ctx.baking(Map::Thickness), curvature = ctx.baking(Map::Curvature);
+  std::vector<Found> found(n);
+  std::vector<WaveWork> work(n);
+  std::vector<WaveJobs> jobs(chunks);
+  forChunks([&](std::size_t c, std::size_t begin, std::size_t end, const Caster& caster) {
+    Counters& cc = chunkCounters[c];
+    WaveJobs& out = jobs[c];
+    for (std::size_t i = begin; i < end; ++i) {
+      const Geometry& g = geometry[i];
+      Found& f = found[i];
+      const bool traced = rays[i].tnear <= rays[i].tfar;
+      if (ctx.options.cage) f = caster.fromCage(g, samples[i].slot, &hits[i]);
+      else if (!closest && traced) f = caster.frontFirst(g, &hits[i]);
+      else if (closest && traced) caster.resolve(g, rays[i], hits[i], ctx.rear, 1.0f, f);
+      results[i] = shade(ctx, g, f, samples[i], cc, true);
+      if (!f.hit) continue;
+      const vec3 normal = highNormal(ctx, *f.hit);
+      const std::uint64_t seed = samples[i].seed;
+      if (ctx.hemisphere) {
+        work[i].ao = std::int32_t(out.hemisphere.size());
+        out.hemisphere.push_back(aoJob(ctx, f, normal, seed));
+        cc.aoRays += std::uint64_t(ctx.options.aoSamples);
+      }
+      if (thickness && cache && (cache->small[f.hit->triangle] & VertexCache::kThickness)) {
+        claimVertices(*cache, cache->thickness, f.hit->triangle, out.thicknessVertices);
+      } else if (thickness) {
+        work[i].thickness = std::int32_t(out.hemisphere.size());
+        out.hemisphere.push_back(
+            thicknessJob(ctx, f.ray.at(f.hit->t), -outwardFacet(*f.hit, normal), normal, seed, ctx.options.aoSamples));
+        cc.thicknessRays += std::uint64_t(ctx.options.aoSamples);
+      }
+      if (curvature && cache && (cache->small[f.hit->triangle] & VertexCache::kCurvature)) {
+        claimVertices(*cache, cache->curvature, f.hit->triangle, out.curvatureVertices);
+      } else if (curvature) {
+        work[i].curvature = std::int32_t(out.curvature.size());
+        out.curvature.push_back(curvatureJob(ctx, f.ray.at(f.hit->t), normal, seed));
+      }
+    }
+  });
+
+  // 4. The jobs in one list per kernel: the chunks' in order, then the vertices claimed.
+  std::vector<HemisphereJob> hemisphere;
+  std::vector<CurvatureJob> curvatureJobs;
+  std::vector<std::size_t> hemisphereFirst(chunks), curvatureFirst(chunks);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    hemisphereFirst[c] = hemisphere.size();
+    curvatureFirst[c] = curvatureJobs.size();
+    hemisphere.insert(hemisphere.end(), jobs[c].hemisphere.begin(), jobs[c].hemisphere.end());
+    curvatureJobs.insert(curvatureJobs.end(), jobs[c].curvature.begin(), jobs[c].curvature.end());
+  }
+  const int vertexSamples = std::min(kVertexSampleFactor * ctx.options.aoSamples, int(BaseTurns::kCount));
+  const std::size_t thicknessVertexFirst = hemisphere.size(), curvatureVertexFirst = curvatureJobs.size();
+  std::vector<std::uint32_t> thicknessVertices, curvatureVertices;
+  for (const WaveJobs& j : jobs) {
+    thicknessVertices.insert(thicknessVertices.end(), j.thicknessVertices.begin(), j.thicknessVertices.end());
+    curvatureVertices.insert(curvatureVertices.end(), j.curvatureVertices.begin(), j.curvatureVertices.end());
+  }
+  for (const std::uint32_t v : thicknessVertices) {  // (as interpolatedAtHit measures a vertex)
+    const std::uint32_t corner = cache->cornerOfVertex[v];
+    const vec3 normal = glm::normalize(ctx.highCornerNormals[corner]);
+    hemisphere.push_back(thicknessJob(ctx, cache->position(corner), -normal, normal, mix(std::uint64_t(v) ^ kVertexStream),
+                                      vertexSamples));
+  }
+  for (const std::uint32_t v : curvatureVertices) {
+    const std::uint32_t corner = cache->cornerOfVertex[v];
+    const vec3 normal = glm::normalize(ctx.highCornerNormals[corner]);
+    curvatureJobs.push_back(curvatureJob(ctx, cache->position(corner), normal, mix(std::uint64_t(v) ^ kVertexStream)));
+  }
+
+  // 5. The hit work on the GPU.
+  std::vector<HemisphereSum> hemisphereSums(hemisphere.size());
+  std::vector<CurvatureSum> curvatureSums(curvatureJobs.size());
+  ctx.gpu->hemisphere(hemisphere, hemisphereSums);
+  ctx.gpu->curvature(curvatureJobs, ctx.epsilon, curvatureSums);
+
+  // 6. The vertices' values, then every sample finished as shade() would have.
+  const float thicknessScale = 1.0f / (float(vertexSamples) * ctx.thicknessDistance);
+  for (std::size_t k = 0; k < thicknessVertices.size(); ++k) {
+    cache->thickness.value[thicknessVertices[k]] = hemisphereSums[thicknessVertexFirst + k].value * thicknessScale;
+    cache->thickness.state[thicknessVertices[k]].store(kMeasured, std::memory_order_relaxed);
+    counters.thicknessRays += std::uint64_t(vertexSamples);
+  }
+  for (std::size_t k = 0; k < curvatureVertices.size(); ++k) {
+    const CurvatureSum& sum = curvatureSums[curvatureVertexFirst + k];
+    cache->curvature.value[curvatureVertices[k]] = sum.found ? sum.sum / float(sum.found) : 0.0f;
+    cache->curvature.state[curvatureVertices[k]].store(kMeasured, std::memory_order_relaxed);
+    counters.curvatureRays += sum.rays;
+  }
+  counters.vertexMeasurements += thicknessVertices.size() + curvatureVertices.size();
+  forChunks([&](std::size_t c, std::size_t begin, std::size_t end, const Caster&) {
+    Counters& cc = chunkCounters[c];
+    for (std::size_t i = begin; i < end; ++i) {
+      SampleResult& r = results[i];
+      const Found& f = found[i];
+      vec3 bent = geometry[i].dir;
+      if (f.hit) {
+        const vec3 normal = highNormal(ctx, *f.hit);
+        if (work[i].ao >= 0) {
+          const HemisphereSum& sum = hemisphereSums[hemisphereFirst[c] + std::size_t(work[i].ao)];
+          const float len = glm::length(sum.directions);
+          r.ao = sum.value / float(ctx.options.aoSamples);
+          bent = sum.value > 0.0f && len > 0.0f ? sum.directions * (1.0f / len) : normal;
+        }
+        if (work[i].thickness >= 0) {
+          r.thickness = hemisphereSums[hemisphereFirst[c] + std::size_t(work[i].thickness)].value /
+                        (float(ctx.options.aoSamples) * ctx.thicknessDistance);
+        } else if (thickness) {
+          r.thickness = cachedAtHit(*cache, cache->thickness, *f.hit);
+        }
+        if (work[i].curvature >= 0) {
+          const CurvatureSum& sum = curvatureSums[curvatureFirst[c] + std::size_t(work[i].curvature)];
+          r.curvature = sum.found ? sum.sum / float(sum.found) : 0.0f;
+          cc.curvatureRays += sum.rays;
+        } else if (curvature) {
+          r.curvature = cachedAtHit(*cache, cache->curvature, *f.hit);
+        }
+      }
+      if (ctx.baking(Map::BentNormal)) r.bent = inSpace(ctx, geometry[i], bent);
+    }
+  });
+  for (const Counters& c : chunkCounters) {
+    counters.rays += c.rays;
+    counters.aoRays += c.aoRays;
+    counters.thicknessRays += c.thicknessRays;
+    counters.curvatureRays += c.curvatureRays;
+  }
 }
 
 std::unique_ptr<VertexCache> buildVertexCache(const Context& ctx, const Mesh& mesh) {

@@ -3,6 +3,7 @@
 // and shading of one texel's samples (trace.cpp). baker.cpp rasterizes the UV layout
 // into samples and drives the tiles.
 #include "glint/bake/baker.h"
+#include "glint/bake/gpu_backend.h"
 #include "glint/raytrace/raytracer.h"
 #include "internal.h"
 
@@ -111,6 +112,7 @@ struct Context {
   const std::uint32_t* highTriangleIds = nullptr; ///< the scene's triangle → the high poly's (null: the same)
   std::vector<std::uint32_t> texelMaterial;       ///< per texel material index + 1 (0: off the islands; detail::kMaterialMissed: no hit), with a material ID map
   std::unique_ptr<VertexCache> vertexCache;       ///< with thickness or curvature, where some triangles are small
+  GpuScene* gpu = nullptr;  ///< the scene on the GPU (--device gpu): tiles are traced in waves (traceWave)
 };
 
 /// The vertex cache of the scene `mesh` (its triangles as the scene's, corner normals as
@@ -150,5 +152,13 @@ inline constexpr std::size_t kMaxGroup = 128;
 void traceGroup(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results,
                 Counters& counters, std::vector<raytrace::Ray>* rayLog, int& prediction);
 
+/// The same for many samples at once on the GPU (ctx.gpu), in stages over the whole span:
+/// the samples' first rays on the GPU; each hit settled and shaded on the CPU (with its rare
+/// second rays: behind the low poly, a retry); then every hit's AO, thickness and curvature
+/// rays on the GPU, as jobs (bake/gpu_backend.h) made from the same seeds and sets, and the
+/// results finished on the CPU. What the samples get is traceGroup's, but for rays that
+/// graze an edge (the GPU's triangle test is watertight, Embree's is not) and the last bits
+/// of the GPU's arithmetic.
+void traceWave(const Context& ctx, std::span<const SampleInput> samples, std::span<SampleResult> results, Counters& counters);
 
 }  // namespace glint::bake::detail

@@ -405,7 +405,9 @@ TEST(BakeMaps, ReportAndMemoryEstimate) {
   EXPECT_EQ(keys, (std::vector<std::string>{"low_triangles", "high_triangles", "texels", "covered_texels",
                                             "conservative_texels", "padded_texels", "samples", "rays", "ao_rays", "thickness_rays", "curvature_rays", "vertex_measurements", "hits",
                                             "inward_hits", "misses", "hit_ratio", "max_front", "max_rear", "rays_per_second", "bvh_mib",
-                                            "bvh_quality"}));
+                                            "bvh_quality", "device", "device_reason"}));
+  EXPECT_EQ(s["device"], "cpu");
+  EXPECT_EQ(s["device_reason"], "--device auto: this program has no GPU backend");
   EXPECT_EQ(s["low_triangles"], low.triangleCount());
   EXPECT_EQ(s["high_triangles"], high.triangleCount());
   EXPECT_EQ(s["texels"], 64u * 32u);

@@ -252,13 +252,15 @@ TEST(FarmSlurm, BakeRunsOneTaskPerBakeWithTheBytesOfLocalBakes) {
   const fs::path d = dir("bake");
   bake::writeObj(makeUvSphere(1.0f, 16, 8), d / "low.obj");
   bake::writeObj(makeUvSphere(1.0f, 64, 32), d / "high.obj");
-  // Relative paths: from the batch file's folder, wherever the tasks run.
+  // Relative paths: from the batch file's folder, wherever the tasks run. The third bake
+  // traces on the GPU (--device gpu; llvmpipe here), in the task as at home.
   std::ofstream(d / "jobs.json") << R"({
   "defaults": {"size": "32x32", "padding": 2, "quiet": true},
   "bakes": [
     {"low": "low.obj", "high": "high.obj", "output": "out/a.png"},
     {"low": "low.obj", "high": "high.obj", "output": "out/b.png", "directx": true, "size": "48x24"},
-    {"low": "low.obj", "high": "high.obj", "output": "out/c.png", "samples": 4, "ao": "out/c_ao.png", "ao-samples": 4}
+    {"low": "low.obj", "high": "high.obj", "output": "out/c.png", "samples": 4, "ao": "out/c_ao.png", "ao-samples": 4,
+     "device": "gpu"}
   ]
 })";
   fs::create_directories(d / "out");

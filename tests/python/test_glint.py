@@ -81,6 +81,27 @@ def test_bake_equals_the_command_byte_for_byte(tmp_path, pair, run):
     assert "normal" in repr(result)
 
 
+def test_bake_on_the_gpu_equals_the_cpu_and_the_command(tmp_path, pair, run):
+    """device= is --device: the GPU's maps are the CPU's, and the report says where the rays ran."""
+    low, high = pair
+    cpu = glint.bake(low, high, size=64, maps=("normal", "ao"), ao_samples=8, device="cpu")
+    gpu = glint.bake(low, high, size=64, maps=("normal", "ao"), ao_samples=8, device="gpu")
+    assert cpu.report["device"] == "cpu" and gpu.report["device"] == "gpu"
+    assert gpu.report["gpu_dispatches"] > 0 and gpu.report["device_reason"] == "--device gpu"
+    assert np.abs(cpu["normal"].astype(int) - gpu["normal"].astype(int)).max() <= 1
+    assert abs(cpu["ao"].astype(float).mean() - gpu["ao"].astype(float).mean()) <= 1.0
+    n, report = tmp_path / "n.png", tmp_path / "report.json"
+    run("bake", low, high, "-o", n, "--ao", tmp_path / "ao.png", "--size", "64x64", "--ao-samples", "8",
+        "--device", "gpu", "--json", report, "-q")
+    command = json.load(open(report))
+    assert command["device"] == "gpu"
+    for key in ("rays", "ao_rays", "hits", "device_reason"):
+        assert command[key] == gpu.report[key], key
+    assert same_file_bytes(tmp_path, gpu["normal"], n)
+    with pytest.raises(glint.UsageError, match="--device"):
+        glint.bake(low, high, size=64, device="tpu")
+
+
 def test_bake_from_arrays_equals_the_bake_from_files(pair):
     low, high = pair
     from_files = glint.bake(low, high, size=48)

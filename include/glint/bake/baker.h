@@ -103,6 +103,7 @@
 /// std::cout << report.dump(2) << '\n' << mib << '\n';
 /// ```
 
+#include "glint/bake/gpu_backend.h"
 #include "glint/bake/maps.h"
 #include "glint/core/math.h"
 #include "glint/image/image.h"
@@ -213,6 +214,14 @@ struct BakeOptions {
   /// BVHs kept between bakes (bake/scene_cache.h): a bake of a high poly the cache has seen
   /// (same arrays, same BVH quality) reuses its BVH. Null: built for this bake only.
   class SceneCache* sceneCache = nullptr;
+  /// Where the rays are traced (bake/gpu_backend.h): Auto takes the GPU when `gpu` is given,
+  /// its renderer is hardware and the bake fits its memory; Gpu insists (Error(NoGpu)
+  /// otherwise). BakeStats::device and deviceReason say which and why.
+  Device device = Device::Auto;
+  /// The GPU's side (scenes/bake_gpu.h's bakeGpuBackend()); null: the CPU only. Its context
+  /// is made on the thread that calls bake().
+  GpuBackend* gpu = nullptr;
+  bool gpuDebug = false;  ///< the GPU's context with GL debug output (`glint --gl-debug`, tests)
   /// Benchmarks only: receives every ray the normal pass casts, in a deterministic order
   /// (32 bytes per ray; keep bakes small).
   std::vector<raytrace::Ray>* rayLog = nullptr;
@@ -248,6 +257,13 @@ struct BakeStats {
   /// With a position map: the box its 8/16-bit files are normalized to, the high poly's
   /// bounding box (every hit point lies inside it). p = min + value · (max − min).
   std::optional<Bounds> positionBounds;
+  std::string device = "cpu";           ///< where the rays were traced: "cpu" or "gpu"
+  std::string deviceReason;             ///< why ("--device auto: the GL renderer is software (llvmpipe)")
+  std::string gpuRenderer;              ///< the GL renderer, when a context was made
+  std::uint64_t gpuBytes = 0;           ///< GPU memory the bake held (BVH, normals, batches)
+  std::uint64_t gpuFreeBytes = 0;       ///< free GPU memory the driver reported before upload (0: not reported)
+  std::size_t gpuDispatches = 0;        ///< compute dispatches
+  double gpuLongestDispatchMs = 0;      ///< the longest (the bake's promise: ~30 ms, a desktop stays responsive)
   std::size_t bvhBytes = 0;             ///< Embree memory for the high poly
   bool bvhReused = false;               ///< the BVH came from BakeOptions::sceneCache
   bool lowQualityBvh = false;           ///< BVH built at Embree's low quality (few rays per triangle), else medium
@@ -306,7 +322,10 @@ nlohmann::ordered_json toJson(const BakeOptions& options);
 /// The report of a bake, key by key: low_triangles, high_triangles, texels, covered_texels,
 /// conservative_texels, padded_texels, samples, rays, ao_rays, thickness_rays,
 /// curvature_rays, hits, inward_hits, misses, hit_ratio, max_front, max_rear (scene units),
-/// rays_per_second, bvh_mib, bvh_quality ("low" or "medium"); with a thickness map
+/// rays_per_second, bvh_mib, bvh_quality ("low" or "medium"), device ("cpu" or "gpu"),
+/// device_reason (why: "--device auto: the GL renderer is software (llvmpipe ...)"), on the
+/// GPU gpu_renderer, gpu_mib, gpu_free_mib (when the driver says), gpu_dispatches and
+/// gpu_longest_dispatch_ms (gpu_renderer also when auto made a context and chose the CPU); with a thickness map
 /// thickness_distance, with a curvature map curvature_radius (scene units), with a
 /// position map position_min and position_max ([x, y, z]: positionBounds).
 nlohmann::ordered_json toJson(const BakeStats& stats);

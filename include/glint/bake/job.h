@@ -24,6 +24,7 @@
 // The command (`glint bake`), batch files, `glint farm bake` and the Python module parse
 // options with addOptions: a batch file's key is an option's long name, so the four take the
 // same options with the same checks and defaults.
+#include "glint/bake/gpu_backend.h"
 #include "glint/bake/maps.h"
 #include "glint/core/tool.h"
 #include "glint/farm/farm.h"
@@ -49,6 +50,8 @@ namespace glint::bake {
 struct BakeJob {
   std::string low, high, output, size = "1024x1024", space = "tangent", worldMatrix;
   std::string maxFront = "5%", maxRear = "5%", aoDistance = "10%", thicknessDistance = "10%", curvatureRadius = "1%";
+  /// `--device`: auto, cpu or gpu (bake/gpu_backend.h's Device); the GPU needs runJob's backend.
+  std::string device = "auto";
   std::string cage, detail;
   /// `--asset`: the low poly with its maps as a glTF asset (.glb, or .gltf with the buffer
   /// embedded; bake/asset.h); `--preview`: a folder for the web page that shows it.
@@ -63,6 +66,7 @@ struct BakeJob {
   float detailScale = 8.0f;
   bool directX = false, frontFirst = false, fillAll = false, noGroups = false;
   ToolSettings tool;  ///< --threads, -q, --max-memory, --json
+  bool glDebug = false;  ///< the GPU's context with GL debug output (`glint --gl-debug`)
 
   // In memory rather than files (the Python module, glint.bake on arrays):
   /// Meshes that replace the files `low` and `high` (which then only name them in messages;
@@ -121,8 +125,10 @@ class HighMeshCache;
 
 /// checkJob, then loads the meshes, bakes (every UDIM tile; bake groups when the low and
 /// high files name their parts), writes every map through the run (staged until
-/// run.finish()) and fills the run's report. `cache`: a batch's shared high meshes.
-void runJob(const BakeJob& job, ToolRun& run, HighMeshCache* cache = nullptr);
+/// run.finish()) and fills the run's report. `cache`: a batch's shared high meshes. `gpu`:
+/// where --device auto|gpu traces (scenes/bake_gpu.h's bakeGpuBackend()); null: the CPU
+/// (auto) or Error(NoGpu) (gpu).
+void runJob(const BakeJob& job, ToolRun& run, HighMeshCache* cache = nullptr, GpuBackend* gpu = nullptr);
 
 /// The memory a bake is estimated to need (MiB), from its options and input files' sizes.
 double estimateMemoryMiB(const BakeJob& job);
@@ -138,6 +144,8 @@ struct BatchRequest {
   /// (keys are long option names; givenOptions reads them off a parsed command line).
   nlohmann::ordered_json overrides = nlohmann::ordered_json::object();
   ToolSettings tool;              ///< the batch's own: --json is the batch report, -q quiets every job
+  GpuBackend* gpu = nullptr;      ///< every job's GPU (runJob); null: the CPU only
+  bool glDebug = false;           ///< every job's glDebug
 };
 
 /// One bake of a batch, parsed and checked as `glint bake --batch` does.

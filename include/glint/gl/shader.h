@@ -81,6 +81,7 @@ public:
 
   void set(std::string_view name, int v) const { glProgramUniform1i(m_id, uniformLocation(name), v); }
   void set(std::string_view name, bool v) const { glProgramUniform1i(m_id, uniformLocation(name), v ? 1 : 0); }
+  void set(std::string_view name, unsigned v) const { glProgramUniform1ui(m_id, uniformLocation(name), v); }
   void set(std::string_view name, float v) const { glProgramUniform1f(m_id, uniformLocation(name), v); }
   void set(std::string_view name, vec2 v) const { glProgramUniform2fv(m_id, uniformLocation(name), 1, &v.x); }
   void set(std::string_view name, vec3 v) const { glProgramUniform3fv(m_id, uniformLocation(name), 1, &v.x); }
