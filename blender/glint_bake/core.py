@@ -202,6 +202,14 @@ def bake_pairs(context, settings):
     return [(low, highs)]
 
 
+def device_of(report):
+    """Where glint traced a bake's rays ("cpu", "gpu"; "cpu" for a glint without --device),
+    from its report: a UDIM bake's tiles each say (a tile's own bake)."""
+    tiles = report.get("udim_tiles") or [report]
+    devices = {tile.get("device", "cpu") for tile in tiles}
+    return devices.pop() if len(devices) == 1 else "+".join(sorted(devices))
+
+
 def chosen_maps(settings, table):
     maps = [m["name"] for m in offered_maps(table) if getattr(settings, "bake_" + m["name"], False)]
     if not maps:
@@ -301,7 +309,7 @@ class Bake:
                                 bits=32 if self.float_maps else 8, threads=self.threads, **self.options)
         except glint.Error as error:
             raise BakeError(f"glint: {error}") from None
-        self.devices.append(result.report.get("device", "cpu"))
+        self.devices.append(device_of(result.report))
         return dict(result)
 
     def bake_with_command(self, index, low_file, high_file, uv_name):
@@ -336,7 +344,7 @@ class Bake:
             raise BakeError(lines[-1] if lines else f"glint: glint bake failed (exit {process.returncode})")
         with open(report_path) as f:
             report = json.load(f)
-        self.devices.append(report.get("device", "cpu"))
+        self.devices.append(device_of(report))
         tiles = [t["tile"] for t in report.get("udim_tiles", [])]
         baked = {}
         for m in self.maps:
