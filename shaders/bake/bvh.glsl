@@ -1,4 +1,4 @@
-// The GPU bake's traversal (render/bake/tracer.h), shared by its kernels: the flat BVH of
+// The GPU bake's traversal (scenes/bake_tracer.h), shared by its kernels: the flat BVH of
 // raytrace/bvh.h walked with the same arithmetic as its CPU traverse(): the slab test widened
 // by 2γ(3), the nearer child first, and the watertight triangle test (Woop, Benthin and Wald
 // 2013) with the edge functions redone in double where float gives zero. Bindings 0–2.

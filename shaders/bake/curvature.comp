@@ -1,5 +1,5 @@
 #version 450 core
-// One invocation a sample's curvature (render/bake/tracer.h, bake/gpu_backend.h's
+// One invocation a sample's curvature (scenes/bake_tracer.h, bake/gpu_backend.h's
 // CurvatureJob): the CPU's curvatureFrom — 8 points around the hit dropped onto the high
 // poly, the first surface facing the hit's way (up to 3 crossings), the radius halved up to
 // 3 times where nothing is found — each giving the normal curvature towards it.

@@ -1,5 +1,5 @@
 #version 450 core
-// One invocation a sample's hemisphere rays (render/bake/tracer.h, bake/gpu_backend.h's
+// One invocation a sample's hemisphere rays (scenes/bake_tracer.h, bake/gpu_backend.h's
 // HemisphereJob): the CPU's CosineSet generated here from the same table of turns, so a
 // sample's 16–1,024 rays never cross the bus. Any hit (AO, bent normals): the rays that
 // escape and the sum of their directions; closest hit (thickness): the sum of the distances.

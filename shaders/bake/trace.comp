@@ -1,5 +1,5 @@
 #version 450 core
-// The GPU bake's rays (render/bake/tracer.h): one invocation a ray through the BVH
+// The GPU bake's rays (scenes/bake_tracer.h): one invocation a ray through the BVH
 // (bake/bvh.glsl), closest or any hit.
 layout(local_size_x = 64) in;
 

@@ -6,6 +6,9 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
+#include <string>
+
 namespace glint::bake {
 
 std::uint64_t estimateGpuBytes(std::size_t triangles) {

@@ -1,4 +1,4 @@
-// The GPU bake's tracer (render/bake/tracer.h) on a headless context: the same hits as
+// The GPU bake's tracer (scenes/bake_tracer.h) on a headless context: the same hits as
 // raytrace::traverse(), the same arithmetic on the CPU, and as Embree's own queries for at
 // least 99.99 % of rays (the rest at edges, at the same distance).
 #include "glint/bake/baker.h"
@@ -7,7 +7,7 @@
 #include "glint/mesh/mesh.h"
 #include "glint/raytrace/bvh.h"
 #include "glint/raytrace/raytracer.h"
-#include "glint/render/bake/tracer.h"
+#include "glint/scenes/bake_tracer.h"
 
 #include "support/gl_test.h"
 
@@ -23,7 +23,7 @@
 using namespace glint;
 using glint::testing::GlTest;
 
-TEST_F(GlTest, GpuTracerHitsWhatTheCpuTraversalAndEmbreeHit) {
+TEST_F(GlTest, BakeTracerHitsWhatTheCpuTraversalAndEmbreeHit) {
   const Mesh mesh = makeTorus(1.0f, 0.35f, 96, 48);
   const raytrace::Bvh bvh = raytrace::buildBvh(mesh);
   const raytrace::Scene scene(mesh);
@@ -35,9 +35,9 @@ TEST_F(GlTest, GpuTracerHitsWhatTheCpuTraversalAndEmbreeHit) {
     rays.push_back({.origin = origin, .direction = 0.8f * vec3(u(rng), 0.3f * u(rng), u(rng)) - origin,
                     .tnear = 0.0f, .tfar = i % 3 == 0 ? 2.0f : std::numeric_limits<float>::infinity()});
   }
-  render::bake::GpuTracer tracer(bvh, {}, 4096);  // several batches
+  scenes::BakeTracer tracer(bvh, {}, 4096);  // several batches
   for (const bool anyHit : {false, true}) {
-    const std::vector<render::bake::GpuHit> gpu = tracer.trace(rays, anyHit);
+    const std::vector<scenes::BakeHit> gpu = tracer.trace(rays, anyHit);
     ASSERT_EQ(gpu.size(), rays.size());
     int sameAsCpu = 0, sameAsEmbree = 0, hits = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -76,7 +76,7 @@ TEST_F(GlTest, GpuTracerHitsWhatTheCpuTraversalAndEmbreeHit) {
 // short rays back from P), traced on the GPU and by Embree: the same triangle for ≥ 99.99 %
 // of them, the rest (a ray through an edge or a vertex) at the same distance within 1e-5, or
 // a hit at the very end of a ray's range that one of the two rounds past it.
-TEST_F(GlTest, GpuTracerHitsWhatEmbreeHitsForTheBakesRays) {
+TEST_F(GlTest, BakeTracerHitsWhatEmbreeHitsForTheBakesRays) {
   log::setLevel(log::Level::Error);
   const Mesh low = makeTorus(1.0f, 0.35f, 48, 12);
   const Mesh high = bake::makeStuddedTorus({.segments = 128, .sides = 64});
@@ -89,7 +89,7 @@ TEST_F(GlTest, GpuTracerHitsWhatEmbreeHitsForTheBakesRays) {
   bake::bake(low, high, options);
   ASSERT_GT(rays.size(), 100000u);
   const raytrace::Scene scene(high);
-  render::bake::GpuTracer tracer(raytrace::buildBvh(high));
+  scenes::BakeTracer tracer(raytrace::buildBvh(high));
   const auto gpu = tracer.intersect(rays);
   std::size_t hits = 0, same = 0, onlyGpu = 0, onlyEmbree = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {

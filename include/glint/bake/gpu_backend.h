@@ -1,7 +1,7 @@
 #pragma once
 // glint/bake/gpu_backend.h — the interface between the baker (GL-free) and a GPU that traces
 // its rays: what `glint bake --device gpu` asks of one. glint's implementation is
-// scenes/bake_gpu.h's bakeGpuBackend() (render/bake/tracer.h's compute shaders on a headless
+// scenes/bake_gpu.h's bakeGpuBackend() (scenes/bake_tracer.h's compute shaders on a headless
 // context); a program without one bakes on the CPU.
 //
 // The baker keeps every decision on the CPU: where the samples are, which ray each casts,

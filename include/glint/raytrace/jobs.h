@@ -1,7 +1,7 @@
 #pragma once
 // glint/raytrace/jobs.h — the ray work a GPU bake hands over per sample, as plain data both
 // sides share: the baker (bake/, which fills the jobs exactly as its CPU path casts the rays)
-// and the compute shaders (render/bake/tracer.h; shaders/bake/hemisphere.comp and
+// and the compute shaders (scenes/bake_tracer.h; shaders/bake/hemisphere.comp and
 // curvature.comp, whose std430 structs these are). Also the table of turns the hemisphere
 // sets are made from, so the CPU and the GPU turn the same directions.
 //

@@ -2,7 +2,7 @@
 // glint/scenes/bake_gpu.h — `glint bake --device gpu`'s backend: the GL side the baker
 // (bake/, GL-free) hands its rays to through bake::GpuBackend (bake/gpu_backend.h). It
 // makes its headless context when a bake first needs the GPU, builds the high poly's BVH
-// (raytrace/bvh.h) and traces through render/bake/tracer.h's compute shaders. It joins a GL
+// (raytrace/bvh.h) and traces through scenes/bake_tracer.h's compute shaders. It joins a GL
 // technique to a tool, so it sits with the other compositions in scenes/, above both.
 //
 /// ```cpp

@@ -4,11 +4,15 @@
 #include "glint/core/error.h"
 #include "glint/gl/context.h"
 #include "glint/raytrace/bvh.h"
-#include "glint/render/bake/tracer.h"
+#include "glint/scenes/bake_tracer.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace glint::scenes {
 
@@ -59,7 +63,7 @@ public:
   double longestDispatchMs() const override { return m_tracer.longestDispatchMs(); }
 
 private:
-  render::bake::GpuTracer m_tracer;
+  scenes::BakeTracer m_tracer;
 };
 
 class Backend final : public glint::bake::GpuBackend {

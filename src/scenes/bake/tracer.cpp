@@ -1,5 +1,5 @@
-// Rays through the BVH on the GPU (render/bake/tracer.h).
-#include "glint/render/bake/tracer.h"
+// Rays through the BVH on the GPU (scenes/bake_tracer.h).
+#include "glint/scenes/bake_tracer.h"
 
 #include "glint/core/error.h"
 
@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cstring>
 
-namespace glint::render::bake {
+namespace glint::scenes {
 
 namespace {
 
@@ -32,7 +32,7 @@ gl::Buffer storage(const std::vector<T>& data, const char* name) {
 
 }  // namespace
 
-GpuTracer::GpuTracer(const raytrace::Bvh& bvh, std::span<const vec3> cornerNormals, std::size_t batch)
+BakeTracer::BakeTracer(const raytrace::Bvh& bvh, std::span<const vec3> cornerNormals, std::size_t batch)
     : m_trace(gl::Program::fromFiles({"bake/trace.comp"})),
       m_hemisphere(gl::Program::fromFiles({"bake/hemisphere.comp"})),
       m_curvature(gl::Program::fromFiles({"bake/curvature.comp"})),
@@ -40,7 +40,7 @@ GpuTracer::GpuTracer(const raytrace::Bvh& bvh, std::span<const vec3> cornerNorma
       m_triangles(storage(bvh.triangles, "bake-bvh-triangles")),
       m_ids(storage(bvh.ids, "bake-bvh-ids")),
       m_batch(batch) {
-  if (batch == 0) fail(ErrorKind::Usage, "GpuTracer: a batch of 0 items");
+  if (batch == 0) fail(ErrorKind::Usage, "BakeTracer: a batch of 0 items");
   const raytrace::HemisphereTurns& turns = raytrace::hemisphereTurns();
   std::vector<vec2> table(raytrace::HemisphereTurns::kCount);
   for (std::size_t i = 0; i < table.size(); ++i) table[i] = {turns.cosine[i], turns.sine[i]};
@@ -49,7 +49,7 @@ GpuTracer::GpuTracer(const raytrace::Bvh& bvh, std::span<const vec3> cornerNorma
   m_normalsGiven = !cornerNormals.empty();
   // The largest item either way: a hemisphere job (80 bytes) up, 32 for a ray.
   m_up = gl::Buffer(batch * sizeof(raytrace::HemisphereJob), nullptr, GL_DYNAMIC_STORAGE_BIT, "bake-batch-up");
-  m_down = gl::Buffer(batch * sizeof(GpuHit), nullptr, 0, "bake-batch-down");
+  m_down = gl::Buffer(batch * sizeof(BakeHit), nullptr, 0, "bake-batch-down");
   if (glGetError() == GL_OUT_OF_MEMORY)
     fail(ErrorKind::NoGpu, "the GPU has not enough memory for the bake's {} MiB", gpuBytes() >> 20);
   m_empty = bvh.nodes.empty();
@@ -62,7 +62,7 @@ GpuTracer::GpuTracer(const raytrace::Bvh& bvh, std::span<const vec3> cornerNorma
   }
 }
 
-void GpuTracer::run(gl::Program& program, const void* up, std::size_t upBytes, void* down, std::size_t downBytes,
+void BakeTracer::run(gl::Program& program, const void* up, std::size_t upBytes, void* down, std::size_t downBytes,
                     std::size_t count, double raysPerItem) {
   program.use();
   m_nodes.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
@@ -97,8 +97,8 @@ void GpuTracer::run(gl::Program& program, const void* up, std::size_t upBytes, v
   }
 }
 
-std::vector<GpuHit> GpuTracer::trace(std::span<const raytrace::Ray> rays, bool anyHit) {
-  std::vector<GpuHit> out(rays.size());
+std::vector<BakeHit> BakeTracer::trace(std::span<const raytrace::Ray> rays, bool anyHit) {
+  std::vector<BakeHit> out(rays.size());
   if (m_empty || rays.empty()) return out;
   std::vector<GpuRay> upload(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -107,12 +107,12 @@ std::vector<GpuHit> GpuTracer::trace(std::span<const raytrace::Ray> rays, bool a
   }
   m_trace.use();
   m_trace.set("uAnyHit", anyHit);
-  run(m_trace, upload.data(), sizeof(GpuRay), out.data(), sizeof(GpuHit), upload.size(), 1.0);
+  run(m_trace, upload.data(), sizeof(GpuRay), out.data(), sizeof(BakeHit), upload.size(), 1.0);
   return out;
 }
 
-void GpuTracer::hemisphere(std::span<const raytrace::HemisphereJob> jobs, std::span<raytrace::HemisphereSum> sums) {
-  if (sums.size() != jobs.size()) fail(ErrorKind::Internal, "GpuTracer::hemisphere: {} sums for {} jobs", sums.size(), jobs.size());
+void BakeTracer::hemisphere(std::span<const raytrace::HemisphereJob> jobs, std::span<raytrace::HemisphereSum> sums) {
+  if (sums.size() != jobs.size()) fail(ErrorKind::Internal, "BakeTracer::hemisphere: {} sums for {} jobs", sums.size(), jobs.size());
   std::uint32_t most = 0;
   double rays = 0.0;
   for (const raytrace::HemisphereJob& job : jobs) {
@@ -120,14 +120,14 @@ void GpuTracer::hemisphere(std::span<const raytrace::HemisphereJob> jobs, std::s
     rays += double(job.count);
   }
   if (most > raytrace::HemisphereTurns::kCount)
-    fail(ErrorKind::Internal, "GpuTracer::hemisphere: {} rays a job (at most {})", most, raytrace::HemisphereTurns::kCount);
+    fail(ErrorKind::Internal, "BakeTracer::hemisphere: {} rays a job (at most {})", most, raytrace::HemisphereTurns::kCount);
   if (m_empty) {  // nothing to hit: every ray escapes or runs its whole length
     for (std::size_t j = 0; j < jobs.size(); ++j) sums[j] = {};
     for (std::size_t j = 0; j < jobs.size(); ++j) {
       if (jobs[j].closest) sums[j].value = float(jobs[j].count) * jobs[j].distance;
     }
     if (std::any_of(jobs.begin(), jobs.end(), [](const auto& job) { return job.closest == 0; }))
-      fail(ErrorKind::Internal, "GpuTracer::hemisphere: AO on an empty hierarchy");
+      fail(ErrorKind::Internal, "BakeTracer::hemisphere: AO on an empty hierarchy");
     return;
   }
   if (jobs.empty()) return;
@@ -135,9 +135,9 @@ void GpuTracer::hemisphere(std::span<const raytrace::HemisphereJob> jobs, std::s
       rays / double(jobs.size()));
 }
 
-void GpuTracer::curvature(std::span<const raytrace::CurvatureJob> jobs, float epsilon, std::span<raytrace::CurvatureSum> sums) {
-  if (sums.size() != jobs.size()) fail(ErrorKind::Internal, "GpuTracer::curvature: {} sums for {} jobs", sums.size(), jobs.size());
-  if (!m_normalsGiven && !m_empty) fail(ErrorKind::Internal, "GpuTracer::curvature without corner normals");
+void BakeTracer::curvature(std::span<const raytrace::CurvatureJob> jobs, float epsilon, std::span<raytrace::CurvatureSum> sums) {
+  if (sums.size() != jobs.size()) fail(ErrorKind::Internal, "BakeTracer::curvature: {} sums for {} jobs", sums.size(), jobs.size());
+  if (!m_normalsGiven && !m_empty) fail(ErrorKind::Internal, "BakeTracer::curvature without corner normals");
   if (jobs.empty()) return;
   if (m_empty) {
     for (std::size_t j = 0; j < jobs.size(); ++j) sums[j] = {.sum = 0.0f, .found = 0, .rays = 32};
@@ -148,8 +148,8 @@ void GpuTracer::curvature(std::span<const raytrace::CurvatureJob> jobs, float ep
   run(m_curvature, jobs.data(), sizeof(raytrace::CurvatureJob), sums.data(), sizeof(raytrace::CurvatureSum), jobs.size(), 12.0);
 }
 
-std::vector<std::optional<raytrace::Hit>> GpuTracer::intersect(std::span<const raytrace::Ray> rays) {
-  const std::vector<GpuHit> hits = trace(rays);
+std::vector<std::optional<raytrace::Hit>> BakeTracer::intersect(std::span<const raytrace::Ray> rays) {
+  const std::vector<BakeHit> hits = trace(rays);
   std::vector<std::optional<raytrace::Hit>> out(hits.size());
   for (std::size_t i = 0; i < hits.size(); ++i) {
     if (!hits[i].hit()) continue;
@@ -159,9 +159,9 @@ std::vector<std::optional<raytrace::Hit>> GpuTracer::intersect(std::span<const r
   return out;
 }
 
-std::size_t GpuTracer::gpuBytes() const {
+std::size_t BakeTracer::gpuBytes() const {
   return m_nodes.size() + m_triangles.size() + m_ids.size() + m_turns.size() + m_cornerNormals.size() + m_up.size() +
          m_down.size();
 }
 
-}  // namespace glint::render::bake
+}  // namespace glint::scenes

@@ -1,5 +1,5 @@
 #pragma once
-// glint/render/bake/tracer.h — rays through a raytrace::Bvh on the GPU: the hierarchy in
+// glint/scenes/bake_tracer.h — rays through a raytrace::Bvh on the GPU: the hierarchy in
 // storage buffers, one compute invocation a ray (shaders/bake/trace.comp), closest or any
 // hit. The GPU bake's tracer; its arithmetic is raytrace::traverse()'s, so the same ray hits
 // the same triangle as on the CPU (tests/bake/gpu_trace_test.cpp).
@@ -8,9 +8,9 @@
 /// #include <glint/gl/context.h>
 /// const auto context = glint::gl::HeadlessContext::create();
 /// const glint::raytrace::Bvh bvh = glint::raytrace::buildBvh(glint::makeTorus());
-/// glint::render::bake::GpuTracer tracer(bvh);
+/// glint::scenes::BakeTracer tracer(bvh);
 /// const std::vector<glint::raytrace::Ray> rays = {{.origin = {0, 0, -3}, .direction = {0, 0, 1}}};
-/// const std::vector<glint::render::bake::GpuHit> hits = tracer.trace(rays);
+/// const std::vector<glint::scenes::BakeHit> hits = tracer.trace(rays);
 /// ```
 //
 // Work goes up and answers come back in batches (one dispatch each) sized to take about
@@ -30,27 +30,27 @@
 #include <span>
 #include <vector>
 
-namespace glint::render::bake {
+namespace glint::scenes {
 
 /// One ray's result as the GPU writes it.
-struct GpuHit {
+struct BakeHit {
   float t = 0.0f;
   std::uint32_t triangle = kNoHit;  ///< the mesh's triangle; kNoHit: none
   float u = 0.0f, v = 0.0f;         ///< weights of corners 1 and 2
   static constexpr std::uint32_t kNoHit = 0xFFFFFFFFu;
   bool hit() const { return triangle != kNoHit; }
 };
-static_assert(sizeof(GpuHit) == 16, "GpuHit is the shader's HitOut");
+static_assert(sizeof(BakeHit) == 16, "BakeHit is the shader's HitOut");
 
-class GpuTracer {
+class BakeTracer {
 public:
   /// Uploads the hierarchy and, for curvature(), the mesh's corner normals (corner k of
   /// triangle t at cornerNormals[3t + k]; empty: curvature() is an error). Needs a current
   /// 4.5 context. Error(NoGpu) when the driver refuses the memory.
-  explicit GpuTracer(const raytrace::Bvh& bvh, std::span<const vec3> cornerNormals = {},
+  explicit BakeTracer(const raytrace::Bvh& bvh, std::span<const vec3> cornerNormals = {},
                      std::size_t batch = std::size_t(1) << 18);
   /// Every ray's closest hit (`anyHit`: any hit, for occlusion), in order.
-  std::vector<GpuHit> trace(std::span<const raytrace::Ray> rays, bool anyHit = false);
+  std::vector<BakeHit> trace(std::span<const raytrace::Ray> rays, bool anyHit = false);
   /// The same hits as raytrace::Scene gives them (t, triangle, u, v, the geometric normal),
   /// so that code written against Scene::intersectBatch takes them unchanged.
   std::vector<std::optional<raytrace::Hit>> intersect(std::span<const raytrace::Ray> rays);
@@ -80,4 +80,4 @@ private:
   std::vector<vec3> m_normals;  ///< per mesh triangle: its unit geometric normal (zero when not in the BVH)
 };
 
-}  // namespace glint::render::bake
+}  // namespace glint::scenes
