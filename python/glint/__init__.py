@@ -150,7 +150,8 @@ def bake(low: MeshLike, high: MeshLike, size: Size = (1024, 1024), maps: Sequenc
         ... (the options' names with underscores).
     bits: 8 (uint8, the command's PNG), 16 (uint16) or 32 (float32, the command's EXR).
     options: any other option of `glint bake`, by its long name with underscores:
-        samples=4, ao_samples=64, max_front="2%", directx=True, cage="cage.obj",
+        samples=4, ao_samples=64, max_front="2%", directx=True, cage="cage.obj", device="gpu"
+        (where the rays are traced: "auto", "cpu" or "gpu"; result.report["device"] says which),
         asset="crate.glb" (written, with the maps), preview="crate-preview" (a folder).
     progress: called as progress(label, done, total) about ten times a second.
     threads: worker threads (0: every core).

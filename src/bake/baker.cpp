@@ -431,23 +431,13 @@ void binTriangles(Context& ctx) {
   }
 }
 
-/// The samples a GPU wave takes at most: enough rays to keep a large GPU busy for a few
-/// dispatches (2^26), between 2^16 samples (1,024 rays each) and 2^19 (~128 MiB of the CPU's
-/// per-sample state).
-std::size_t waveSamples(const BakeOptions& options) {
-  const double raysPerSample = 1.0 + (options.maps.needs(kHemisphereRays) ? double(options.aoSamples) : 0.0) +
-                               (options.maps.needs(kInwardRays) ? double(options.aoSamples) : 0.0) +
-                               (options.maps.needs(kCurvatureRays) ? 8.0 : 0.0);
-  return std::clamp(std::size_t(double(std::size_t(1) << 26) / raysPerSample), std::size_t(1) << 16, std::size_t(1) << 19);
-}
-
 /// The tiles on the GPU (ctx.gpu), in slabs of consecutive tiles a wave each (traceWave):
 /// samples placed per tile in parallel, traced together, stored per tile. Progress and
 /// Ctrl-C between slabs.
 void bakeSlabs(Context& ctx, std::vector<Counters>& tileCounters, Progress* progress, std::atomic<bool>& cancelled) {
   const BakeOptions& options = ctx.options;
   const std::size_t tileCount = ctx.bins.size();
-  const std::size_t perTile = std::size_t(kTile * kTile * ctx.root * ctx.root), most = waveSamples(options);
+  const std::size_t perTile = std::size_t(kTile * kTile * ctx.root * ctx.root), most = detail::waveSamples(options);
   for (std::size_t t0 = 0; t0 < tileCount;) {
     if (options.cancel && options.cancel->load()) {
       cancelled = true;
@@ -739,6 +729,13 @@ std::vector<std::uint8_t> dilateTexels(Context& ctx, BakeStats& stats) {
 }
 
 }  // namespace
+
+std::size_t detail::waveSamples(const BakeOptions& options) {
+  const double raysPerSample = 1.0 + (options.maps.needs(kHemisphereRays) ? double(options.aoSamples) : 0.0) +
+                               (options.maps.needs(kInwardRays) ? double(options.aoSamples) : 0.0) +
+                               (options.maps.needs(kCurvatureRays) ? 8.0 : 0.0);
+  return std::clamp(std::size_t(double(std::size_t(1) << 26) / raysPerSample), std::size_t(1) << 16, std::size_t(1) << 18);
+}
 
 BakeResult bake(const Mesh& low, const Mesh& high, const BakeOptions& options) {
   return detail::bakeWith(low, high, options, nullptr);

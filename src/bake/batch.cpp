@@ -374,7 +374,11 @@ void writeBatchReport(const BatchRequest& request, Json reports, std::size_t fai
 
 int runBatch(const BatchRequest& request) {
   // Every job through the command line's option parsing, before anything runs.
-  const std::vector<BatchJob> jobs = parseBatchJobs(readBatchFile(request.file), request.file, request.overrides);
+  std::vector<BatchJob> jobs = parseBatchJobs(readBatchFile(request.file), request.file, request.overrides);
+  // --device auto takes a GPU only where this program has a hardware one (memory estimates).
+  const bool anyAuto = std::any_of(jobs.begin(), jobs.end(), [](const BatchJob& j) { return j.job.device == "auto"; });
+  const bool hardware = anyAuto && gpuPossible("auto", request.gpu);
+  for (BatchJob& j : jobs) j.job.gpuPossible = j.job.device != "auto" || hardware;
   const int count = int(jobs.size());
   if (request.job >= count || request.job < -1)
     fail(ErrorKind::Usage, "bake: --job {} is out of range: {} has {} job{} (0 to {})", request.job, request.file, count,

@@ -32,6 +32,13 @@ struct DeviceChoice {
 /// may be used; Error(NoGpu) when Device::Gpu cannot be had.
 DeviceChoice chooseDevice(const BakeOptions& options, std::size_t triangles);
 
+/// The samples a GPU wave takes at most (baker.cpp, bakeSlabs): enough rays to keep a large
+/// GPU busy for a few dispatches (2^26), between 2^16 samples (1,024 rays each) and 2^18.
+std::size_t waveSamples(const BakeOptions& options);
+/// The host memory a sample of a GPU wave holds while the wave runs (its input, geometry,
+/// first ray and hit, the hit settled, its result and jobs): about 460 bytes, rounded up.
+inline constexpr double kWaveBytesPerSample = 512.0;
+
 /// Bilinear, wrapping sample of channel 0 of a height map at UV (v up).
 float sampleHeight(const Image& height, vec2 uv);
 /// Tangent-space normal of the height map at uv (central differences, one texel apart).

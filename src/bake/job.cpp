@@ -62,7 +62,12 @@ double estimateMemoryMiB(const BakeJob& job) {
     options.maps = mapsOf(job);
     options.aoSamples = job.aoSamples;
   }
+  if (options.device == Device::Auto && !job.gpuPossible) options.device = Device::Cpu;  // auto will take the CPU
   return estimatePeakMemoryMiB(options, {job.low, job.high, job.cage});
+}
+
+bool gpuPossible(const std::string& device, GpuBackend* gpu) {
+  return device != "auto" || (gpu && !gpu->onlySoftwareDevices());
 }
 
 std::vector<FileUse> inputFiles(const BakeJob& a) {
@@ -328,7 +333,9 @@ BakeResult bakeTile(const UdimTile& tile, bool udim, const LoadedMeshes& m, cons
 
 }  // namespace
 
-void runJob(const BakeJob& a, ToolRun& run, HighMeshCache* cache, GpuBackend* gpu) {
+void runJob(const BakeJob& job, ToolRun& run, HighMeshCache* cache, GpuBackend* gpu) {
+  BakeJob a = job;
+  a.gpuPossible = a.gpuPossible && gpuPossible(a.device, gpu);
   BakePlan plan = prepare(a, run);
   BakeOptions& options = plan.options;
   options.gpu = gpu;

@@ -20,6 +20,9 @@ class App;
 
 namespace glint::bake {
 
+/// BakeJob::gpuPossible for a job's --device with `gpu` as its backend (an EGL query: no context).
+bool gpuPossible(const std::string& device, GpuBackend* gpu);
+
 namespace fs = std::filesystem;
 
 /// Within one `--batch` run: the high meshes read so far, by path and modification time,

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <system_error>
 #include <vector>
@@ -36,7 +37,17 @@ double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::
   // Thickness and curvature may keep per-vertex tables of the high poly (trace.h,
   // VertexCache: ~40 bytes a triangle while they are built), about 1.5× a binary PLY's bytes.
   const double vertexTables = options.maps.needs(kInwardRays | kCurvatureRays) ? 1.5 * inputBytes : 0.0;
-  return 64.0 + (2.0 * inputBytes + vertexTables + texels * (19.5 + 8.0 * extraChannels)) / (1 << 20);
+  // A bake that may trace on the GPU (--device auto or gpu) holds a wave's samples at once
+  // (trace.h, traceWave: at most 2^18 of them, ~128 MiB), the GL context and its batch
+  // buffers (~56 MiB), and the GPU's copy of the hierarchy (raytrace/bvh.h) while it is
+  // uploaded, or for good on a software renderer: about as much again as the meshes'.
+  // Measured: the 262k-triangle studded torus at 2048² on llvmpipe, 357 MiB (the CPU: 146).
+  const double gpu = options.device == Device::Cpu
+                         ? 0.0
+                         : detail::kWaveBytesPerSample *
+                                   std::min(double(detail::waveSamples(options)), texels * double(options.samples)) +
+                               56.0 * double(1 << 20) + 2.0 * inputBytes;
+  return 64.0 + (2.0 * inputBytes + vertexTables + gpu + texels * (19.5 + 8.0 * extraChannels)) / (1 << 20);
 }
 
 nlohmann::ordered_json toJson(const BakeOptions& options) {

@@ -547,6 +547,7 @@ TEST(BakeExtraMaps, OptionChecksReportAndMemory) {
 
   bake::BakeOptions big;
   big.width = big.height = 1024;
+  big.device = bake::Device::Cpu;  // (auto and gpu add a GPU wave: bake_maps_test.cpp)
   big.maps.add(bake::Map::BentNormal).add(bake::Map::Position);  // three channels each
   big.maps.add(bake::Map::Thickness).add(bake::Map::Opacity).add(bake::Map::Curvature);  // one each
   EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5 + 8.0 * 9);

@@ -421,8 +421,16 @@ TEST(BakeMaps, ReportAndMemoryEstimate) {
   std::ofstream(file, std::ios::binary) << std::string(1 << 19, 'x');
   bake::BakeOptions big;
   big.width = big.height = 1024;
+  big.device = bake::Device::Cpu;
   EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5);
   EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {file, "", "missing.obj"}), 64.0 + 1.0 + 19.5);
   big.maps.add(bake::Map::Ao).add(bake::Map::MissMask);
   EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5 + 16.0);
+  // A bake that may take the GPU holds a wave of at most 2^18 samples, 512 bytes each, a GL
+  // context with its batches (56 MiB) and the GPU's hierarchy (twice the inputs again).
+  big.device = bake::Device::Auto;
+  EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + 19.5 + 16.0 + 128.0 + 56.0);
+  EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {file}), 64.0 + 2.0 + 19.5 + 16.0 + 128.0 + 56.0);
+  big.width = big.height = 64;
+  EXPECT_DOUBLE_EQ(bake::estimatePeakMemoryMiB(big, {}), 64.0 + (19.5 + 16.0 + 512.0) / 256.0 + 56.0);
 }

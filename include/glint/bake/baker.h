@@ -313,7 +313,11 @@ void validateOptions(const BakeOptions& options);
 /// curvature, opacity: one; bent normals, position, vertex colour: three; material ID: two, its
 /// 4-byte index per texel and its RGB image: a float in the texel buffer and one in the
 /// result image). Measured on the studded-torus pair (1024² → 16384², 262k triangles;
-/// 16384²: 4,959 MiB; the extra channels at 2048²: 8.0 bytes each, PNG outputs).
+/// 16384²: 4,959 MiB; the extra channels at 2048²: 8.0 bytes each, PNG outputs). A bake that
+/// may trace on the GPU (device Auto or Gpu) adds a wave of samples held at once (512 bytes
+/// each, at most 2^18: 128 MiB), ~56 MiB for the GL context and its batches, and twice the
+/// input files again for the GPU's copy of the hierarchy (host memory on a software
+/// renderer, and while it is uploaded). The GPU's own memory is checked apart.
 double estimatePeakMemoryMiB(const BakeOptions& options, const std::vector<std::filesystem::path>& inputs);
 
 /// The options in a report: width, height, samples_per_texel, space ("tangent", "object"

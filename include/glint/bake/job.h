@@ -67,6 +67,10 @@ struct BakeJob {
   bool directX = false, frontFirst = false, fillAll = false, noGroups = false;
   ToolSettings tool;  ///< --threads, -q, --max-memory, --json
   bool glDebug = false;  ///< the GPU's context with GL debug output (`glint --gl-debug`)
+  /// Whether --device auto may take a GPU in this program: runJob and runBatch set it from
+  /// their backend (none, or EGL lists only software renderers: false). The memory estimate
+  /// counts a GPU bake's host memory for auto only when it is true.
+  bool gpuPossible = true;
 
   // In memory rather than files (the Python module, glint.bake on arrays):
   /// Meshes that replace the files `low` and `high` (which then only name them in messages;

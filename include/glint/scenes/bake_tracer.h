@@ -54,6 +54,8 @@ public:
   /// The same hits as raytrace::Scene gives them (t, triangle, u, v, the geometric normal),
   /// so that code written against Scene::intersectBatch takes them unchanged.
   std::vector<std::optional<raytrace::Hit>> intersect(std::span<const raytrace::Ray> rays);
+  /// The same into `hits` (one per ray).
+  void intersect(std::span<const raytrace::Ray> rays, std::span<std::optional<raytrace::Hit>> hits);
   /// Each job's hemisphere rays (shaders/bake/hemisphere.comp).
   void hemisphere(std::span<const raytrace::HemisphereJob> jobs, std::span<raytrace::HemisphereSum> sums);
   /// Each job's curvature points (shaders/bake/curvature.comp).

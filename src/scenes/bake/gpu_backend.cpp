@@ -49,8 +49,7 @@ class Scene final : public glint::bake::GpuScene {
 public:
   Scene(const raytrace::Bvh& bvh, std::span<const vec3> cornerNormals) : m_tracer(bvh, cornerNormals) {}
   void closest(std::span<const raytrace::Ray> rays, std::span<std::optional<raytrace::Hit>> hits) override {
-    const std::vector<std::optional<raytrace::Hit>> found = m_tracer.intersect(rays);
-    std::copy(found.begin(), found.end(), hits.begin());
+    m_tracer.intersect(rays, hits);
   }
   void hemisphere(std::span<const raytrace::HemisphereJob> jobs, std::span<raytrace::HemisphereSum> sums) override {
     m_tracer.hemisphere(jobs, sums);

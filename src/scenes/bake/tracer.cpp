@@ -149,14 +149,20 @@ void BakeTracer::curvature(std::span<const raytrace::CurvatureJob> jobs, float e
 }
 
 std::vector<std::optional<raytrace::Hit>> BakeTracer::intersect(std::span<const raytrace::Ray> rays) {
+  std::vector<std::optional<raytrace::Hit>> out(rays.size());
+  intersect(rays, out);
+  return out;
+}
+
+void BakeTracer::intersect(std::span<const raytrace::Ray> rays, std::span<std::optional<raytrace::Hit>> out) {
+  if (out.size() != rays.size()) fail(ErrorKind::Internal, "BakeTracer::intersect: {} hits for {} rays", out.size(), rays.size());
   const std::vector<BakeHit> hits = trace(rays);
-  std::vector<std::optional<raytrace::Hit>> out(hits.size());
   for (std::size_t i = 0; i < hits.size(); ++i) {
+    out[i].reset();
     if (!hits[i].hit()) continue;
     out[i] = raytrace::Hit{.t = hits[i].t, .mesh = 0, .triangle = hits[i].triangle, .u = hits[i].u, .v = hits[i].v,
                            .geometricNormal = m_normals[hits[i].triangle]};
   }
-  return out;
 }
 
 std::size_t BakeTracer::gpuBytes() const {
