@@ -26,6 +26,9 @@ from blender_common import bake_target, use_cycles  # noqa: E402
 argv = sys.argv[sys.argv.index("--") + 1:]
 addon_zip, extension_zip, module_dir, low_path, high_path = argv[:5]
 size, repeats = int(argv[5]), int(argv[6])
+# The add-on's Device settings to time (glint bench bake asks for "cpu,gpu" on a hardware GPU):
+# each is a tool of its own in the results, "addon-cpu", "addon-gpu"; the default one "addon".
+devices = argv[7].split(",") if len(argv) > 7 else ["auto"]
 DISTANCE = 0.06
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "blender"))
@@ -76,9 +79,11 @@ def select():
     bpy.context.view_layer.objects.active = low
 
 
-def addon(maps):
+def addon(maps, device):
     for name in ("normal", "ao"):
         setattr(settings, "bake_" + name, name in maps)
+    if hasattr(settings, "device"):
+        settings.device = device
     select()
     start = time.perf_counter()
     bpy.ops.object.glint_bake()
@@ -104,7 +109,9 @@ def cycles(maps):
 
 for case, maps in (("normal", ("normal",)), ("normal+ao", ("normal", "ao"))):
     for i in range(repeats):
-        seconds, phases = addon(maps)
-        print("RESULT " + json.dumps({"case": case, "tool": "addon", "seconds": seconds, "phases": phases}), flush=True)
+        for device in devices:
+            seconds, phases = addon(maps, device)
+            tool = "addon" if device == "auto" else "addon-" + device
+            print("RESULT " + json.dumps({"case": case, "tool": tool, "seconds": seconds, "phases": phases}), flush=True)
         seconds = cycles(maps)
         print("RESULT " + json.dumps({"case": case, "tool": "cycles", "seconds": seconds}), flush=True)
