@@ -126,8 +126,10 @@ bool overlapsTexel(const UvTriangle& t, ivec2 texel) {
 
 /// A tile's sample slots (S per texel, row by row): the first triangle (lowest id) of the
 /// tile's bin containing a sample owns it. Counts samples inside several triangles.
-void placeSamples(const Context& ctx, int x0, int y0, int tw, int th, const std::vector<int>& bin, std::span<Slot> slots,
-                  Counters& counters) {
+// (Forced inline here and in storeTexel: both tile loops call them, and GCC otherwise keeps
+// them out of line, which cost the CPU bake's tracing 5–7 %.)
+[[gnu::always_inline]] inline void placeSamples(const Context& ctx, int x0, int y0, int tw, int th,
+                                                const std::vector<int>& bin, std::span<Slot> slots, Counters& counters) {
   const int S = ctx.root * ctx.root;
   for (int id : bin) {
     const UvTriangle& t = ctx.tris[std::size_t(id)];
@@ -207,7 +209,8 @@ void storeExtraMaps(const Context& ctx, const Pending& p, std::span<const detail
 }
 
 /// The texel's samples averaged into ctx.texels (the normal normalized), and counted.
-void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleResult> results, Counters& counters) {
+[[gnu::always_inline]] inline void storeTexel(Context& ctx, const Pending& p, std::span<const detail::SampleResult> results,
+                                              Counters& counters) {
   vec3 sum(0.0f);
   float ao = 0.0f, height = 0.0f;
   std::size_t missed = 0;
@@ -265,7 +268,8 @@ void forEachTexel(const Context& ctx, int tileIndex, Counters& counters, const T
 
 /// A texel's samples as trace inputs, written at `out` (in place, field by field: see
 /// traceGroup); returns how many.
-std::size_t texelInputs(const Context& ctx, std::size_t texel, const Slot* texelSlots, detail::SampleInput* out) {
+[[gnu::always_inline]] inline std::size_t texelInputs(const Context& ctx, std::size_t texel, const Slot* texelSlots,
+                                                      detail::SampleInput* out) {
   const int W = ctx.options.width, H = ctx.options.height, S = ctx.root * ctx.root;
   std::size_t count = 0;
   for (int s = 0; s < S; ++s) {

@@ -47,6 +47,9 @@ DeviceChoice chooseDevice(const BakeOptions& options, std::size_t triangles) {
   }
   if (!must && choice.info.software)
     return cpu(fmt::format("the GL renderer is software ({}), slower than the CPU path", choice.info.renderer));
+  // A software renderer's "GPU memory" is the host's, which the job's memory estimate checks
+  // (llvmpipe in Debian 13's Mesa reports 21-32 MiB free, nothing like the host's memory).
+  if (choice.info.software) choice.info.freeBytes.reset();
   const std::uint64_t need = estimateGpuBytes(triangles);
   if (choice.info.freeBytes && need > *choice.info.freeBytes) {
     return cpu(fmt::format("the high poly's {} triangles need about {} of GPU memory; the driver reports {} free",

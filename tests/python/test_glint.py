@@ -87,7 +87,7 @@ def test_bake_on_the_gpu_equals_the_cpu_and_the_command(tmp_path, pair, run):
     cpu = glint.bake(low, high, size=64, maps=("normal", "ao"), ao_samples=8, device="cpu")
     gpu = glint.bake(low, high, size=64, maps=("normal", "ao"), ao_samples=8, device="gpu")
     assert cpu.report["device"] == "cpu" and gpu.report["device"] == "gpu"
-    assert gpu.report["gpu_dispatches"] > 0 and gpu.report["device_reason"] == "--device gpu"
+    assert gpu.report["gpu_dispatches"] > 0 and gpu.report["device_reason"].startswith("--device gpu")
     assert np.abs(cpu["normal"].astype(int) - gpu["normal"].astype(int)).max() <= 1
     assert abs(cpu["ao"].astype(float).mean() - gpu["ao"].astype(float).mean()) <= 1.0
     n, report = tmp_path / "n.png", tmp_path / "report.json"
