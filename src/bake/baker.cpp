@@ -126,8 +126,9 @@ bool overlapsTexel(const UvTriangle& t, ivec2 texel) {
 
 /// A tile's sample slots (S per texel, row by row): the first triangle (lowest id) of the
 /// tile's bin containing a sample owns it. Counts samples inside several triangles.
-// (Forced inline here and in storeTexel: both tile loops call them, and GCC otherwise keeps
-// them out of line, which cost the CPU bake's tracing 5–7 %.)
+// (Forced inline here, in storeTexel and in texelInputs: both tile loops call them, and GCC
+// otherwise keeps them out of line; measured on a 2048² normal map of the 262k-triangle
+// torus, medians of 6 alternating runs: 0.265 s of tracing against 0.244 s inlined.)
 [[gnu::always_inline]] inline void placeSamples(const Context& ctx, int x0, int y0, int tw, int th,
                                                 const std::vector<int>& bin, std::span<Slot> slots, Counters& counters) {
   const int S = ctx.root * ctx.root;
